@@ -1,0 +1,1 @@
+//! Bouc-Wen collision models (work in progress).

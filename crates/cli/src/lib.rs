@@ -1,0 +1,1 @@
+//! Command-line front ends (not yet implemented; see issues 4 and 5).

@@ -1,0 +1,1 @@
+//! Parameter identification (not yet implemented; see issue 5).

@@ -1,0 +1,506 @@
+//! The stepping engine shared by every tableau.
+
+use crate::tableau::{ErrorEstimate, Tableau};
+use crate::{Controller, Error, Options, State, System};
+
+/// Most stages any built-in method needs (DOP853 and Verner 7 with their dense stages).
+pub const MAX_STAGES: usize = 16;
+/// Most rows of any built-in interpolant.
+const MAX_ROWS: usize = 8;
+
+/// Work done by a solve.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Right-hand-side evaluations.
+    pub rhs_evals: u64,
+    /// Accepted steps.
+    pub accepted: u64,
+    /// Rejected steps (including steps retaken to stop exactly at a switching point).
+    pub rejected: u64,
+    /// Events located (switching points and terminal events).
+    pub events: u64,
+}
+
+impl std::ops::AddAssign for Stats {
+    fn add_assign(&mut self, o: Self) {
+        self.rhs_evals += o.rhs_evals;
+        self.accepted += o.accepted;
+        self.rejected += o.rejected;
+        self.events += o.events;
+    }
+}
+
+/// The continuous extension of one accepted step, `y(t)` for `t` in `[t0, t0 + h]`.
+///
+/// A small `Copy` value (no heap): the event locator evaluates it many times.
+#[derive(Debug, Clone, Copy)]
+pub struct Dense<const N: usize> {
+    t0: f64,
+    h: f64,
+    y0: State<N>,
+    rows: [State<N>; MAX_ROWS],
+    len: usize,
+}
+
+impl<const N: usize> Dense<N> {
+    /// Start of the step.
+    pub fn t0(&self) -> f64 {
+        self.t0
+    }
+
+    /// End of the step.
+    pub fn t1(&self) -> f64 {
+        self.t0 + self.h
+    }
+
+    /// The interpolated state at `t` (extrapolates outside the step; callers stay inside).
+    pub fn eval(&self, t: f64) -> State<N> {
+        let theta = (t - self.t0) / self.h;
+        let f = &self.rows[..self.len];
+        let theta1 = 1.0 - theta;
+        let mut acc = f[self.len - 1];
+        for r in (0..self.len - 1).rev() {
+            // Row r+1 is multiplied by θ when r+1 is even and by 1-θ when it is odd.
+            let m = if (r + 1) % 2 == 0 { theta } else { theta1 };
+            acc = f[r] + acc * m;
+        }
+        self.y0 + acc * theta
+    }
+}
+
+/// An adaptive explicit Runge-Kutta integration of `y' = f(t, y)` in progress.
+///
+/// Owns its state on the stack: stepping allocates nothing. Each [`Integrator::step`] takes one
+/// accepted step; [`Integrator::dense`] gives the continuous extension of that step (computing
+/// the extra stages only when asked).
+///
+/// ```
+/// use bwc_ode::{Integrator, Options, State, DOP853};
+/// // y' = -y, y(0) = 1
+/// let f = |_t: f64, y: &State<1>| -*y;
+/// let mut it = Integrator::new(f, &DOP853, 0.0, State::<1>::new(1.0), Options::new(1e-10, 1e-12))?;
+/// it.integrate_to(1.0)?;
+/// assert!((it.y()[0] - (-1.0f64).exp()).abs() < 1e-10);
+/// # Ok::<(), bwc_ode::Error>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct Integrator<F, const N: usize> {
+    f: F,
+    tab: &'static Tableau,
+    rtol: State<N>,
+    atol: State<N>,
+    max_step: f64,
+    min_step: f64,
+    max_steps: u64,
+    ctrl: Controller,
+    expo: f64,
+    // Current point and f(t, y).
+    t: f64,
+    y: State<N>,
+    f_now: State<N>,
+    /// Proposed size of the next step.
+    h: f64,
+    // The last accepted step: [t_prev, t], its stages and its interpolant.
+    t_prev: f64,
+    y_prev: State<N>,
+    h_prev: f64,
+    k: [State<N>; MAX_STAGES],
+    dense_ready: bool,
+    rows: [State<N>; MAX_ROWS],
+    fac_old: f64,
+    last_rejected: bool,
+    stats: Stats,
+}
+
+impl<F: System<N>, const N: usize> Integrator<F, N> {
+    /// Starts an integration at `(t0, y0)`.
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] for inadmissible options, [`Error::NonFiniteInitialValue`] for a
+    /// non-finite `t0`, `y0` or `f(t0, y0)`.
+    pub fn new(
+        f: F,
+        tableau: &'static Tableau,
+        t0: f64,
+        y0: State<N>,
+        options: Options<N>,
+    ) -> Result<Self, Error> {
+        options.validate()?;
+        if !t0.is_finite() || !y0.iter().all(|v| v.is_finite()) {
+            return Err(Error::NonFiniteInitialValue {
+                t: t0,
+                state: y0.as_slice().to_vec(),
+            });
+        }
+        let ctrl = options
+            .controller
+            .unwrap_or_else(|| Controller::for_method(tableau));
+        let expo = 1.0 / (tableau.error_order as f64 + 1.0) - 0.75 * ctrl.beta;
+        let mut it = Self {
+            f,
+            tab: tableau,
+            rtol: options.rtol,
+            atol: options.atol,
+            max_step: options.max_step,
+            min_step: options.min_step,
+            max_steps: options.max_steps,
+            ctrl,
+            expo,
+            t: t0,
+            y: y0,
+            f_now: State::zeros(),
+            h: 0.0,
+            t_prev: t0,
+            y_prev: y0,
+            h_prev: 0.0,
+            k: [State::zeros(); MAX_STAGES],
+            dense_ready: false,
+            rows: [State::zeros(); MAX_ROWS],
+            fac_old: 1e-4,
+            last_rejected: false,
+            stats: Stats::default(),
+        };
+        it.f_now = it.eval(t0, &y0);
+        if !it.f_now.iter().all(|v| v.is_finite()) {
+            return Err(Error::NonFiniteInitialValue {
+                t: t0,
+                state: y0.as_slice().to_vec(),
+            });
+        }
+        it.h = match options.h0 {
+            Some(h0) => h0.min(it.max_step),
+            None => it.initial_step(),
+        };
+        Ok(it)
+    }
+
+    /// Current time.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+
+    /// Current state.
+    pub fn y(&self) -> &State<N> {
+        &self.y
+    }
+
+    /// `f(t, y)` at the current point.
+    pub fn derivative(&self) -> &State<N> {
+        &self.f_now
+    }
+
+    /// The method in use.
+    pub fn tableau(&self) -> &'static Tableau {
+        self.tab
+    }
+
+    /// The right-hand side.
+    pub fn system(&self) -> &F {
+        &self.f
+    }
+
+    /// Statistics so far.
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// Counts one located event in the statistics.
+    pub fn record_event(&mut self) {
+        self.stats.events += 1;
+    }
+
+    /// Start of the last accepted step.
+    pub fn t_prev(&self) -> f64 {
+        self.t_prev
+    }
+
+    /// State at the start of the last accepted step.
+    pub fn y_prev(&self) -> &State<N> {
+        &self.y_prev
+    }
+
+    /// Proposed size of the next step.
+    pub fn next_step_size(&self) -> f64 {
+        self.h
+    }
+
+    fn eval(&mut self, t: f64, y: &State<N>) -> State<N> {
+        self.stats.rhs_evals += 1;
+        self.f.rhs(t, y)
+    }
+
+    fn snapshot(&self) -> Vec<f64> {
+        self.y.as_slice().to_vec()
+    }
+
+    /// Hairer's initial step (HINIT in dop853.f): one extra RHS evaluation.
+    fn initial_step(&mut self) -> f64 {
+        let sk = self.atol + self.rtol.component_mul(&self.y.abs());
+        let dnf = self.f_now.component_div(&sk).norm_squared();
+        let dny = self.y.component_div(&sk).norm_squared();
+        let mut h = if dnf <= 1e-10 || dny <= 1e-10 {
+            1e-6
+        } else {
+            (dny / dnf).sqrt() * 0.01
+        };
+        h = h.min(self.max_step);
+        let y1 = self.y + self.f_now * h;
+        let f1 = self.eval(self.t + h, &y1);
+        let der2 = (f1 - self.f_now).component_div(&sk).norm() / h;
+        let der12 = der2.abs().max(dnf.sqrt());
+        let iord = self.tab.error_order as f64 + 1.0;
+        let h1 = if der12 <= 1e-15 {
+            (h * 1e-3).max(1e-6)
+        } else {
+            (0.01 / der12).powf(1.0 / iord)
+        };
+        let h = (100.0 * h).min(h1).min(self.max_step);
+        if h.is_finite() && h > 0.0 {
+            h
+        } else {
+            1e-6
+        }
+    }
+
+    /// Evaluates stages `1..stages` of a step of size `h` from the current point and returns the
+    /// new solution `y_1`. Stage 0 is `f(t, y)`.
+    fn stages(&mut self, h: f64) -> State<N> {
+        let tab = self.tab;
+        self.k[0] = self.f_now;
+        for i in 1..tab.stages {
+            let yi = self.combine(&self.y, tab.a[i], h);
+            self.k[i] = self.eval(self.t + tab.c[i] * h, &yi);
+        }
+        if tab.fsal < tab.stages {
+            // The fsal stage was evaluated at y_1 itself.
+            self.combine(&self.y, tab.a[tab.fsal], h)
+        } else {
+            self.combine(&self.y, tab.b, h)
+        }
+    }
+
+    /// `y + h Σ_j w_j k_j`, skipping zero weights.
+    #[inline]
+    fn combine(&self, y: &State<N>, w: &[f64], h: f64) -> State<N> {
+        let mut acc = State::<N>::zeros();
+        for (wj, kj) in w.iter().zip(&self.k) {
+            if *wj != 0.0 {
+                acc.axpy(*wj, kj, 1.0);
+            }
+        }
+        y + acc * h
+    }
+
+    /// Scaled error norm of the step just computed (`<= 1`: acceptable).
+    fn error_norm(&self, h: f64, y1: &State<N>) -> f64 {
+        let sk = self.atol + self.rtol.component_mul(&self.y.abs().sup(&y1.abs()));
+        let weighted = |w: &[f64]| {
+            let mut acc = State::<N>::zeros();
+            for (wj, kj) in w.iter().zip(&self.k) {
+                if *wj != 0.0 {
+                    acc.axpy(*wj, kj, 1.0);
+                }
+            }
+            acc.component_div(&sk).norm_squared()
+        };
+        let n = N as f64;
+        match self.tab.error {
+            ErrorEstimate::Embedded(e) => (weighted(e) / n).sqrt() * h.abs(),
+            ErrorEstimate::Hairer853 { e5, e3 } => {
+                let err5 = weighted(e5);
+                let err3 = weighted(e3);
+                let mut deno = err5 + 0.01 * err3;
+                if deno <= 0.0 {
+                    deno = 1.0;
+                }
+                h.abs() * err5 * (1.0 / (n * deno)).sqrt()
+            }
+        }
+    }
+
+    /// Finishes a step of size `h` ending at `t1` with solution `y1`: makes it the last step.
+    fn accept(&mut self, h: f64, t1: f64, y1: State<N>) -> Result<(), Error> {
+        let tab = self.tab;
+        let f1 = if tab.fsal < tab.stages {
+            self.k[tab.fsal]
+        } else {
+            let f1 = self.eval(t1, &y1);
+            self.k[tab.fsal] = f1;
+            f1
+        };
+        if !y1.iter().chain(f1.iter()).all(|v| v.is_finite()) {
+            return Err(Error::NonFiniteState {
+                t: self.t,
+                state: self.snapshot(),
+            });
+        }
+        self.t_prev = self.t;
+        self.y_prev = self.y;
+        self.h_prev = h;
+        self.t = t1;
+        self.y = y1;
+        self.f_now = f1;
+        self.dense_ready = false;
+        self.stats.accepted += 1;
+        Ok(())
+    }
+
+    /// Takes one accepted adaptive step, ending at `t_end` at the latest.
+    ///
+    /// # Errors
+    /// [`Error::StepSizeTooSmall`], [`Error::TooManySteps`] or [`Error::NonFiniteState`]; the
+    /// integrator stays at the last accepted point.
+    pub fn step(&mut self, t_end: f64) -> Result<(), Error> {
+        loop {
+            if self.stats.accepted + self.stats.rejected >= self.max_steps {
+                return Err(Error::TooManySteps {
+                    max_steps: self.max_steps,
+                    t: self.t,
+                    state: self.snapshot(),
+                });
+            }
+            let remaining = t_end - self.t;
+            let mut h = self.h.min(self.max_step);
+            let last = remaining <= h * (1.0 + 1e-12);
+            if last {
+                h = remaining;
+            }
+            let h_floor = self.min_step.max(16.0 * f64::EPSILON * self.t.abs());
+            if h <= h_floor && !(last && h > 0.0) {
+                return Err(Error::StepSizeTooSmall {
+                    t: self.t,
+                    h,
+                    state: self.snapshot(),
+                });
+            }
+            let y1 = self.stages(h);
+            let err = self.error_norm(h, &y1);
+            if err.is_finite() && err <= 1.0 {
+                let t1 = if last { t_end } else { self.t + h };
+                let fac11 = err.powf(self.expo);
+                let fac = (fac11 / self.fac_old.powf(self.ctrl.beta) / self.ctrl.safety)
+                    .clamp(1.0 / self.ctrl.max_ratio, 1.0 / self.ctrl.min_ratio);
+                let mut h_new = h / fac;
+                if self.last_rejected {
+                    h_new = h_new.min(h);
+                }
+                self.accept(h, t1, y1)?;
+                self.fac_old = err.max(1e-4);
+                self.last_rejected = false;
+                // Keep the proposal from the controller even when the last step was clipped.
+                if !last || h_new > self.h {
+                    self.h = h_new;
+                }
+                return Ok(());
+            }
+            self.stats.rejected += 1;
+            self.last_rejected = true;
+            self.h = if err.is_finite() {
+                h / (1.0 / self.ctrl.min_ratio).min(err.powf(self.expo) / self.ctrl.safety)
+            } else {
+                h * 0.1
+            };
+        }
+    }
+
+    /// Takes one step of exactly `h` without error control (for convergence studies).
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteState`] if the step produced NaN or infinity.
+    pub fn step_fixed(&mut self, h: f64) -> Result<(), Error> {
+        let y1 = self.stages(h);
+        let t1 = self.t + h;
+        self.accept(h, t1, y1)
+    }
+
+    /// Integrates until `t = t_end` (exactly).
+    ///
+    /// # Errors
+    /// As [`Integrator::step`].
+    pub fn integrate_to(&mut self, t_end: f64) -> Result<(), Error> {
+        while self.t < t_end {
+            self.step(t_end)?;
+        }
+        Ok(())
+    }
+
+    /// The continuous extension of the last accepted step (computes the extra dense stages the
+    /// first time it is asked for after a step).
+    pub fn dense(&mut self) -> Dense<N> {
+        if !self.dense_ready {
+            let tab = self.tab;
+            let (t0, h) = (self.t_prev, self.h_prev);
+            for i in tab.fsal + 1..tab.total_stages() {
+                let yi = self.combine(&self.y_prev, tab.a[i], h);
+                self.k[i] = self.eval(t0 + tab.c[i] * h, &yi);
+            }
+            // F_r = h [(Σ_j D_rj) k_0 + Σ_j D_rj (k_j - k_0)]: the stages differ from k_0 by
+            // O(h), so the large, cancelling interpolant weights multiply small differences.
+            let k0 = self.k[0];
+            for (r, row) in tab.interpolant.rows.iter().enumerate() {
+                let mut acc = k0 * row.iter().sum::<f64>();
+                for (d, kj) in row.iter().zip(&self.k).skip(1) {
+                    if *d != 0.0 {
+                        acc += (kj - k0) * *d;
+                    }
+                }
+                self.rows[r] = acc * h;
+            }
+            self.dense_ready = true;
+        }
+        Dense {
+            t0: self.t_prev,
+            h: self.h_prev,
+            y0: self.y_prev,
+            rows: self.rows,
+            len: self.tab.interpolant.rows.len(),
+        }
+    }
+
+    /// Undoes the last accepted step and integrates again from its start to exactly `t_stop`
+    /// (inside that step), so that the solution stops at `t_stop` without stepping over it.
+    /// Used to stop exactly at non-smooth points and restart from there.
+    ///
+    /// # Errors
+    /// [`Error::OutsideStep`] if `t_stop` is not inside the last step; otherwise as
+    /// [`Integrator::step`].
+    pub fn retake_to(&mut self, t_stop: f64) -> Result<(), Error> {
+        if !(t_stop > self.t_prev && t_stop <= self.t) {
+            return Err(Error::OutsideStep {
+                t: t_stop,
+                t0: self.t_prev,
+                t1: self.t,
+            });
+        }
+        self.t = self.t_prev;
+        self.y = self.y_prev;
+        self.f_now = self.k[0];
+        self.stats.accepted -= 1;
+        self.stats.rejected += 1;
+        self.h = t_stop - self.t;
+        self.integrate_to(t_stop)
+    }
+
+    /// Restarts the integration from `(t, y)` (e.g. after an event changed the state): one RHS
+    /// evaluation; keeps the proposed step size.
+    ///
+    /// # Errors
+    /// [`Error::NonFiniteInitialValue`] if `t`, `y` or `f(t, y)` is not finite.
+    pub fn restart(&mut self, t: f64, y: State<N>) -> Result<(), Error> {
+        let f = self.eval(t, &y);
+        if !t.is_finite() || !y.iter().chain(f.iter()).all(|v| v.is_finite()) {
+            return Err(Error::NonFiniteInitialValue {
+                t,
+                state: y.as_slice().to_vec(),
+            });
+        }
+        self.t = t;
+        self.y = y;
+        self.f_now = f;
+        self.t_prev = t;
+        self.y_prev = y;
+        self.h_prev = 0.0;
+        self.dense_ready = false;
+        Ok(())
+    }
+}

@@ -1,0 +1,57 @@
+//! # bwc-ode: embedded Runge-Kutta solvers for small fixed-size systems
+//!
+//! Explicit embedded Runge-Kutta pairs as data ([`Tableau`]) driven by one stepping engine
+//! ([`Integrator`]), on stack-allocated states `State<N> = nalgebra::SVector<f64, N>`:
+//!
+//! * [`DOPRI5`]: Dormand-Prince 5(4) with Hairer's 4th-order dense output;
+//! * [`DOP853`]: Hairer's 8(5,3) with its 7th-order dense output (3 extra stages, lazily);
+//! * [`VERN7`]: Verner's efficient 7(6) with its 7th-order interpolant (6 extra stages, lazily).
+//!
+//! Step control follows Hairer (scaled RMS error norm with `sc_i = atol_i + rtol_i max(|y_i|,
+//! |y1_i|)`, DOP853's combined 5th/3rd-order norm, Hairer's initial step, I or PI controller).
+//! Nothing is allocated per step or per solve; failures are values ([`Error`]) carrying the time
+//! and state where they happened. Integration can stop at any instant inside a step
+//! ([`Integrator::retake_to`]) and restart ([`Integrator::restart`]): the `bwc-events` crate
+//! builds event location on these.
+//!
+//! ```
+//! use bwc_ode::{Integrator, Options, State, VERN7};
+//! // Harmonic oscillator x'' = -x: after a full period the state returns to (1, 0).
+//! let f = |_t: f64, y: &State<2>| State::<2>::new(y[1], -y[0]);
+//! let mut it = Integrator::new(f, &VERN7, 0.0, State::<2>::new(1.0, 0.0), Options::new(1e-12, 1e-14))?;
+//! it.integrate_to(2.0 * std::f64::consts::PI)?;
+//! assert!((it.y() - State::<2>::new(1.0, 0.0)).norm() < 1e-10);
+//! println!("{} RHS evaluations", it.stats().rhs_evals);
+//! # Ok::<(), bwc_ode::Error>(())
+//! ```
+#![deny(missing_docs)]
+
+mod error;
+mod integrator;
+mod methods;
+mod options;
+pub mod tableau;
+
+pub use error::Error;
+pub use integrator::{Dense, Integrator, Stats, MAX_STAGES};
+pub use methods::{DOP853, DOPRI5, VERN7};
+pub use options::{Controller, Options};
+pub use tableau::Tableau;
+
+/// A state of `N` components on the stack.
+pub type State<const N: usize> = nalgebra::SVector<f64, N>;
+
+/// A right-hand side `y' = f(t, y)` (non-autonomous in general).
+///
+/// Implemented for closures `Fn(f64, &State<N>) -> State<N>` and for references to systems.
+pub trait System<const N: usize> {
+    /// The derivative `f(t, y)`.
+    fn rhs(&self, t: f64, y: &State<N>) -> State<N>;
+}
+
+impl<const N: usize, F: Fn(f64, &State<N>) -> State<N>> System<N> for F {
+    #[inline]
+    fn rhs(&self, t: f64, y: &State<N>) -> State<N> {
+        self(t, y)
+    }
+}

@@ -1,0 +1,133 @@
+//! Butcher tableaux of explicit embedded Runge-Kutta pairs, with their continuous extensions.
+//!
+//! A method is pure data. For a step of size `h` from `(t, y)` with stages
+//! `k_i = f(t + c_i h, y + h Σ_{j<i} a_ij k_j)`:
+//!
+//! * solution: `y_1 = y + h Σ_i b_i k_i`;
+//! * error: `h Σ_i e_i k_i` (difference of the two embedded solutions), or Hairer's DOP853
+//!   combination of a 5th- and a 3rd-order estimate ([`ErrorEstimate::Hairer853`]);
+//! * dense output on `θ ∈ [0, 1]`: `y(t + θh) = y + Σ_r w_r(θ) F_r` with `F_r = h Σ_j D_rj k_j`
+//!   in Hairer's nested basis `w = θ, θ(1-θ), θ²(1-θ), θ²(1-θ)², ...` (as in dopri5.f and
+//!   dop853.f), evaluated as `θ (F_0 + (1-θ)(F_1 + θ (F_2 + (1-θ)(F_3 + ...))))`. `F_0` is the
+//!   increment of the step and the other rows are small corrections, so the evaluation does not
+//!   suffer from cancellation.
+//!
+//! Stages `0..stages` are evaluated in every step. Stage `fsal` (when it is not among them) is
+//! `f(t + h, y_1)`, evaluated once a step is accepted and reused as the first stage of the next.
+//! Stages after `fsal` are only needed by the dense output and computed lazily.
+
+/// How the local error of a step is estimated.
+#[derive(Debug, Clone, Copy)]
+pub enum ErrorEstimate {
+    /// `err = h Σ e_i k_i`, measured in the RMS norm scaled by `atol + rtol |y|`.
+    Embedded(&'static [f64]),
+    /// Hairer's DOP853 estimate: with `E5 = ‖Σ e5_i k_i‖²`, `E3 = ‖Σ e3_i k_i‖²` (scaled sums of
+    /// squares), `err = |h| E5 / sqrt(N (E5 + 0.01 E3))`.
+    Hairer853 {
+        /// Weights of the 5th-order error estimate.
+        e5: &'static [f64],
+        /// Weights of the 3rd-order error estimate.
+        e3: &'static [f64],
+    },
+}
+
+/// A continuous extension (dense output) of a Runge-Kutta step.
+#[derive(Debug, Clone, Copy)]
+pub struct Interpolant {
+    /// Order of the interpolant (local error `O(h^(order+1))`).
+    pub order: u32,
+    /// Rows `D_r` over all stages: `F_r = h Σ_j D_rj k_j`.
+    pub rows: &'static [&'static [f64]],
+}
+
+/// An explicit embedded Runge-Kutta pair with a continuous extension.
+#[derive(Debug, Clone, Copy)]
+pub struct Tableau {
+    /// Human-readable name, e.g. `"DOP853"`.
+    pub name: &'static str,
+    /// Order of the propagated solution.
+    pub order: u32,
+    /// Order used in the step-size exponent `1 / (error_order + 1)`.
+    pub error_order: u32,
+    /// Number of stages evaluated in every step (the first one is reused from the previous step).
+    pub stages: usize,
+    /// Index of the stage that equals `f(t + h, y_1)`.
+    pub fsal: usize,
+    /// Nodes `c_i`, for every stage including the dense-output stages.
+    pub c: &'static [f64],
+    /// Rows `a_i` (strictly lower triangular, row `i` has `i` entries).
+    pub a: &'static [&'static [f64]],
+    /// Weights `b_i` of the propagated solution (length `stages`).
+    pub b: &'static [f64],
+    /// Error estimate.
+    pub error: ErrorEstimate,
+    /// Dense output.
+    pub interpolant: Interpolant,
+    /// Default `β` of the PI step-size controller (Hairer's stabilisation; 0 for plain I control).
+    pub default_beta: f64,
+}
+
+impl Tableau {
+    /// Total number of stages including the dense-output stages.
+    pub fn total_stages(&self) -> usize {
+        self.c.len()
+    }
+}
+
+/// All built-in methods, in order of increasing order.
+pub fn all() -> [&'static Tableau; 3] {
+    [&crate::DOPRI5, &crate::DOP853, &crate::VERN7]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Structural consistency: row sums equal the nodes, weights sum to one, error weights sum
+    /// to zero, interpolant at θ = 1 reproduces the solution.
+    #[test]
+    fn tableaux_are_consistent() {
+        for t in all() {
+            let s = t.total_stages();
+            assert_eq!(t.a.len(), s, "{}", t.name);
+            assert!(t.fsal < s && t.b.len() == t.stages, "{}", t.name);
+            for (i, row) in t.a.iter().enumerate() {
+                assert_eq!(row.len(), i, "{} row {i}", t.name);
+                let sum: f64 = row.iter().sum();
+                assert!(
+                    (sum - t.c[i]).abs() < 1e-14,
+                    "{} row {i}: {sum} vs {}",
+                    t.name,
+                    t.c[i]
+                );
+            }
+            let sb: f64 = t.b.iter().sum();
+            assert!((sb - 1.0).abs() < 1e-14, "{}: Σb = {sb}", t.name);
+            // The fsal stage is evaluated at (t + h, y_1).
+            assert_eq!(t.c[t.fsal], 1.0, "{}", t.name);
+            for (j, bj) in t.b.iter().enumerate() {
+                let aj = t.a[t.fsal].get(j).copied().unwrap_or(0.0);
+                assert!((aj - bj).abs() < 1e-15, "{}: fsal row", t.name);
+            }
+            match t.error {
+                ErrorEstimate::Embedded(e) => {
+                    assert!(e.iter().sum::<f64>().abs() < 1e-14, "{}", t.name)
+                }
+                ErrorEstimate::Hairer853 { e5, e3 } => {
+                    assert!(e5.iter().sum::<f64>().abs() < 1e-14);
+                    assert!(e3.iter().sum::<f64>().abs() < 1e-14);
+                }
+            }
+            // Dense output at θ = 1 equals y_1: w_0(1) = 1 and w_r(1) = 0 otherwise, so D_0 = b.
+            for j in 0..s {
+                let w1 = t.interpolant.rows[0][j];
+                let bj = t.b.get(j).copied().unwrap_or(0.0);
+                assert!(
+                    (w1 - bj).abs() < 1e-12,
+                    "{} stage {j}: {w1} vs {bj}",
+                    t.name
+                );
+            }
+        }
+    }
+}
