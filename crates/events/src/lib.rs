@@ -1,1 +1,347 @@
-//! placeholder
+//! # bwc-events: event location on Runge-Kutta dense output
+//!
+//! Drives a [`bwc_ode::Integrator`] step by step and, inside each accepted step, locates on the
+//! step's dense output:
+//!
+//! * **terminal conditions** ([`Condition`]): a set of states described by signs of up to
+//!   [`MAX_FUNCTIONS`] boundary functions; the event is the *infimum* of the instants where the
+//!   condition holds, e.g. separation `t_s = inf{t : F <= 0 <= v}` (two functions and a
+//!   predicate). A single crossing with a direction is the special case [`Crossing`].
+//! * **switching points** ([`Switches`]): zeros of functions where the right-hand side is not
+//!   smooth (`v = 0`, `z = 0` in the Bouc-Wen models). The integrator stops exactly there and
+//!   restarts, so no step straddles a kink.
+//!
+//! Crossings are bracketed with an Illinois root finder and a bisection safeguard down to
+//! adjacent floating-point numbers, so zeros of high multiplicity (a force vanishing like
+//! `(t_s - t)^p`) are located to the last bit of the interpolant. A function that merely
+//! *leaves* zero (as the contact force does at `t = 0`) is not a crossing: no event fires at the
+//! initial instant.
+//!
+//! ```
+//! use bwc_events::{Crossing, Direction, Locator, NoSwitches, Outcome};
+//! use bwc_ode::{Integrator, Options, State, DOP853};
+//! // A ball dropped from 10 m: y'' = -g. Impact when the height crosses zero downwards.
+//! let g = 9.81;
+//! let f = move |_t: f64, y: &State<2>| State::<2>::new(y[1], -g);
+//! let mut it = Integrator::new(f, &DOP853, 0.0, State::<2>::new(10.0, 0.0), Options::new(1e-10, 1e-12))?;
+//! let impact = Crossing::new(|_t: f64, y: &State<2>| y[0], Direction::Down);
+//! let mut locator = Locator::new(impact, NoSwitches);
+//! match locator.run(&mut it, 100.0)? {
+//!     Outcome::Event { t, .. } => assert!((t - (2.0 * 10.0 / g).sqrt()).abs() < 1e-14),
+//!     Outcome::Horizon { .. } => unreachable!("the ball lands"),
+//! }
+//! # Ok::<(), bwc_events::Error>(())
+//! ```
+#![deny(missing_docs)]
+
+mod root;
+
+pub use root::{class, find_crossing, Bracket};
+
+use bwc_ode::{Integrator, State, System};
+
+/// Most boundary or switching functions one condition may have.
+pub const MAX_FUNCTIONS: usize = 4;
+
+/// Values of the boundary or switching functions; entries past `count()` are ignored.
+pub type Values = [f64; MAX_FUNCTIONS];
+
+/// Failures of an integration with events.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Error {
+    /// The underlying integration failed.
+    #[error(transparent)]
+    Solver(#[from] bwc_ode::Error),
+    /// A condition or switch set declares more functions than supported.
+    #[error("{what} declares {len} functions; at most {max} are supported")]
+    TooManyFunctions {
+        /// `"condition"` or `"switches"`.
+        what: &'static str,
+        /// Declared count.
+        len: usize,
+        /// [`MAX_FUNCTIONS`].
+        max: usize,
+    },
+}
+
+/// A terminal condition: a set of states described by the signs of `count()` boundary functions.
+///
+/// The condition must only change truth value where one of its functions changes sign (or
+/// reaches zero); the event is the first instant after the start where it holds.
+pub trait Condition<const N: usize> {
+    /// Number of boundary functions (at most [`MAX_FUNCTIONS`]).
+    fn count(&self) -> usize;
+    /// The boundary functions at `(t, y)`.
+    fn values(&self, t: f64, y: &State<N>) -> Values;
+    /// Whether the condition holds, given the function values now and at the start of the step.
+    fn holds(&self, start: &Values, now: &Values) -> bool;
+}
+
+/// Functions whose zeros are non-smooth points of the right-hand side.
+pub trait Switches<const N: usize> {
+    /// Number of switching functions (at most [`MAX_FUNCTIONS`]).
+    fn count(&self) -> usize;
+    /// The switching functions at `(t, y)`.
+    fn values(&self, t: f64, y: &State<N>) -> Values;
+}
+
+/// No switching points: step over everything.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoSwitches;
+
+impl<const N: usize> Switches<N> for NoSwitches {
+    fn count(&self) -> usize {
+        0
+    }
+    fn values(&self, _t: f64, _y: &State<N>) -> Values {
+        [0.0; MAX_FUNCTIONS]
+    }
+}
+
+/// Switching points at the zeros of a function `g(t, y) -> [f64; K]` with `K <= 4`.
+#[derive(Debug, Clone, Copy)]
+pub struct SwitchAt<G, const K: usize>(pub G);
+
+impl<const N: usize, const K: usize, G: Fn(f64, &State<N>) -> [f64; K]> Switches<N>
+    for SwitchAt<G, K>
+{
+    fn count(&self) -> usize {
+        K
+    }
+    fn values(&self, t: f64, y: &State<N>) -> Values {
+        let mut v = [0.0; MAX_FUNCTIONS];
+        v[..K].copy_from_slice(&(self.0)(t, y));
+        v
+    }
+}
+
+/// Direction of a crossing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Direction {
+    /// From negative to zero or positive.
+    Up,
+    /// From positive to zero or negative.
+    Down,
+    /// Either way.
+    Either,
+}
+
+/// The first zero crossing of one function in a given direction.
+#[derive(Debug, Clone, Copy)]
+pub struct Crossing<G> {
+    g: G,
+    direction: Direction,
+}
+
+impl<G> Crossing<G> {
+    /// The event `g(t, y)` crosses zero in `direction`.
+    pub fn new(g: G, direction: Direction) -> Self {
+        Self { g, direction }
+    }
+}
+
+impl<const N: usize, G: Fn(f64, &State<N>) -> f64> Condition<N> for Crossing<G> {
+    fn count(&self) -> usize {
+        1
+    }
+    fn values(&self, t: f64, y: &State<N>) -> Values {
+        [(self.g)(t, y), 0.0, 0.0, 0.0]
+    }
+    fn holds(&self, start: &Values, now: &Values) -> bool {
+        let (s, g) = (class(start[0]), class(now[0]));
+        match self.direction {
+            Direction::Up => s < 0 && g >= 0,
+            Direction::Down => s > 0 && g <= 0,
+            Direction::Either => s != 0 && g != s,
+        }
+    }
+}
+
+/// What one call of [`Locator::step`] did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Step<const N: usize> {
+    /// An ordinary step; the integrator is at its end.
+    Continued,
+    /// The step crossed switching function `index`; the integrator was stopped exactly at the
+    /// switching instant `t` (and restarts from there on the next step).
+    Switched {
+        /// Which switching function.
+        index: usize,
+        /// The switching instant.
+        t: f64,
+    },
+    /// The terminal condition first holds at `t`, state `y` (from the dense output; the
+    /// integrator itself is at the end of the step).
+    Event {
+        /// Event instant.
+        t: f64,
+        /// State at the event.
+        y: State<N>,
+    },
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Outcome<const N: usize> {
+    /// The terminal condition first holds at `t`.
+    Event {
+        /// Event instant.
+        t: f64,
+        /// State at the event.
+        y: State<N>,
+    },
+    /// The horizon was reached without the condition holding.
+    Horizon {
+        /// The horizon.
+        t: f64,
+        /// State there.
+        y: State<N>,
+    },
+}
+
+/// Drives an integrator through terminal conditions and switching points.
+#[derive(Debug, Clone)]
+pub struct Locator<C, S> {
+    condition: C,
+    switches: S,
+    /// Class imposed on each switching function at the start of the next step, right after the
+    /// integrator stopped at its zero (the restarted state may sit a rounding error on the old
+    /// side).
+    forced: [Option<i8>; MAX_FUNCTIONS],
+}
+
+impl<C, S> Locator<C, S> {
+    /// A locator for `condition` with non-smooth points at the zeros of `switches`.
+    pub fn new(condition: C, switches: S) -> Self {
+        Self {
+            condition,
+            switches,
+            forced: [None; MAX_FUNCTIONS],
+        }
+    }
+
+    /// The terminal condition.
+    pub fn condition(&self) -> &C {
+        &self.condition
+    }
+
+    /// Takes one accepted step of `it` (ending at `t_end` at the latest) and handles the events
+    /// inside it.
+    ///
+    /// # Errors
+    /// [`Error::Solver`] when the integration fails, [`Error::TooManyFunctions`] for a condition
+    /// or switch set with more than [`MAX_FUNCTIONS`] functions.
+    pub fn step<F: System<N>, const N: usize>(
+        &mut self,
+        it: &mut Integrator<F, N>,
+        t_end: f64,
+    ) -> Result<Step<N>, Error>
+    where
+        C: Condition<N>,
+        S: Switches<N>,
+    {
+        let (nc, ns) = (self.condition.count(), self.switches.count());
+        for (what, len) in [("condition", nc), ("switches", ns)] {
+            if len > MAX_FUNCTIONS {
+                return Err(Error::TooManyFunctions {
+                    what,
+                    len,
+                    max: MAX_FUNCTIONS,
+                });
+            }
+        }
+        let (t0, y0) = (it.t(), *it.y());
+        let g_start = self.condition.values(t0, &y0);
+        let mut s_start = self.switches.values(t0, &y0);
+        let mut s_class = [0i8; MAX_FUNCTIONS];
+        for i in 0..ns {
+            s_class[i] = self.forced[i].take().unwrap_or_else(|| class(s_start[i]));
+            if s_class[i] != class(s_start[i]) {
+                // Keep the value consistent with the imposed class for the root finder.
+                s_start[i] = f64::from(s_class[i]) * f64::MIN_POSITIVE;
+            }
+        }
+
+        it.step(t_end)?;
+        let (t1, y1) = (it.t(), *it.y());
+        let g_end = self.condition.values(t1, &y1);
+        let s_end = self.switches.values(t1, &y1);
+        let crosses =
+            |a: f64, ca: i8, b: f64| ca != 0 && class(b) != ca && !b.is_nan() && !a.is_nan();
+        let any = (0..nc).any(|i| crosses(g_start[i], class(g_start[i]), g_end[i]))
+            || (0..ns).any(|i| crosses(s_start[i], s_class[i], s_end[i]));
+        if !any {
+            return Ok(Step::Continued);
+        }
+
+        let dense = it.dense();
+        let (mut ta, mut ga, mut sa) = (t0, g_start, s_start);
+        loop {
+            // Earliest crossing in (ta, t1] among all functions.
+            let mut first: Option<(Bracket, bool, usize)> = None;
+            let mut consider = |bracket: Bracket, is_switch: bool, i: usize| {
+                if first.is_none_or(|(b, _, _)| bracket.hi < b.hi) {
+                    first = Some((bracket, is_switch, i));
+                }
+            };
+            for i in 0..nc {
+                if crosses(ga[i], class(ga[i]), g_end[i]) {
+                    let g = |t: f64| self.condition.values(t, &dense.eval(t))[i];
+                    consider(find_crossing(g, ta, t1, ga[i], g_end[i]), false, i);
+                }
+            }
+            for i in 0..ns {
+                let ca = if ta == t0 { s_class[i] } else { class(sa[i]) };
+                if crosses(sa[i], ca, s_end[i]) {
+                    let g = |t: f64| self.switches.values(t, &dense.eval(t))[i];
+                    consider(find_crossing(g, ta, t1, sa[i], s_end[i]), true, i);
+                }
+            }
+            let Some((bracket, is_switch, index)) = first else {
+                return Ok(Step::Continued);
+            };
+            let t = bracket.hi;
+            let y = dense.eval(t);
+            it.record_event();
+            if is_switch {
+                self.forced[index] = Some(class(self.switches.values(t, &y)[index]));
+                if t < t1 {
+                    it.retake_to(t)?;
+                }
+                return Ok(Step::Switched { index, t });
+            }
+            let g = self.condition.values(t, &y);
+            if self.condition.holds(&g_start, &g) {
+                return Ok(Step::Event { t, y });
+            }
+            // The boundary was crossed without entering the set: keep scanning this step.
+            ta = t;
+            ga = g;
+            sa = self.switches.values(t, &y);
+        }
+    }
+
+    /// Steps until the terminal condition holds or `t_end` is reached.
+    ///
+    /// # Errors
+    /// As [`Locator::step`].
+    pub fn run<F: System<N>, const N: usize>(
+        &mut self,
+        it: &mut Integrator<F, N>,
+        t_end: f64,
+    ) -> Result<Outcome<N>, Error>
+    where
+        C: Condition<N>,
+        S: Switches<N>,
+    {
+        while it.t() < t_end {
+            if let Step::Event { t, y } = self.step(it, t_end)? {
+                return Ok(Outcome::Event { t, y });
+            }
+        }
+        Ok(Outcome::Horizon {
+            t: it.t(),
+            y: *it.y(),
+        })
+    }
+}

@@ -132,7 +132,7 @@ impl<const N: usize> Options<N> {
                 return bad("h0", h0, "finite and > 0");
             }
         }
-        if !(self.max_step > 0.0) {
+        if self.max_step.is_nan() || self.max_step <= 0.0 {
             return bad("max_step", self.max_step, "> 0 (may be +inf)");
         }
         if !(self.min_step >= 0.0 && self.min_step < self.max_step) {

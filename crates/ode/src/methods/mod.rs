@@ -1,4 +1,8 @@
 //! The built-in methods.
+//!
+//! Coefficients keep the digits of their published sources, so that they can be checked
+//! against them; the compiler rounds each to the nearest `f64`.
+#![allow(clippy::excessive_precision)]
 
 mod dop853;
 mod dopri5;

@@ -1,0 +1,191 @@
+//! Event location against closed forms.
+#![allow(clippy::excessive_precision)] // reference values keep their published digits
+
+use bwc_events::{
+    class, Condition, Crossing, Direction, Locator, NoSwitches, Outcome, Step, SwitchAt, Values,
+};
+use bwc_ode::{tableau, Integrator, Options, State, DOP853, VERN7};
+
+/// Separation `F <= 0 <= v` for a two-state oscillator `x' = v, v' = F(x)`.
+struct Separation<G>(G);
+
+impl<G: Fn(f64) -> f64> Condition<2> for Separation<G> {
+    fn count(&self) -> usize {
+        2
+    }
+    fn values(&self, _t: f64, y: &State<2>) -> Values {
+        [(self.0)(y[0]), y[1], 0.0, 0.0]
+    }
+    fn holds(&self, _start: &Values, g: &Values) -> bool {
+        g[0] <= 0.0 && g[1] >= 0.0
+    }
+}
+
+/// Exact separation times of s'' = -s^p, s(0) = 0, s'(0) = 1 (REFERENCES.md; Beta function
+/// values recomputed with mpmath at 30 digits).
+const ELASTIC: [(f64, f64); 5] = [
+    (1.0, std::f64::consts::PI),
+    (1.5, 3.2180654597190430845),
+    (2.0, 3.2101956532389271625),
+    (3.0, 3.1181694995108224606),
+    (5.0, 2.9166563142603385794),
+];
+
+fn power_force(p: f64) -> impl Fn(f64) -> f64 + Copy {
+    move |x: f64| -x.abs().powf(p - 1.0) * x
+}
+
+fn elastic_separation(
+    tab: &'static bwc_ode::Tableau,
+    p: f64,
+    rtol: f64,
+    switch_at_v0: bool,
+) -> (f64, f64, u64) {
+    let force = power_force(p);
+    let f = move |_t: f64, y: &State<2>| State::<2>::new(y[1], force(y[0]));
+    let mut it = Integrator::new(
+        f,
+        tab,
+        0.0,
+        State::<2>::new(0.0, -1.0),
+        Options::new(rtol, rtol * 1e-2),
+    )
+    .unwrap();
+    let outcome = if switch_at_v0 {
+        Locator::new(Separation(force), SwitchAt(|_t: f64, y: &State<2>| [y[1]])).run(&mut it, 10.0)
+    } else {
+        Locator::new(Separation(force), NoSwitches).run(&mut it, 10.0)
+    };
+    match outcome.unwrap() {
+        Outcome::Event { t, y } => (t, y[1], it.stats().rhs_evals),
+        Outcome::Horizon { .. } => panic!("no separation"),
+    }
+}
+
+/// The force vanishes like (T_s - T)^p at separation; T_s must still come out to 1e-12 and the
+/// rebound velocity to 1 (elastic: e = 1).
+#[test]
+fn elastic_limit_separation_time_to_1e12() {
+    for (p, ts_exact) in ELASTIC {
+        for tab in [&DOP853, &VERN7] {
+            for switch in [false, true] {
+                let (ts, v, evals) = elastic_separation(tab, p, 1e-13, switch);
+                let rel = (ts - ts_exact).abs() / ts_exact;
+                assert!(
+                    rel < 1e-12,
+                    "{} p = {p} switch {switch}: T_s = {ts} vs {ts_exact} ({rel:e})",
+                    tab.name
+                );
+                assert!((v - 1.0).abs() < 1e-11, "{} p = {p}: e = {v}", tab.name);
+                assert!(evals < 20_000, "{evals}");
+            }
+        }
+    }
+}
+
+/// No event at the initial instant although F(0) = 0: the force leaves zero, it does not cross.
+#[test]
+fn no_spurious_event_at_impact() {
+    let force = power_force(1.5);
+    let f = move |_t: f64, y: &State<2>| State::<2>::new(y[1], force(y[0]));
+    let mut it = Integrator::new(
+        f,
+        &DOP853,
+        0.0,
+        State::<2>::new(0.0, -1.0),
+        Options::new(1e-10, 1e-12),
+    )
+    .unwrap();
+    let mut loc = Locator::new(Separation(force), NoSwitches);
+    let first = loc.step(&mut it, 10.0).unwrap();
+    assert_eq!(first, Step::Continued);
+    match loc.run(&mut it, 10.0).unwrap() {
+        Outcome::Event { t, .. } => assert!(t > 3.0),
+        Outcome::Horizon { .. } => panic!("no separation"),
+    }
+}
+
+/// y' = |cos t| has a kink at t = π/2; exact y = sin t before, 2 - sin t after. With a switching
+/// function cos t the solver stops at π/2 to the last bits and keeps its full order.
+#[test]
+fn switching_point_is_hit_exactly_and_restores_accuracy() {
+    let f = |t: f64, _y: &State<1>| State::<1>::new(t.cos().abs());
+    let exact = |t: f64| {
+        if t <= std::f64::consts::FRAC_PI_2 {
+            t.sin()
+        } else {
+            2.0 - t.sin()
+        }
+    };
+    let t_end = 3.0;
+    for tab in tableau::all() {
+        let opts = Options::new(1e-12, 1e-14);
+        let mut it = Integrator::new(f, tab, 0.0, State::<1>::new(0.0), opts).unwrap();
+        let mut loc = Locator::new(
+            Crossing::new(|_t: f64, _y: &State<1>| 1.0, Direction::Down),
+            SwitchAt(|t: f64, _y: &State<1>| [t.cos()]),
+        );
+        let mut switched_at = None;
+        while it.t() < t_end {
+            if let Step::Switched { t, .. } = loc.step(&mut it, t_end).unwrap() {
+                switched_at = Some(t);
+            }
+        }
+        let ts = switched_at.expect("switch located");
+        assert!(
+            (ts - std::f64::consts::FRAC_PI_2).abs() < 4e-16,
+            "{}: {ts}",
+            tab.name
+        );
+        let with = (it.y()[0] - exact(t_end)).abs();
+        let stats_with = it.stats();
+
+        let mut plain = Integrator::new(f, tab, 0.0, State::<1>::new(0.0), opts).unwrap();
+        plain.integrate_to(t_end).unwrap();
+        let without = (plain.y()[0] - exact(t_end)).abs();
+        assert!(with < 1e-12, "{}: error with switching {with:e}", tab.name);
+        // Stopping at the kink costs one retaken step but buys accuracy per RHS evaluation.
+        assert!(
+            with * 10.0 <= without.max(1e-13),
+            "{}: {with:e} vs {without:e}",
+            tab.name
+        );
+        assert!(
+            stats_with.rhs_evals <= plain.stats().rhs_evals + 20,
+            "{}: {stats_with:?}",
+            tab.name
+        );
+        assert_eq!(stats_with.events, 1);
+    }
+}
+
+/// A crossing in the wrong direction is not an event; `Either` takes the first one.
+#[test]
+fn crossing_directions() {
+    // y = sin t: first zero crossing downwards at π, upwards at 2π.
+    let f = |t: f64, _y: &State<1>| State::<1>::new(t.cos());
+    for (dir, expected) in [
+        (Direction::Down, std::f64::consts::PI),
+        (Direction::Up, 2.0 * std::f64::consts::PI),
+        (Direction::Either, std::f64::consts::PI),
+    ] {
+        let mut it = Integrator::new(
+            f,
+            &DOP853,
+            0.0,
+            State::<1>::new(0.0),
+            Options::new(1e-12, 1e-14),
+        )
+        .unwrap();
+        // Start just after 0 so that y is positive at the start.
+        it.integrate_to(0.1).unwrap();
+        let cond = Crossing::new(|_t: f64, y: &State<1>| y[0], dir);
+        match Locator::new(cond, NoSwitches).run(&mut it, 10.0).unwrap() {
+            Outcome::Event { t, y } => {
+                assert!((t - expected).abs() < 1e-11, "{dir:?}: {t}");
+                assert!(class(y[0]) <= 0 || dir == Direction::Up);
+            }
+            Outcome::Horizon { .. } => panic!("{dir:?}: no event"),
+        }
+    }
+}
