@@ -9,7 +9,10 @@ fn solvers(c: &mut Criterion) {
     let mut group = c.benchmark_group("arenstorf_rtol1e-10");
     for tab in tableau::all() {
         let (err, evals) = arenstorf_period(tab, 1e-10);
-        eprintln!("{}: {evals} RHS evaluations per solve, error {err:.2e}", tab.name);
+        eprintln!(
+            "{}: {evals} RHS evaluations per solve, error {err:.2e}",
+            tab.name
+        );
         group.bench_function(tab.name, |b| b.iter(|| arenstorf_period(tab, 1e-10)));
     }
     group.finish();

@@ -31,8 +31,14 @@ pub fn arenstorf(_t: f64, y: &State<4>) -> State<4> {
 /// and the RHS evaluations.
 pub fn arenstorf_period(tab: &'static Tableau, rtol: f64) -> (f64, u64) {
     let y0 = arenstorf_y0();
-    match Integrator::new(arenstorf, tab, 0.0, y0, Options::new(rtol, rtol).with_max_steps(10_000_000))
-        .and_then(|mut it| it.integrate_to(ARENSTORF_PERIOD).map(|_| it))
+    match Integrator::new(
+        arenstorf,
+        tab,
+        0.0,
+        y0,
+        Options::new(rtol, rtol).with_max_steps(10_000_000),
+    )
+    .and_then(|mut it| it.integrate_to(ARENSTORF_PERIOD).map(|_| it))
     {
         Ok(it) => ((it.y() - y0).amax(), it.stats().rhs_evals),
         Err(_) => (f64::NAN, 0),

@@ -8,7 +8,10 @@ use bwc_ode::tableau;
 
 fn main() {
     println!("# Arenstorf orbit, one period; error = |y(T) - y(0)|_inf, atol = rtol");
-    println!("{:<8} {:>8} {:>12} {:>10} {:>12}", "method", "rtol", "error", "rhs_evals", "time_us");
+    println!(
+        "{:<8} {:>8} {:>12} {:>10} {:>12}",
+        "method", "rtol", "error", "rhs_evals", "time_us"
+    );
     for tab in tableau::all() {
         for k in 4..=13 {
             let rtol = 10f64.powi(-k);
@@ -16,7 +19,14 @@ fn main() {
             let secs = median_seconds(|| {
                 std::hint::black_box(arenstorf_period(tab, rtol));
             });
-            println!("{:<8} {:>8.0e} {:>12.3e} {:>10} {:>12.1}", tab.name, rtol, err, evals, secs * 1e6);
+            println!(
+                "{:<8} {:>8.0e} {:>12.3e} {:>10} {:>12.1}",
+                tab.name,
+                rtol,
+                err,
+                evals,
+                secs * 1e6
+            );
         }
     }
 }

@@ -1,1 +1,94 @@
-//! Bouc-Wen collision models (work in progress).
+//! # bw-models: Bouc-Wen collision models
+//!
+//! The models of binary direct collinear impacts with external forces from Milehins & Marghitu,
+//! *Incremental Collision Laws Based on the Bouc-Wen Model: Improved Collision Models and
+//! Further Results* (equation labels refer to its LaTeX source):
+//!
+//! * the collision laws as force elements: [`Bwshccl`] (x, z) and [`Bwmcl`] (r, y, z);
+//! * the models with input `u(t)`: [`Bwshccm`] (x, z, v), [`Bwmcm`] (r, y, z, v) in SI units and
+//!   their nondimensional forms [`Ndbwshccm`], [`Ndbwmcm`] with input `U(T)`; the earlier
+//!   NDBWMCM form [`NdbwmcmEarlier`];
+//! * parameters validated against the admissible sets ([`PhysicalParams`], [`NondimParams`]),
+//!   Table 1 both ways ([`nondimensionalize`], [`Scales`]), base parameters `P*` and the map
+//!   `P(P*, u, v0)` ([`BaseParams`], [`base_params`], [`BaseMap`]);
+//! * inputs ([`input`]) and the two-body system of Section 3 ([`Bodies`]);
+//! * one impact ([`impact`], [`simulate`]): separation `t_s = inf{t > 0 : F <= 0 <= v}`,
+//!   `e = v(t_s)/v0` (0 without separation) and `t_d = t_s`.
+//!
+//! Conventions: `x < 0` is compression, `F > 0` pushes the bodies apart, `v(0) = -v0`.
+//!
+//! ```
+//! use bw_models::{impact, input::Zero, ModelKind, Ndbwshccm, Nondim, NondimParams, Settings};
+//! // Hunt-Crossley limit (B = Γ = 0): e solves σ - ln(1+σ) = -σe - ln(1-σe); σ = 0.5 → 0.7484...
+//! let p = NondimParams::new(ModelKind::Shccm, Nondim { b: 0.0, gamma: 0.0, kappa: 0.5, sigma: 0.5, n: 1.0, p: 1.5 })?;
+//! let model = Ndbwshccm::new(&p, Zero)?;
+//! let out = impact(&model, &Settings::default())?;
+//! assert!((out.e - 0.748434931597434).abs() < 1e-9);
+//! println!("T_s = {:?}, {} RHS evaluations", out.t_s, out.stats.rhs_evals);
+//! # Ok::<(), bw_models::ModelError>(())
+//! ```
+#![deny(missing_docs)]
+
+mod bodies;
+mod impact;
+pub mod input;
+mod laws;
+mod models;
+mod params;
+mod power;
+mod scaling;
+
+pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
+pub use impact::{impact, simulate, Impact, Sampling, Settings};
+pub use laws::{Bwmcl, Bwshccl};
+pub use models::{Bwmcm, Bwshccm, CollisionModel, Ndbwmcm, NdbwmcmEarlier, Ndbwshccm};
+pub use params::{BaseParams, ModelKind, Nondim, NondimParams, Physical, PhysicalParams};
+pub use power::Pow;
+pub use scaling::{base_params, impact_at, nondimensionalize, BaseMap, InputScaling, Scales};
+
+/// A model state on the stack.
+pub type State<const N: usize> = bwc_ode::State<N>;
+
+/// Everything that can go wrong when building or simulating a model.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ModelError {
+    /// A model parameter is outside its admissible set.
+    #[error("parameter `{name}` = {value} is not admissible: {allowed}")]
+    InvalidParameter {
+        /// Parameter name as in the paper (`"kappa"`, `"B_b"`, ...).
+        name: &'static str,
+        /// The rejected value.
+        value: f64,
+        /// The admissible range.
+        allowed: &'static str,
+    },
+    /// A simulation setting is out of range.
+    #[error("setting `{name}` = {value} is not admissible: {allowed}")]
+    InvalidSetting {
+        /// Setting name as in [`Settings`].
+        name: &'static str,
+        /// The rejected value.
+        value: f64,
+        /// The admissible range.
+        allowed: &'static str,
+    },
+    /// Parameters of one model were given to the other.
+    #[error("parameters of the {found} model given where the {expected} model was expected")]
+    WrongModel {
+        /// The model expected.
+        expected: &'static str,
+        /// The model the parameters belong to.
+        found: &'static str,
+    },
+    /// A piecewise-linear input table is malformed.
+    #[error("input table point {index}: {reason}")]
+    InvalidTable {
+        /// Index of the offending point.
+        index: usize,
+        /// What is wrong.
+        reason: &'static str,
+    },
+    /// The integration failed.
+    #[error("simulation failed: {0}")]
+    Solver(#[from] bwc_events::Error),
+}

@@ -83,6 +83,12 @@ pub trait Switches<const N: usize> {
     fn count(&self) -> usize;
     /// The switching functions at `(t, y)`.
     fn values(&self, t: f64, y: &State<N>) -> Values;
+    /// Noise floor of each function: a sign change inside a step where `|g|` stays below the
+    /// floor at both ends is round-off around a resting point, not a kink, and is ignored
+    /// (otherwise a state at rest on a switching surface would chatter). Default: 0.
+    fn floor(&self) -> Values {
+        [0.0; MAX_FUNCTIONS]
+    }
 }
 
 /// No switching points: step over everything.
@@ -266,10 +272,12 @@ impl<C, S> Locator<C, S> {
         let (t1, y1) = (it.t(), *it.y());
         let g_end = self.condition.values(t1, &y1);
         let s_end = self.switches.values(t1, &y1);
+        let floor = self.switches.floor();
         let crosses =
             |a: f64, ca: i8, b: f64| ca != 0 && class(b) != ca && !b.is_nan() && !a.is_nan();
+        let above = |i: usize, a: f64| a.abs() > floor[i] || s_end[i].abs() > floor[i];
         let any = (0..nc).any(|i| crosses(g_start[i], class(g_start[i]), g_end[i]))
-            || (0..ns).any(|i| crosses(s_start[i], s_class[i], s_end[i]));
+            || (0..ns).any(|i| crosses(s_start[i], s_class[i], s_end[i]) && above(i, s_start[i]));
         if !any {
             return Ok(Step::Continued);
         }
@@ -277,47 +285,55 @@ impl<C, S> Locator<C, S> {
         let dense = it.dense();
         let (mut ta, mut ga, mut sa) = (t0, g_start, s_start);
         loop {
-            // Earliest crossing in (ta, t1] among all functions.
-            let mut first: Option<(Bracket, bool, usize)> = None;
-            let mut consider = |bracket: Bracket, is_switch: bool, i: usize| {
-                if first.is_none_or(|(b, _, _)| bracket.hi < b.hi) {
-                    first = Some((bracket, is_switch, i));
-                }
+            // Earliest crossing in (ta, t1] of a boundary function and of a switching function.
+            let earliest = |acc: Option<(Bracket, usize)>, b: Bracket, i: usize| match acc {
+                Some((a, _)) if a.hi <= b.hi => acc,
+                _ => Some((b, i)),
             };
+            let mut boundary: Option<(Bracket, usize)> = None;
             for i in 0..nc {
                 if crosses(ga[i], class(ga[i]), g_end[i]) {
                     let g = |t: f64| self.condition.values(t, &dense.eval(t))[i];
-                    consider(find_crossing(g, ta, t1, ga[i], g_end[i]), false, i);
+                    boundary = earliest(boundary, find_crossing(g, ta, t1, ga[i], g_end[i]), i);
                 }
             }
+            let mut switch: Option<(Bracket, usize)> = None;
             for i in 0..ns {
                 let ca = if ta == t0 { s_class[i] } else { class(sa[i]) };
-                if crosses(sa[i], ca, s_end[i]) {
+                if crosses(sa[i], ca, s_end[i]) && above(i, sa[i]) {
                     let g = |t: f64| self.switches.values(t, &dense.eval(t))[i];
-                    consider(find_crossing(g, ta, t1, sa[i], s_end[i]), true, i);
+                    switch = earliest(switch, find_crossing(g, ta, t1, sa[i], s_end[i]), i);
                 }
             }
-            let Some((bracket, is_switch, index)) = first else {
+            if let Some((b, _)) = boundary {
+                if switch.is_none_or(|(s, _)| b.hi <= s.hi) {
+                    let t = b.hi;
+                    let y = dense.eval(t);
+                    let g = self.condition.values(t, &y);
+                    if self.condition.holds(&g_start, &g) {
+                        it.record_event();
+                        return Ok(Step::Event { t, y });
+                    }
+                    // A boundary crossed without entering the set. Unless a switching point
+                    // falls on the same instant, keep scanning the rest of the step.
+                    if switch.is_none_or(|(s, _)| b.hi < s.hi) {
+                        ta = t;
+                        ga = g;
+                        sa = self.switches.values(t, &y);
+                        continue;
+                    }
+                }
+            }
+            let Some((bracket, index)) = switch else {
                 return Ok(Step::Continued);
             };
             let t = bracket.hi;
-            let y = dense.eval(t);
             it.record_event();
-            if is_switch {
-                self.forced[index] = Some(class(self.switches.values(t, &y)[index]));
-                if t < t1 {
-                    it.retake_to(t)?;
-                }
-                return Ok(Step::Switched { index, t });
+            self.forced[index] = Some(class(self.switches.values(t, &dense.eval(t))[index]));
+            if t < t1 {
+                it.retake_to(t)?;
             }
-            let g = self.condition.values(t, &y);
-            if self.condition.holds(&g_start, &g) {
-                return Ok(Step::Event { t, y });
-            }
-            // The boundary was crossed without entering the set: keep scanning this step.
-            ta = t;
-            ga = g;
-            sa = self.switches.values(t, &y);
+            return Ok(Step::Switched { index, t });
         }
     }
 

@@ -35,12 +35,14 @@ fn power_force(p: f64) -> impl Fn(f64) -> f64 + Copy {
     move |x: f64| -x.abs().powf(p - 1.0) * x
 }
 
+/// Separation of the elastic oscillator: (T_s, v(T_s), RHS evaluations, events, instant of the
+/// switch at v = 0 if one was requested).
 fn elastic_separation(
     tab: &'static bwc_ode::Tableau,
     p: f64,
     rtol: f64,
     switch_at_v0: bool,
-) -> (f64, f64, u64) {
+) -> (f64, f64, u64, u64, Option<f64>) {
     let force = power_force(p);
     let f = move |_t: f64, y: &State<2>| State::<2>::new(y[1], force(y[0]));
     let mut it = Integrator::new(
@@ -51,14 +53,17 @@ fn elastic_separation(
         Options::new(rtol, rtol * 1e-2),
     )
     .unwrap();
-    let outcome = if switch_at_v0 {
-        Locator::new(Separation(force), SwitchAt(|_t: f64, y: &State<2>| [y[1]])).run(&mut it, 10.0)
-    } else {
-        Locator::new(Separation(force), NoSwitches).run(&mut it, 10.0)
-    };
-    match outcome.unwrap() {
-        Outcome::Event { t, y } => (t, y[1], it.stats().rhs_evals),
-        Outcome::Horizon { .. } => panic!("no separation"),
+    let switches = SwitchAt(move |_t: f64, y: &State<2>| [if switch_at_v0 { y[1] } else { 1.0 }]);
+    let mut loc = Locator::new(Separation(force), switches);
+    let mut switched = None;
+    loop {
+        match loc.step(&mut it, 10.0).unwrap() {
+            Step::Event { t, y } => {
+                return (t, y[1], it.stats().rhs_evals, it.stats().events, switched)
+            }
+            Step::Switched { t, .. } => switched = Some(t),
+            Step::Continued => assert!(it.t() < 10.0, "no separation"),
+        }
     }
 }
 
@@ -69,7 +74,18 @@ fn elastic_limit_separation_time_to_1e12() {
     for (p, ts_exact) in ELASTIC {
         for tab in [&DOP853, &VERN7] {
             for switch in [false, true] {
-                let (ts, v, evals) = elastic_separation(tab, p, 1e-13, switch);
+                let (ts, v, evals, events, switched) = elastic_separation(tab, p, 1e-13, switch);
+                // v = 0 is both a switching point and a boundary of the separation condition:
+                // the switch must still fire, at maximum compression T_s / 2, then separation.
+                assert_eq!(events, if switch { 2 } else { 1 }, "{} p = {p}", tab.name);
+                if switch {
+                    let t = switched.expect("switch at v = 0 fired");
+                    assert!(
+                        (t - ts_exact / 2.0).abs() < 1e-12,
+                        "{} p = {p}: switch at {t}",
+                        tab.name
+                    );
+                }
                 let rel = (ts - ts_exact).abs() / ts_exact;
                 assert!(
                     rel < 1e-12,

@@ -1,0 +1,278 @@
+//! One impact: integrate a model from the instant of contact to separation
+//! `t_s = inf{t > 0 : F <= 0 <= v}` and report `t_s`, `e = v(t_s) / v0` and `t_d = t_s`.
+
+use crate::models::CollisionModel;
+use crate::params::check;
+use crate::{ModelError, State};
+use bwc_events::{Condition, Locator, Step, Switches, Values, MAX_FUNCTIONS};
+use bwc_ode::{Integrator, Options, Stats, Tableau, DOP853};
+
+/// Solver settings of an impact. Tolerances, steps and the horizon are in the model's natural
+/// units: nondimensional for the ND models; for SI models they are multiplied by the scales of
+/// Table 1 (`atol` per component by `X_c`, `Z_c`, `v0`; times by `T_c`), so the same settings
+/// give the same accuracy both ways.
+#[derive(Debug, Clone, Copy)]
+pub struct Settings {
+    /// Runge-Kutta method.
+    pub method: &'static Tableau,
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance (natural units).
+    pub atol: f64,
+    /// Largest step (natural time units; `+inf` for none).
+    pub max_step: f64,
+    /// Horizon: no separation by then is reported as such, with `e = 0` (natural time units).
+    pub t_max: f64,
+    /// Most steps.
+    pub max_steps: u64,
+    /// Stop exactly at the non-smooth points of the right-hand side and restart there.
+    pub stop_at_kinks: bool,
+}
+
+impl Default for Settings {
+    /// DOP853 at the paper's tolerances (rtol 1e-10, atol 1e-12), no step limit, horizon 1000,
+    /// stopping at the non-smooth points.
+    fn default() -> Self {
+        Self {
+            method: &DOP853,
+            rtol: 1e-10,
+            atol: 1e-12,
+            max_step: f64::INFINITY,
+            t_max: 1e3,
+            max_steps: 1_000_000,
+            stop_at_kinks: true,
+        }
+    }
+}
+
+impl Settings {
+    /// Checks the settings.
+    ///
+    /// # Errors
+    /// [`ModelError::InvalidSetting`] naming the first offending setting.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let bad = |name, value, allowed| {
+            Err(ModelError::InvalidSetting {
+                name,
+                value,
+                allowed,
+            })
+        };
+        if !(self.rtol.is_finite() && self.rtol > f64::EPSILON) {
+            return bad("rtol", self.rtol, "finite and > 2.2e-16");
+        }
+        if !(self.atol.is_finite() && self.atol >= 0.0) {
+            return bad("atol", self.atol, "finite and >= 0");
+        }
+        if self.max_step.is_nan() || self.max_step <= 0.0 {
+            return bad("max_step", self.max_step, "> 0 (may be inf)");
+        }
+        if !(self.t_max.is_finite() && self.t_max > 0.0) {
+            return bad("t_max", self.t_max, "finite and > 0");
+        }
+        if self.max_steps == 0 {
+            return bad("max_steps", 0.0, ">= 1");
+        }
+        Ok(())
+    }
+}
+
+/// The outcome of one impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Impact {
+    /// Separation time `t_s` in the model's time unit (s for SI models), `None` when the bodies
+    /// had not separated by the horizon.
+    pub t_s: Option<f64>,
+    /// Coefficient of restitution `e = v(t_s) / v0` (0 without separation).
+    pub e: f64,
+    /// State at separation (at the horizon without separation).
+    pub state: [f64; 4],
+    /// Solver statistics.
+    pub stats: Stats,
+}
+
+impl Impact {
+    /// Whether the bodies separated.
+    pub fn separated(&self) -> bool {
+        self.t_s.is_some()
+    }
+
+    /// Contact duration `t_d = t_s - t_0 = t_s`.
+    pub fn duration(&self) -> Option<f64> {
+        self.t_s
+    }
+}
+
+/// Which intermediate states to pass to the sink of [`simulate`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Sampling {
+    /// None (a CoR evaluation).
+    None,
+    /// The end of every accepted step.
+    Steps,
+    /// A uniform grid with spacing `dt` (model time units) through the dense output.
+    Grid {
+        /// Grid spacing.
+        dt: f64,
+    },
+}
+
+/// Separation condition `F <= 0 <= v`.
+struct Separation<'a, M>(&'a M);
+
+impl<const N: usize, M: CollisionModel<N>> Condition<N> for Separation<'_, M> {
+    fn count(&self) -> usize {
+        2
+    }
+    fn values(&self, _t: f64, y: &State<N>) -> Values {
+        [self.0.force(y), self.0.velocity(y), 0.0, 0.0]
+    }
+    fn holds(&self, _start: &Values, g: &Values) -> bool {
+        g[0] <= 0.0 && g[1] >= 0.0
+    }
+}
+
+/// The model's non-smooth points, or none.
+struct Kinks<'a, M> {
+    model: &'a M,
+    enabled: bool,
+    floor: f64,
+}
+
+impl<const N: usize, M: CollisionModel<N>> Switches<N> for Kinks<'_, M> {
+    fn count(&self) -> usize {
+        if self.enabled {
+            2
+        } else {
+            0
+        }
+    }
+    fn values(&self, t: f64, y: &State<N>) -> Values {
+        let k = self.model.kinks(t, y);
+        let mut v = [0.0; MAX_FUNCTIONS];
+        v[..2].copy_from_slice(&k);
+        v
+    }
+    fn floor(&self) -> Values {
+        [self.floor; MAX_FUNCTIONS]
+    }
+}
+
+fn pad<const N: usize>(y: &State<N>) -> [f64; 4] {
+    let mut out = [0.0; 4];
+    for (o, v) in out.iter_mut().zip(y.iter()) {
+        *o = *v;
+    }
+    out
+}
+
+/// Coefficient of restitution, separation time and statistics of one impact; stores nothing and
+/// allocates nothing.
+///
+/// # Errors
+/// As [`simulate`].
+pub fn impact<M: CollisionModel<N>, const N: usize>(
+    model: &M,
+    settings: &Settings,
+) -> Result<Impact, ModelError> {
+    simulate(model, settings, Sampling::None, |_, _| {})
+}
+
+/// Integrates one impact from contact to separation, passing sampled states `(t, y)` to `sink`
+/// (the initial state first and the separation state last).
+///
+/// # Errors
+/// [`ModelError::InvalidSetting`] for bad settings, [`ModelError::Solver`] when the integration
+/// fails (step size underflow, too many steps, non-finite state), with the time and state.
+pub fn simulate<M: CollisionModel<N>, const N: usize>(
+    model: &M,
+    settings: &Settings,
+    sampling: Sampling,
+    mut sink: impl FnMut(f64, &State<N>),
+) -> Result<Impact, ModelError> {
+    settings.validate()?;
+    if let Sampling::Grid { dt } = sampling {
+        check("dt", dt, dt > 0.0, "grid spacing dt > 0")?;
+    }
+    let ts = model.time_scale();
+    let scale = model.state_scale();
+    let options = Options::per_component(State::<N>::repeat(settings.rtol), scale * settings.atol)
+        .with_max_step(settings.max_step * ts)
+        .with_max_steps(settings.max_steps);
+    let y0 = model.initial_state();
+    let rhs = |t: f64, y: &State<N>| model.rhs(t, y);
+    let mut it =
+        Integrator::new(rhs, settings.method, 0.0, y0, options).map_err(bwc_events::Error::from)?;
+    let mut locator = Locator::new(
+        Separation(model),
+        Kinks {
+            model,
+            enabled: settings.stop_at_kinks,
+            floor: 10.0 * settings.atol,
+        },
+    );
+    let t_end = settings.t_max * ts;
+    sink(0.0, &y0);
+    let mut grid = GridSampler { sampling, next: 1 };
+    while it.t() < t_end {
+        match locator.step(&mut it, t_end)? {
+            Step::Event { t, y } => {
+                let upto = t.min(it.t());
+                grid.emit(&mut it, upto, &mut sink);
+                sink(t, &y);
+                let e = model.velocity(&y) / model.impact_speed();
+                return Ok(Impact {
+                    t_s: Some(t),
+                    e,
+                    state: pad(&y),
+                    stats: it.stats(),
+                });
+            }
+            Step::Continued | Step::Switched { .. } => {
+                let upto = it.t();
+                grid.emit(&mut it, upto, &mut sink);
+                if sampling == Sampling::Steps {
+                    sink(it.t(), it.y());
+                }
+            }
+        }
+    }
+    Ok(Impact {
+        t_s: None,
+        e: 0.0,
+        state: pad(it.y()),
+        stats: it.stats(),
+    })
+}
+
+/// Emits the points of a uniform grid as the integration passes them.
+struct GridSampler {
+    sampling: Sampling,
+    next: usize,
+}
+
+impl GridSampler {
+    /// Emits the grid points up to `upto` through the dense output of the last step. (After a
+    /// stop at a kink that needed several retaken steps, earlier points of the original step are
+    /// evaluated on the last retaken step's polynomial, slightly outside its interval.)
+    fn emit<F: bwc_ode::System<N>, const N: usize>(
+        &mut self,
+        it: &mut Integrator<F, N>,
+        upto: f64,
+        sink: &mut impl FnMut(f64, &State<N>),
+    ) {
+        let Sampling::Grid { dt } = self.sampling else {
+            return;
+        };
+        let mut t = self.next as f64 * dt;
+        if t > upto {
+            return;
+        }
+        let dense = it.dense();
+        while t <= upto {
+            sink(t, &dense.eval(t));
+            self.next += 1;
+            t = self.next as f64 * dt;
+        }
+    }
+}

@@ -1,0 +1,207 @@
+//! External inputs `u(t)` (forces in N, or nondimensional `U(T)`).
+
+/// A time-dependent input signal.
+pub trait Input {
+    /// The value at time `t`.
+    fn at(&self, t: f64) -> f64;
+
+    /// Whether the input is identically zero (lets a model skip evaluating it).
+    fn is_zero(&self) -> bool {
+        false
+    }
+}
+
+/// No input: `u = 0`.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Zero;
+
+impl Input for Zero {
+    #[inline]
+    fn at(&self, _t: f64) -> f64 {
+        0.0
+    }
+    fn is_zero(&self) -> bool {
+        true
+    }
+}
+
+/// A constant input.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Constant(pub f64);
+
+impl Input for Constant {
+    #[inline]
+    fn at(&self, _t: f64) -> f64 {
+        self.0
+    }
+    fn is_zero(&self) -> bool {
+        self.0 == 0.0
+    }
+}
+
+/// Gravity on a body of mass `m` along the contact normal: `u = -m g` (N).
+pub fn gravity(m: f64, g: f64) -> Constant {
+    Constant(-m * g)
+}
+
+/// The paper's ramp (Section 6): `u(t) = (2/π) m D arctan(ω t)` (N), rising from 0 to `m D`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Arctan {
+    /// Mass `m` (kg).
+    pub m: f64,
+    /// Final acceleration `D` (m/s²).
+    pub d: f64,
+    /// Rate `ω` (1/s).
+    pub omega: f64,
+}
+
+impl Input for Arctan {
+    #[inline]
+    fn at(&self, t: f64) -> f64 {
+        std::f64::consts::FRAC_2_PI * self.m * self.d * (self.omega * t).atan()
+    }
+}
+
+/// The sum of two inputs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sum<A, B>(pub A, pub B);
+
+impl<A: Input, B: Input> Input for Sum<A, B> {
+    #[inline]
+    fn at(&self, t: f64) -> f64 {
+        self.0.at(t) + self.1.at(t)
+    }
+    fn is_zero(&self) -> bool {
+        self.0.is_zero() && self.1.is_zero()
+    }
+}
+
+/// `factor * inner(time_scale * t)`: an input seen on another time and force scale (used for
+/// the nondimensional input `U(T)` of a physical input `u(t)`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scaled<I> {
+    /// The physical input.
+    pub inner: I,
+    /// Multiplier of the value.
+    pub factor: f64,
+    /// Multiplier of the time argument.
+    pub time_scale: f64,
+}
+
+impl<I: Input> Input for Scaled<I> {
+    #[inline]
+    fn at(&self, t: f64) -> f64 {
+        self.factor * self.inner.at(self.time_scale * t)
+    }
+    fn is_zero(&self) -> bool {
+        self.factor == 0.0 || self.inner.is_zero()
+    }
+}
+
+/// A piecewise-linear table `(t_i, u_i)` with strictly increasing `t_i`, held constant outside
+/// its range.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Table {
+    t: Vec<f64>,
+    u: Vec<f64>,
+}
+
+impl Table {
+    /// Builds a table from points.
+    ///
+    /// # Errors
+    /// [`crate::ModelError::InvalidTable`] when there are no points, a value is not finite, or
+    /// the times do not increase strictly.
+    pub fn new(points: &[(f64, f64)]) -> Result<Self, crate::ModelError> {
+        if points.is_empty() {
+            return Err(crate::ModelError::InvalidTable {
+                index: 0,
+                reason: "the table has no points",
+            });
+        }
+        for (i, &(t, u)) in points.iter().enumerate() {
+            if !t.is_finite() || !u.is_finite() {
+                return Err(crate::ModelError::InvalidTable {
+                    index: i,
+                    reason: "t and u must be finite",
+                });
+            }
+            if i > 0 && t <= points[i - 1].0 {
+                return Err(crate::ModelError::InvalidTable {
+                    index: i,
+                    reason: "times must increase strictly",
+                });
+            }
+        }
+        Ok(Self {
+            t: points.iter().map(|p| p.0).collect(),
+            u: points.iter().map(|p| p.1).collect(),
+        })
+    }
+}
+
+impl Input for Table {
+    fn at(&self, t: f64) -> f64 {
+        let i = self.t.partition_point(|&ti| ti <= t);
+        if i == 0 {
+            return self.u[0];
+        }
+        if i == self.t.len() {
+            return self.u[i - 1];
+        }
+        let (t0, t1, u0, u1) = (self.t[i - 1], self.t[i], self.u[i - 1], self.u[i]);
+        u0 + (u1 - u0) * (t - t0) / (t1 - t0)
+    }
+}
+
+/// Any closure `Fn(f64) -> f64` is an input.
+#[derive(Debug, Clone, Copy)]
+pub struct FromFn<F>(pub F);
+
+impl<F: Fn(f64) -> f64> Input for FromFn<F> {
+    #[inline]
+    fn at(&self, t: f64) -> f64 {
+        (self.0)(t)
+    }
+}
+
+impl<I: Input + ?Sized> Input for &I {
+    #[inline]
+    fn at(&self, t: f64) -> f64 {
+        (**self).at(t)
+    }
+    fn is_zero(&self) -> bool {
+        (**self).is_zero()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn signals() {
+        assert_eq!(gravity(2.0, 9.81).at(5.0), -19.62);
+        let r = Arctan {
+            m: 2.0,
+            d: 250.0,
+            omega: 1e3,
+        };
+        assert_eq!(r.at(0.0), 0.0);
+        assert!((r.at(1e9) - 500.0).abs() < 1e-6);
+        let tab = Table::new(&[(0.0, 1.0), (1.0, 3.0)]).unwrap();
+        assert_eq!(tab.at(-1.0), 1.0);
+        assert_eq!(tab.at(0.5), 2.0);
+        assert_eq!(tab.at(7.0), 3.0);
+        assert!(Table::new(&[(0.0, 1.0), (0.0, 2.0)]).is_err());
+        assert!(Table::new(&[]).is_err());
+        let s = Scaled {
+            inner: Constant(2.0),
+            factor: 0.5,
+            time_scale: 3.0,
+        };
+        assert_eq!(s.at(1.0), 1.0);
+        assert_eq!(Sum(Constant(1.0), FromFn(|t: f64| t)).at(2.0), 3.0);
+        assert!(Sum(Zero, Constant(0.0)).is_zero());
+    }
+}

@@ -1,0 +1,443 @@
+//! The collision models with external input: BWSHCCM (eq:EBWSHCCM), BWMCM in the Lipschitz form
+//! (eq:EBWMCM), their nondimensional forms (eq:EBWSHCCM_nd, eq:EBWMCM_nd), and the earlier
+//! NDBWMCM form (eq:BWMCM_nd) for the equivalence the paper states.
+
+use crate::input::Input;
+use crate::laws::{hysteresis, Bwmcl, Bwshccl};
+use crate::params::{check, ModelKind, NondimParams, PhysicalParams};
+use crate::power::Pow;
+use crate::{ModelError, State};
+use bwc_ode::System;
+
+/// A collision model: a right-hand side with the outputs the impact analysis needs.
+pub trait CollisionModel<const N: usize>: System<N> {
+    /// State at the instant of impact: all displacements zero, relative velocity `-v0`.
+    fn initial_state(&self) -> State<N>;
+    /// Contact force `F` (positive pushes the bodies apart).
+    fn force(&self, y: &State<N>) -> f64;
+    /// Relative displacement `x` (`x < 0` is compression).
+    fn displacement(&self, y: &State<N>) -> f64;
+    /// Relative velocity `v`.
+    fn velocity(&self, y: &State<N>) -> f64;
+    /// The external input at `t`.
+    fn input(&self, t: f64) -> f64;
+    /// Impact speed `v0` (1 for nondimensional models), so that `e = v(t_s) / v0`.
+    fn impact_speed(&self) -> f64;
+    /// Natural magnitude of each state component (ones for nondimensional models; the scales
+    /// of Table 1 for SI models): absolute tolerances are multiplied by these.
+    fn state_scale(&self) -> State<N>;
+    /// Natural time scale (1 for nondimensional models, `T_c` in seconds for SI models).
+    fn time_scale(&self) -> f64;
+    /// Functions whose zeros are the non-smooth points of the right-hand side: the velocity
+    /// across the hysteretic element (`|v|` or `|ẏ|`) and `z`, in natural (nondimensional)
+    /// units so that they compare with the absolute tolerance.
+    fn kinks(&self, t: f64, y: &State<N>) -> [f64; 2];
+}
+
+/// Which nondimensional model a parameter set belongs to.
+fn expect_nd(p: &NondimParams, kind: ModelKind) -> Result<(), ModelError> {
+    if p.kind() == kind {
+        Ok(())
+    } else {
+        Err(ModelError::WrongModel {
+            expected: kind.name(),
+            found: p.kind().name(),
+        })
+    }
+}
+
+fn check_mass_speed(m: f64, v0: f64) -> Result<(), ModelError> {
+    check("m", m, m > 0.0, "m > 0 (kg)")?;
+    check("v0", v0, v0 > 0.0, "v0 > 0 (m/s)")
+}
+
+// ----------------------------------------------------------------------------------------------
+// Nondimensional models
+
+/// NDBWSHCCM (eq:EBWSHCCM_nd), states `(X, Z, V)`:
+/// `X' = V`, `Z' = V - B|Z|^(n-1) Z |V| - Γ|Z|^n V`,
+/// `V' = -κ|X|^(p-1) X - (1-κ)|Z|^(p-1) Z - σ|X|^p V + U(T)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ndbwshccm<I> {
+    b: f64,
+    gamma: f64,
+    kappa: f64,
+    sigma: f64,
+    n: Pow,
+    p: Pow,
+    input: I,
+}
+
+impl<I: Input> Ndbwshccm<I> {
+    /// The model with validated parameters and input `U(T)`.
+    ///
+    /// # Errors
+    /// [`ModelError::WrongModel`] for NDBWMCM parameters.
+    pub fn new(params: &NondimParams, input: I) -> Result<Self, ModelError> {
+        expect_nd(params, ModelKind::Shccm)?;
+        let p = params.get();
+        Ok(Self {
+            b: p.b,
+            gamma: p.gamma,
+            kappa: p.kappa,
+            sigma: p.sigma,
+            n: Pow::new(p.n),
+            p: Pow::new(p.p),
+            input,
+        })
+    }
+
+    #[inline]
+    fn parts(&self, y: &State<3>) -> (f64, f64) {
+        let (x, z, v) = (y[0], y[1], y[2]);
+        let xp = self.p.of_abs(x.abs());
+        let f = -self.kappa * xp.copysign(x)
+            - (1.0 - self.kappa) * self.p.signed(z)
+            - self.sigma * xp * v;
+        (f, self.n.of_abs(z.abs()))
+    }
+}
+
+impl<I: Input> System<3> for Ndbwshccm<I> {
+    #[inline]
+    fn rhs(&self, t: f64, y: &State<3>) -> State<3> {
+        let (f, zn) = self.parts(y);
+        let v = y[2];
+        State::<3>::new(
+            v,
+            hysteresis(1.0, self.b, self.gamma, y[1], zn, v),
+            f + self.input.at(t),
+        )
+    }
+}
+
+impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
+    fn initial_state(&self) -> State<3> {
+        State::<3>::new(0.0, 0.0, -1.0)
+    }
+    fn force(&self, y: &State<3>) -> f64 {
+        self.parts(y).0
+    }
+    fn displacement(&self, y: &State<3>) -> f64 {
+        y[0]
+    }
+    fn velocity(&self, y: &State<3>) -> f64 {
+        y[2]
+    }
+    fn input(&self, t: f64) -> f64 {
+        self.input.at(t)
+    }
+    fn impact_speed(&self) -> f64 {
+        1.0
+    }
+    fn state_scale(&self) -> State<3> {
+        State::<3>::repeat(1.0)
+    }
+    fn time_scale(&self) -> f64 {
+        1.0
+    }
+    fn kinks(&self, _t: f64, y: &State<3>) -> [f64; 2] {
+        [y[2], y[1]]
+    }
+}
+
+/// NDBWMCM in the Lipschitz form (eq:EBWMCM_nd), states `(R, Y, Z, V)`:
+/// `R' = σ(κ|Y|^(p-1) Y + (1-κ)|Z|^(p-1) Z)`, `Y' = V - R'`,
+/// `Z' = Y' - B|Z|^(n-1) Z |Y'| - Γ|Z|^n Y'`, `V' = -κ|Y|^(p-1) Y - (1-κ)|Z|^(p-1) Z + U(T)`;
+/// `X = R + Y`, `F = -κ|Y|^(p-1) Y - (1-κ)|Z|^(p-1) Z`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ndbwmcm<I> {
+    b: f64,
+    gamma: f64,
+    kappa: f64,
+    sigma: f64,
+    n: Pow,
+    p: Pow,
+    input: I,
+}
+
+impl<I: Input> Ndbwmcm<I> {
+    /// The model with validated parameters and input `U(T)`.
+    ///
+    /// # Errors
+    /// [`ModelError::WrongModel`] for NDBWSHCCM parameters.
+    pub fn new(params: &NondimParams, input: I) -> Result<Self, ModelError> {
+        expect_nd(params, ModelKind::Mcm)?;
+        let p = params.get();
+        Ok(Self {
+            b: p.b,
+            gamma: p.gamma,
+            kappa: p.kappa,
+            sigma: p.sigma,
+            n: Pow::new(p.n),
+            p: Pow::new(p.p),
+            input,
+        })
+    }
+
+    #[inline]
+    fn force_of(&self, y: &State<4>) -> f64 {
+        -self.kappa * self.p.signed(y[1]) - (1.0 - self.kappa) * self.p.signed(y[2])
+    }
+}
+
+impl<I: Input> System<4> for Ndbwmcm<I> {
+    #[inline]
+    fn rhs(&self, t: f64, y: &State<4>) -> State<4> {
+        let f = self.force_of(y);
+        let rdot = -self.sigma * f;
+        let ydot = y[3] - rdot;
+        let zn = self.n.of_abs(y[2].abs());
+        State::<4>::new(
+            rdot,
+            ydot,
+            hysteresis(1.0, self.b, self.gamma, y[2], zn, ydot),
+            f + self.input.at(t),
+        )
+    }
+}
+
+impl<I: Input> CollisionModel<4> for Ndbwmcm<I> {
+    fn initial_state(&self) -> State<4> {
+        State::<4>::new(0.0, 0.0, 0.0, -1.0)
+    }
+    fn force(&self, y: &State<4>) -> f64 {
+        self.force_of(y)
+    }
+    fn displacement(&self, y: &State<4>) -> f64 {
+        y[0] + y[1]
+    }
+    fn velocity(&self, y: &State<4>) -> f64 {
+        y[3]
+    }
+    fn input(&self, t: f64) -> f64 {
+        self.input.at(t)
+    }
+    fn impact_speed(&self) -> f64 {
+        1.0
+    }
+    fn state_scale(&self) -> State<4> {
+        State::<4>::repeat(1.0)
+    }
+    fn time_scale(&self) -> f64 {
+        1.0
+    }
+    fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
+        [y[3] + self.sigma * self.force_of(y), y[2]]
+    }
+}
+
+/// The earlier NDBWMCM form (eq:BWMCM_nd, no input), states `(R, Y, Z, W)`:
+/// `R' = κσ|Y|^(p-1) Y + (1-κ)σ|Z|^(p-1) Z`, `Y' = W`, `Z' = W - B|Z|^(n-1) Z |W| - Γ|Z|^n W`,
+/// `W' = -R'/σ - κ p σ |Y|^(p-1) Y' - (1-κ) p σ |Z|^(p-1) Z'`; outputs `X = R + Y`,
+/// `V = R' + Y'`. Well posed for `p = 1` or `p >= 2`; kept for the equivalence with
+/// [`Ndbwmcm`] at `u = 0` that the paper states.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NdbwmcmEarlier {
+    inner: Ndbwmcm<crate::input::Zero>,
+    pm1: Pow,
+}
+
+impl NdbwmcmEarlier {
+    /// The model with validated NDBWMCM parameters.
+    ///
+    /// # Errors
+    /// [`ModelError::WrongModel`] for NDBWSHCCM parameters.
+    pub fn new(params: &NondimParams) -> Result<Self, ModelError> {
+        let inner = Ndbwmcm::new(params, crate::input::Zero)?;
+        Ok(Self {
+            inner,
+            pm1: Pow::new(params.get().p - 1.0),
+        })
+    }
+
+    fn rdot(&self, y: &State<4>) -> f64 {
+        -self.inner.sigma * self.inner.force_of(y)
+    }
+}
+
+impl System<4> for NdbwmcmEarlier {
+    fn rhs(&self, _t: f64, y: &State<4>) -> State<4> {
+        let m = &self.inner;
+        let (yy, z, w) = (y[1], y[2], y[3]);
+        let rdot = self.rdot(y);
+        let zdot = hysteresis(1.0, m.b, m.gamma, z, m.n.of_abs(z.abs()), w);
+        let p = m.p.exponent();
+        let wdot = -rdot / m.sigma
+            - m.kappa * p * m.sigma * self.pm1.of_abs(yy.abs()) * w
+            - (1.0 - m.kappa) * p * m.sigma * self.pm1.of_abs(z.abs()) * zdot;
+        State::<4>::new(rdot, w, zdot, wdot)
+    }
+}
+
+impl CollisionModel<4> for NdbwmcmEarlier {
+    fn initial_state(&self) -> State<4> {
+        State::<4>::new(0.0, 0.0, 0.0, -1.0)
+    }
+    fn force(&self, y: &State<4>) -> f64 {
+        self.inner.force_of(y)
+    }
+    fn displacement(&self, y: &State<4>) -> f64 {
+        y[0] + y[1]
+    }
+    fn velocity(&self, y: &State<4>) -> f64 {
+        self.rdot(y) + y[3]
+    }
+    fn input(&self, _t: f64) -> f64 {
+        0.0
+    }
+    fn impact_speed(&self) -> f64 {
+        1.0
+    }
+    fn state_scale(&self) -> State<4> {
+        State::<4>::repeat(1.0)
+    }
+    fn time_scale(&self) -> f64 {
+        1.0
+    }
+    fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
+        [y[3], y[2]]
+    }
+}
+
+// ----------------------------------------------------------------------------------------------
+// Dimensional models
+
+/// BWSHCCM (eq:EBWSHCCM) in SI units, states `(x, z, v)`: the BWSHCCL driven by `v`, and
+/// `m v̇ = F + u(t)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bwshccm<I> {
+    law: Bwshccl,
+    m: f64,
+    v0: f64,
+    scales: crate::Scales,
+    input: I,
+}
+
+impl<I: Input> Bwshccm<I> {
+    /// The model with validated parameters, effective mass `m` (kg), impact speed `v0` (m/s)
+    /// and external input `u(t)` (N).
+    ///
+    /// # Errors
+    /// [`ModelError::WrongModel`] for MCM parameters, [`ModelError::InvalidParameter`] for `m`
+    /// or `v0`.
+    pub fn new(params: &PhysicalParams, m: f64, v0: f64, input: I) -> Result<Self, ModelError> {
+        check_mass_speed(m, v0)?;
+        let (_, scales) = crate::scaling::nondimensionalize(params, m, v0)?;
+        Ok(Self {
+            law: Bwshccl::new(params)?,
+            m,
+            v0,
+            scales,
+            input,
+        })
+    }
+}
+
+impl<I: Input> System<3> for Bwshccm<I> {
+    #[inline]
+    fn rhs(&self, t: f64, y: &State<3>) -> State<3> {
+        let (d, f) = self.law.eval(&State::<2>::new(y[0], y[1]), y[2]);
+        State::<3>::new(d[0], d[1], (f + self.input.at(t)) / self.m)
+    }
+}
+
+impl<I: Input> CollisionModel<3> for Bwshccm<I> {
+    fn initial_state(&self) -> State<3> {
+        State::<3>::new(0.0, 0.0, -self.v0)
+    }
+    fn force(&self, y: &State<3>) -> f64 {
+        self.law.eval(&State::<2>::new(y[0], y[1]), y[2]).1
+    }
+    fn displacement(&self, y: &State<3>) -> f64 {
+        y[0]
+    }
+    fn velocity(&self, y: &State<3>) -> f64 {
+        y[2]
+    }
+    fn input(&self, t: f64) -> f64 {
+        self.input.at(t)
+    }
+    fn impact_speed(&self) -> f64 {
+        self.v0
+    }
+    fn state_scale(&self) -> State<3> {
+        State::<3>::new(self.scales.x_c, self.scales.z_c, self.v0)
+    }
+    fn time_scale(&self) -> f64 {
+        self.scales.t_c
+    }
+    fn kinks(&self, _t: f64, y: &State<3>) -> [f64; 2] {
+        [y[2] / self.v0, y[1] / self.scales.z_c]
+    }
+}
+
+/// BWMCM in the Lipschitz form (eq:EBWMCM) in SI units, states `(r, y, z, v)`: the BWMCL
+/// driven by `v`, and `m v̇ = F + u(t)`; `x = r + y`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bwmcm<I> {
+    law: Bwmcl,
+    m: f64,
+    v0: f64,
+    scales: crate::Scales,
+    input: I,
+}
+
+impl<I: Input> Bwmcm<I> {
+    /// The model with validated parameters, effective mass `m` (kg), impact speed `v0` (m/s)
+    /// and external input `u(t)` (N).
+    ///
+    /// # Errors
+    /// [`ModelError::WrongModel`] for SHCCM parameters, [`ModelError::InvalidParameter`] for
+    /// `m` or `v0`.
+    pub fn new(params: &PhysicalParams, m: f64, v0: f64, input: I) -> Result<Self, ModelError> {
+        check_mass_speed(m, v0)?;
+        let (_, scales) = crate::scaling::nondimensionalize(params, m, v0)?;
+        Ok(Self {
+            law: Bwmcl::new(params)?,
+            m,
+            v0,
+            scales,
+            input,
+        })
+    }
+}
+
+impl<I: Input> System<4> for Bwmcm<I> {
+    #[inline]
+    fn rhs(&self, t: f64, y: &State<4>) -> State<4> {
+        let (d, f) = self.law.eval(&State::<3>::new(y[0], y[1], y[2]), y[3]);
+        State::<4>::new(d[0], d[1], d[2], (f + self.input.at(t)) / self.m)
+    }
+}
+
+impl<I: Input> CollisionModel<4> for Bwmcm<I> {
+    fn initial_state(&self) -> State<4> {
+        State::<4>::new(0.0, 0.0, 0.0, -self.v0)
+    }
+    fn force(&self, y: &State<4>) -> f64 {
+        self.law.eval(&State::<3>::new(y[0], y[1], y[2]), y[3]).1
+    }
+    fn displacement(&self, y: &State<4>) -> f64 {
+        y[0] + y[1]
+    }
+    fn velocity(&self, y: &State<4>) -> f64 {
+        y[3]
+    }
+    fn input(&self, t: f64) -> f64 {
+        self.input.at(t)
+    }
+    fn impact_speed(&self) -> f64 {
+        self.v0
+    }
+    fn state_scale(&self) -> State<4> {
+        State::<4>::new(self.scales.x_c, self.scales.x_c, self.scales.z_c, self.v0)
+    }
+    fn time_scale(&self) -> f64 {
+        self.scales.t_c
+    }
+    fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
+        let (d, _) = self.law.eval(&State::<3>::new(y[0], y[1], y[2]), y[3]);
+        [d[1] / self.v0, y[2] / self.scales.z_c]
+    }
+}
