@@ -63,3 +63,48 @@ pub fn median_seconds(mut f: impl FnMut()) -> f64 {
     samples.sort_by(f64::total_cmp);
     samples[samples.len() / 2]
 }
+
+pub mod cor {
+    //! One CoR evaluation of the paper's Table 3 models (DSS (1)), the unit of work of the
+    //! identification.
+    use bw_models::{
+        impact_at, input::Zero, BaseMap, BaseParams, Impact, ModelError, ModelKind, Settings,
+    };
+
+    /// Table 3, DSS (1), NDBWSHCCM.
+    pub const DSS1_SHCCM: BaseParams = BaseParams {
+        b_b: 2.38,
+        gamma_b: -2.38,
+        kappa: 0.677,
+        sigma_b: 0.0348,
+        n: 2.93,
+        p: 2.62,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    /// Table 3, DSS (1), NDBWMCM (σ_b at the edge of its admissible set).
+    pub const DSS1_MCM: BaseParams = BaseParams {
+        b_b: 0.966,
+        gamma_b: -0.966,
+        kappa: 0.531,
+        sigma_b: 2.22e-16,
+        n: 1.57,
+        p: 1.75,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+
+    /// The base map of a model at DSS (1).
+    pub fn dss1(kind: ModelKind) -> BaseMap {
+        let base = match kind {
+            ModelKind::Shccm => DSS1_SHCCM,
+            ModelKind::Mcm => DSS1_MCM,
+        };
+        BaseMap::new(kind, base).expect("published parameters are admissible")
+    }
+
+    /// One CoR evaluation at impact speed `v0` (m/s).
+    pub fn evaluate(map: &BaseMap, v0: f64, settings: &Settings) -> Result<Impact, ModelError> {
+        impact_at(map, Zero, v0, settings)
+    }
+}

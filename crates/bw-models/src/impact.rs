@@ -5,7 +5,7 @@ use crate::models::CollisionModel;
 use crate::params::check;
 use crate::{ModelError, State};
 use bwc_events::{Condition, Locator, Step, Switches, Values, MAX_FUNCTIONS};
-use bwc_ode::{Integrator, Options, Stats, Tableau, DOP853};
+use bwc_ode::{Integrator, Options, Stats, Tableau, DOP853, VERN7};
 
 /// Solver settings of an impact. Tolerances, steps and the horizon are in the model's natural
 /// units: nondimensional for the ND models; for SI models they are multiplied by the scales of
@@ -30,11 +30,12 @@ pub struct Settings {
 }
 
 impl Default for Settings {
-    /// DOP853 at the paper's tolerances (rtol 1e-10, atol 1e-12), no step limit, horizon 1000,
-    /// stopping at the non-smooth points.
+    /// Verner 7(6) at rtol 1e-10, atol 1e-12, stopping at the non-smooth points, no step limit,
+    /// horizon 1000: the cheapest setting of the work-precision benchmark (BENCHMARKS.md) that
+    /// keeps |error| <= 1e-10 on e and T_s for both models at Table 3's DSS (1) parameters.
     fn default() -> Self {
         Self {
-            method: &DOP853,
+            method: &VERN7,
             rtol: 1e-10,
             atol: 1e-12,
             max_step: f64::INFINITY,
@@ -46,6 +47,17 @@ impl Default for Settings {
 }
 
 impl Settings {
+    /// The paper's numerical setup (Appendix D): DOP853, rtol 1e-10, atol 1e-12, max_step 1e-2
+    /// (nondimensional), stepping over the non-smooth points.
+    pub fn paper() -> Self {
+        Self {
+            method: &DOP853,
+            max_step: 1e-2,
+            stop_at_kinks: false,
+            ..Self::default()
+        }
+    }
+
     /// Checks the settings.
     ///
     /// # Errors

@@ -592,3 +592,36 @@ fn cor_evaluation_does_not_allocate() {
     // The counter does count: a Vec allocates.
     assert!(alloc_counter::count(|| vec![1u8; 16]).1 >= 1);
 }
+
+mod paper_settings {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+        /// At the paper's settings (DOP853, rtol 1e-10, atol 1e-12, max_step 1e-2), e and T_s
+        /// agree with a run at rtol 1e-13 to 1e-9 over the admissible space.
+        #[test]
+        fn paper_settings_agree_with_tight_runs(b in 0.0..5.0f64, g in -1.0..=1.0f64, kappa in 0.05..0.95f64,
+            sigma in 1e-3..2.0f64, n in 1.0..4.0f64, p in 1.0..4.0f64, mcm in any::<bool>()) {
+            let kind = if mcm { ModelKind::Mcm } else { ModelKind::Shccm };
+            let params = nd(kind, b, g * b, kappa, sigma, n, p);
+            let reference = Settings { rtol: 1e-13, atol: 1e-15, ..Settings::default() };
+            let (a, r) = match kind {
+                ModelKind::Shccm => {
+                    let m = Ndbwshccm::new(&params, Zero).unwrap();
+                    (impact(&m, &Settings::paper()).unwrap(), impact(&m, &reference).unwrap())
+                }
+                ModelKind::Mcm => {
+                    let m = Ndbwmcm::new(&params, Zero).unwrap();
+                    (impact(&m, &Settings::paper()).unwrap(), impact(&m, &reference).unwrap())
+                }
+            };
+            prop_assert!(r.separated() && a.separated());
+            prop_assert!((a.e - r.e).abs() < 1e-9, "e {} vs {}", a.e, r.e);
+            let (ta, tr) = (a.t_s.unwrap(), r.t_s.unwrap());
+            prop_assert!((ta - tr).abs() < 1e-9 * tr.max(1.0), "T_s {ta} vs {tr}");
+        }
+    }
+}
