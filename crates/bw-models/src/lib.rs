@@ -7,7 +7,7 @@
 //! * the collision laws as force elements: [`Bwshccl`] (x, z) and [`Bwmcl`] (r, y, z);
 //! * the models with input `u(t)`: [`Bwshccm`] (x, z, v), [`Bwmcm`] (r, y, z, v) in SI units and
 //!   their nondimensional forms [`Ndbwshccm`], [`Ndbwmcm`] with input `U(T)`; the earlier
-//!   NDBWMCM form [`NdbwmcmEarlier`];
+//!   BWMCM forms [`BwmcmEarlier`], [`NdbwmcmEarlier`];
 //! * parameters validated against the admissible sets ([`PhysicalParams`], [`NondimParams`]),
 //!   Table 1 both ways ([`nondimensionalize`], [`Scales`]), base parameters `P*` and the map
 //!   `P(P*, u, v0)` ([`BaseParams`], [`base_params`], [`BaseMap`]);
@@ -41,7 +41,9 @@ mod scaling;
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use impact::{impact, simulate, Impact, Sampling, Settings};
 pub use laws::{Bwmcl, Bwshccl};
-pub use models::{Bwmcm, Bwshccm, CollisionModel, Ndbwmcm, NdbwmcmEarlier, Ndbwshccm};
+pub use models::{
+    Bwmcm, BwmcmEarlier, Bwshccm, CollisionModel, Ndbwmcm, NdbwmcmEarlier, Ndbwshccm,
+};
 pub use params::{BaseParams, ModelKind, Nondim, NondimParams, Physical, PhysicalParams};
 pub use power::Pow;
 pub use scaling::{base_params, impact_at, nondimensionalize, BaseMap, InputScaling, Scales};

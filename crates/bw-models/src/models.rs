@@ -441,3 +441,84 @@ impl<I: Input> CollisionModel<4> for Bwmcm<I> {
         [d[1] / self.v0, y[2] / self.scales.z_c]
     }
 }
+
+/// The earlier BWMCM form (eq:BWMCM, no input) in SI units, states `(r, y, z, w)`:
+/// `ṙ = (k/c)(α|y|^(p-1) y + (1-α)|z|^(p-1) z)`, `ẏ = w`, `ż = A w - β|z|^(n-1) z |w| - γ|z|^n w`,
+/// `ẇ = -(c/m) ṙ - α p (k/c) |y|^(p-1) ẏ - (1-α) p (k/c) |z|^(p-1) ż`; outputs `x = r + y`,
+/// `v = ṙ + ẏ` (eq:BWMCM_output). Well posed for `p = 1` or `p >= 2`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BwmcmEarlier {
+    law: Bwmcl,
+    m: f64,
+    v0: f64,
+    scales: crate::Scales,
+    pm1: Pow,
+}
+
+impl BwmcmEarlier {
+    /// The model with validated MCM parameters, effective mass `m` (kg) and impact speed `v0`.
+    ///
+    /// # Errors
+    /// [`ModelError::WrongModel`] for SHCCM parameters, [`ModelError::InvalidParameter`] for
+    /// `m` or `v0`.
+    pub fn new(params: &PhysicalParams, m: f64, v0: f64) -> Result<Self, ModelError> {
+        check_mass_speed(m, v0)?;
+        let (_, scales) = crate::scaling::nondimensionalize(params, m, v0)?;
+        Ok(Self {
+            law: Bwmcl::new(params)?,
+            m,
+            v0,
+            scales,
+            pm1: Pow::new(params.law().p - 1.0),
+        })
+    }
+
+    fn rdot(&self, y: &State<4>) -> f64 {
+        let l = &self.law;
+        l.k / l.c * (l.alpha * l.p.signed(y[1]) + (1.0 - l.alpha) * l.p.signed(y[2]))
+    }
+}
+
+impl System<4> for BwmcmEarlier {
+    fn rhs(&self, _t: f64, y: &State<4>) -> State<4> {
+        let l = &self.law;
+        let (yy, z, w) = (y[1], y[2], y[3]);
+        let rdot = self.rdot(y);
+        let zdot = hysteresis(l.a, l.beta, l.gamma, z, l.n.of_abs(z.abs()), w);
+        let p = l.p.exponent();
+        let wdot = -l.c / self.m * rdot
+            - l.alpha * p * l.k / l.c * self.pm1.of_abs(yy.abs()) * w
+            - (1.0 - l.alpha) * p * l.k / l.c * self.pm1.of_abs(z.abs()) * zdot;
+        State::<4>::new(rdot, w, zdot, wdot)
+    }
+}
+
+impl CollisionModel<4> for BwmcmEarlier {
+    fn initial_state(&self) -> State<4> {
+        State::<4>::new(0.0, 0.0, 0.0, -self.v0)
+    }
+    fn force(&self, y: &State<4>) -> f64 {
+        -self.law.c * self.rdot(y)
+    }
+    fn displacement(&self, y: &State<4>) -> f64 {
+        y[0] + y[1]
+    }
+    fn velocity(&self, y: &State<4>) -> f64 {
+        self.rdot(y) + y[3]
+    }
+    fn input(&self, _t: f64) -> f64 {
+        0.0
+    }
+    fn impact_speed(&self) -> f64 {
+        self.v0
+    }
+    fn state_scale(&self) -> State<4> {
+        State::<4>::new(self.scales.x_c, self.scales.x_c, self.scales.z_c, self.v0)
+    }
+    fn time_scale(&self) -> f64 {
+        self.scales.t_c
+    }
+    fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
+        [y[3] / self.v0, y[2] / self.scales.z_c]
+    }
+}

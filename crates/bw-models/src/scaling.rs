@@ -23,9 +23,29 @@ pub struct Scales {
 }
 
 impl Scales {
-    /// Force scale `m X_c / T_c²` (N): `F = force_scale · F_nd`.
+    /// Force scale `m X_c / T_c²` (N): `F = force() · F_nd`.
     pub fn force(&self) -> f64 {
         1.0 / self.u_factor
+    }
+
+    /// Time in seconds of a nondimensional time: `t = T_c T`.
+    pub fn time(&self, t_nd: f64) -> f64 {
+        self.t_c * t_nd
+    }
+
+    /// Displacement in m of a nondimensional displacement (`x`, `r`, `y`): `X_c X`.
+    pub fn displacement(&self, x_nd: f64) -> f64 {
+        self.x_c * x_nd
+    }
+
+    /// Hysteretic displacement in m: `z = Z_c Z`.
+    pub fn hysteretic(&self, z_nd: f64) -> f64 {
+        self.z_c * z_nd
+    }
+
+    /// Velocity in m/s: `v = (X_c / T_c) V = v0 V`.
+    pub fn velocity(&self, v_nd: f64) -> f64 {
+        self.v0 * v_nd
     }
 }
 

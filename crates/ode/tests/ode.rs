@@ -1,7 +1,9 @@
 //! Reference tests of the Runge-Kutta engine against problems with known answers.
 #![allow(clippy::excessive_precision)] // reference values keep their published digits
 
-use bwc_ode::{tableau, Integrator, Options, State, Tableau, DOP853, DOPRI5, VERN7};
+use bwc_ode::{
+    tableau, Controller, Error, Integrator, Options, State, Tableau, DOP853, DOPRI5, VERN7,
+};
 
 /// Non-autonomous, nonlinear problem with exact solution:
 /// y0' = t y0²          -> y0 = 1 / (1 - t²/2)
@@ -240,4 +242,42 @@ fn retake_stops_exactly_inside_a_step_and_continues() {
     it.integrate_to(1.0).unwrap();
     assert!((it.y() - nonautonomous_exact(1.0)).amax() < 1e-10);
     assert!(it.retake_to(2.0).is_err());
+}
+
+/// Per-component tolerances: components of very different magnitude (1e-6 and 1e3) each meet
+/// their own relative accuracy; the PI controller (β > 0) meets the tolerance as well; a
+/// minimum step is reported as a failure with the time reached.
+#[test]
+fn per_component_tolerances_pi_control_and_min_step() {
+    // y0' = -y0 (y0 ~ 1e-6), y1' = 2 y1 (y1 ~ 1e3): exact exponentials.
+    let f = |_t: f64, y: &State<2>| State::<2>::new(-y[0], 2.0 * y[1]);
+    let y0 = State::<2>::new(1e-6, 1e3);
+    let exact = |t: f64| State::<2>::new(1e-6 * (-t).exp(), 1e3 * (2.0 * t).exp());
+    let opts = Options::per_component(State::<2>::new(1e-10, 1e-10), State::<2>::new(1e-20, 1e-6));
+    for tab in tableau::all() {
+        for beta in [0.0, 0.08] {
+            let ctrl = Controller {
+                beta,
+                ..Controller::for_method(tab)
+            };
+            let mut it = Integrator::new(f, tab, 0.0, y0, opts.with_controller(ctrl)).unwrap();
+            it.integrate_to(1.0).unwrap();
+            let rel = (it.y() - exact(1.0)).component_div(&exact(1.0)).amax();
+            assert!(rel < 1e-8, "{} β {beta}: relative error {rel:e}", tab.name);
+        }
+    }
+    // With a scalar atol of 1e-6 the small component is not resolved relatively (the reason for
+    // per-component tolerances).
+    let mut it = Integrator::new(f, &DOP853, 0.0, y0, Options::new(1e-3, 1e-6)).unwrap();
+    it.integrate_to(1.0).unwrap();
+    assert!((it.y()[0] - exact(1.0)[0]).abs() / exact(1.0)[0] > 1e-8);
+
+    let stiff = |_t: f64, y: &State<1>| State::<1>::new(-1e6 * (y[0] - 1.0));
+    let mut opts = Options::new(1e-12, 1e-12);
+    opts.min_step = 1e-3;
+    let mut it = Integrator::new(stiff, &DOP853, 0.0, State::<1>::new(0.0), opts).unwrap();
+    match it.integrate_to(1.0) {
+        Err(Error::StepSizeTooSmall { t, h, .. }) => assert!(t < 1.0 && h <= 1e-3),
+        other => panic!("expected StepSizeTooSmall, got {other:?}"),
+    }
 }
