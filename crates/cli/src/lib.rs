@@ -1,1 +1,32 @@
-//! Command-line front ends (not yet implemented; see issues 4 and 5).
+//! # bwc-cli: the command-line front ends of bwc
+//!
+//! `bwc-simulate run SCENE.toml` simulates the impacts a scene describes and writes tables and
+//! plots. The crate parses files into validated settings ([`scene`]) and calls the libraries
+//! ([`simulate`]); errors ([`CliError`]) are reported once, by the binaries.
+//!
+//! ```
+//! use bwc_cli::scene::Scene;
+//! let scene = Scene::parse(std::path::Path::new("example.toml"), r#"
+//!     model = "shccm"
+//!     [nondimensional]
+//!     B = 0.0
+//!     Gamma = 0.0
+//!     kappa = 0.5
+//!     sigma = 0.5
+//!     n = 1.0
+//!     p = 1.5
+//! "#)?;
+//! let runs = bwc_cli::simulate::run(&scene, None)?;
+//! assert!((runs[0].e - 0.748434931597434).abs() < 1e-9);
+//! # Ok::<(), bwc_cli::CliError>(())
+//! ```
+#![deny(missing_docs)]
+
+mod error;
+pub mod output;
+pub mod plot;
+pub mod scene;
+pub mod signal;
+pub mod simulate;
+
+pub use error::CliError;

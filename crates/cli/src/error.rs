@@ -1,0 +1,74 @@
+//! The errors of the command-line tools, each naming the file (and line and key where known).
+
+use std::path::PathBuf;
+
+/// Everything that can stop a command.
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    /// A file could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// The file is not valid TOML, or a key has the wrong type or is unknown.
+    #[error("{path}:{line}:{column}: {message}")]
+    Syntax {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// The parser's message.
+        message: String,
+    },
+    /// A key has an inadmissible value, is missing, or conflicts with another.
+    #[error("{path}:{line}: `{key}`: {message}")]
+    Invalid {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line of the offending key (of its table when the key is missing).
+        line: usize,
+        /// The key, with its table: `[physical].k`.
+        key: String,
+        /// What is wrong and what is admissible.
+        message: String,
+    },
+    /// A simulation failed.
+    #[error("{path}: run {run}: {source}")]
+    Simulation {
+        /// The scene.
+        path: PathBuf,
+        /// Which run (speed or name).
+        run: String,
+        /// The model error.
+        source: bw_models::ModelError,
+    },
+    /// Writing a CSV file failed.
+    #[error("{path}: {source}")]
+    Csv {
+        /// The file.
+        path: PathBuf,
+        /// The CSV error.
+        source: csv::Error,
+    },
+    /// Drawing a plot failed.
+    #[error("{path}: plotting failed: {message}")]
+    Plot {
+        /// The file.
+        path: PathBuf,
+        /// The drawing backend's message.
+        message: String,
+    },
+    /// The thread pool could not be built.
+    #[error("cannot start {threads} threads: {message}")]
+    Threads {
+        /// Requested threads.
+        threads: usize,
+        /// Why not.
+        message: String,
+    },
+}

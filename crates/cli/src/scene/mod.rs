@@ -1,0 +1,860 @@
+//! Scene files: TOML descriptions of impacts, validated into settings for the libraries.
+//!
+//! ```toml
+//! model = "shccm"            # "shccm" | "mcm"
+//! v0 = [0.5, 1.0, 2.0]       # m/s, or { from = 0.1, to = 6.0, count = 40, spacing = "log" }
+//! [physical]                 # or [nondimensional], [base] / [[base]], or [bodies] + [physical]
+//! m = 0.145
+//! k = 117080063.0
+//! # ...
+//! [input]                    # optional: constant | gravity | arctan | table | sum
+//! kind = "gravity"
+//! [solver]                   # optional: method, rtol, atol, max_step, t_max, max_steps, stop_at_kinks
+//! [output]                   # optional: trajectory, dt, loops, sweep, plots
+//! ```
+
+mod raw;
+
+use crate::signal::Signal;
+use crate::CliError;
+use bw_models::input::{Arctan, Table};
+use bw_models::{
+    BaseMap, BaseParams, Bodies, ModelError, ModelKind, Nondim, NondimParams, Physical,
+    PhysicalParams, Settings,
+};
+use bwc_ode::{DOP853, DOPRI5, VERN7};
+use raw::{Num, RawBase, RawInput, RawScene, SeqOrMap};
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+/// A validated scene.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// The file it came from.
+    pub path: PathBuf,
+    /// The systems to simulate (several for `[[base]]` curves).
+    pub systems: Vec<SystemSpec>,
+    /// Impact speeds in m/s (empty for nondimensional scenes and `[bodies]`).
+    pub speeds: Vec<f64>,
+    /// Solver settings.
+    pub settings: Settings,
+    /// What to write.
+    pub output: OutputSpec,
+}
+
+/// One system of a scene.
+#[derive(Debug, Clone)]
+pub struct SystemSpec {
+    /// Optional name (from `[[base]]` entries).
+    pub name: Option<String>,
+    /// The model.
+    pub kind: ModelKind,
+    /// Its description.
+    pub system: System,
+}
+
+/// The four ways to describe a system.
+#[derive(Debug, Clone)]
+pub enum System {
+    /// `[nondimensional]`: parameters and a constant input `U`.
+    Nondimensional {
+        /// Parameters.
+        params: NondimParams,
+        /// Constant nondimensional input.
+        u: f64,
+    },
+    /// `[base]`: base parameters and a physical input; `time_scale_known` when `T_b` was given.
+    Base {
+        /// The map `P(P*, u, v0)`.
+        map: BaseMap,
+        /// Physical input (N).
+        input: Signal,
+        /// Whether `T_b` was given (durations in seconds).
+        time_scale_known: bool,
+    },
+    /// `[physical]`: SI parameters, effective mass and input.
+    Physical {
+        /// Contact-law parameters.
+        params: PhysicalParams,
+        /// Effective mass (kg).
+        m: f64,
+        /// Input (N).
+        input: Signal,
+    },
+    /// `[bodies]` with `[physical]` contact-law parameters.
+    Bodies {
+        /// Contact-law parameters.
+        params: PhysicalParams,
+        /// The two bodies.
+        bodies: Bodies<Signal, Signal>,
+    },
+}
+
+/// Which outputs the scene asks for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OutputSpec {
+    /// `trajectory.csv` (and the time-history plots).
+    pub trajectory: bool,
+    /// Trajectory sampling interval in the model's time unit; `None`: every step.
+    pub dt: Option<f64>,
+    /// `loop.csv` (and the loop plot).
+    pub loops: bool,
+    /// `sweep.csv` (default: when there is more than one speed).
+    pub sweep: bool,
+    /// SVG plots of whatever is written.
+    pub plots: bool,
+}
+
+struct Ctx<'a> {
+    path: &'a Path,
+    src: &'a str,
+}
+
+impl Ctx<'_> {
+    fn line(&self, span: &Range<usize>) -> usize {
+        let end = span.start.min(self.src.len());
+        self.src[..end].matches('\n').count() + 1
+    }
+
+    fn invalid(
+        &self,
+        span: &Range<usize>,
+        key: impl Into<String>,
+        message: impl Into<String>,
+    ) -> CliError {
+        CliError::Invalid {
+            path: self.path.to_owned(),
+            line: self.line(span),
+            key: key.into(),
+            message: message.into(),
+        }
+    }
+
+    fn num(&self, v: &Num, key: &str) -> Result<f64, CliError> {
+        let x = *v.get_ref();
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(self.invalid(&v.span(), key, format!("{x} is not a finite number")))
+        }
+    }
+
+    fn req(&self, v: &Option<Num>, table: &Range<usize>, key: &str) -> Result<f64, CliError> {
+        match v {
+            Some(v) => self.num(v, key),
+            None => Err(self.invalid(table, key, "missing required key")),
+        }
+    }
+
+    fn opt(&self, v: &Option<Num>, key: &str) -> Result<Option<f64>, CliError> {
+        v.as_ref().map(|v| self.num(v, key)).transpose()
+    }
+
+    /// Turns a model-library error into one that names the key and line.
+    fn model_error(
+        &self,
+        e: ModelError,
+        table: &str,
+        span_of: impl Fn(&str) -> Option<Range<usize>>,
+        fallback: &Range<usize>,
+    ) -> CliError {
+        match e {
+            ModelError::InvalidParameter {
+                name,
+                value,
+                allowed,
+            }
+            | ModelError::InvalidSetting {
+                name,
+                value,
+                allowed,
+            } => {
+                let span = span_of(name).unwrap_or_else(|| fallback.clone());
+                self.invalid(
+                    &span,
+                    format!("{table}.{name}"),
+                    format!("{value} is not admissible: {allowed}"),
+                )
+            }
+            other => self.invalid(fallback, table.to_string(), other.to_string()),
+        }
+    }
+}
+
+fn span<T>(v: &Option<Spanned<T>>) -> Option<Range<usize>> {
+    v.as_ref().map(|s| s.span())
+}
+
+fn model_kind(ctx: &Ctx, v: &Spanned<String>, key: &str) -> Result<ModelKind, CliError> {
+    match v.get_ref().as_str() {
+        "shccm" => Ok(ModelKind::Shccm),
+        "mcm" => Ok(ModelKind::Mcm),
+        other => Err(ctx.invalid(
+            &v.span(),
+            key,
+            format!("\"{other}\" is not a model: use \"shccm\" or \"mcm\""),
+        )),
+    }
+}
+
+impl Scene {
+    /// Reads and validates a scene file.
+    ///
+    /// # Errors
+    /// [`CliError::Io`] if the file cannot be read, [`CliError::Syntax`] for TOML errors, wrong
+    /// types and unknown keys, [`CliError::Invalid`] for missing, conflicting or inadmissible
+    /// values (with line and key).
+    pub fn load(path: &Path) -> Result<Self, CliError> {
+        let src = std::fs::read_to_string(path).map_err(|source| CliError::Io {
+            path: path.to_owned(),
+            source,
+        })?;
+        Self::parse(path, &src)
+    }
+
+    /// Validates a scene given as text (`path` is only used in messages).
+    ///
+    /// # Errors
+    /// As [`Scene::load`].
+    pub fn parse(path: &Path, src: &str) -> Result<Self, CliError> {
+        let ctx = Ctx { path, src };
+        let raw: RawScene = toml::from_str(src).map_err(|e| {
+            let at = e.span().map_or(0, |s| s.start.min(src.len()));
+            let line_start = src[..at].rfind('\n').map_or(0, |i| i + 1);
+            CliError::Syntax {
+                path: path.to_owned(),
+                line: ctx.line(&(at..at)),
+                column: src[line_start..at].chars().count() + 1,
+                message: e.message().trim().replace('\n', " "),
+            }
+        })?;
+        let whole = 0..0;
+        let model = match &raw.model {
+            Some(m) => Some(model_kind(&ctx, m, "model")?),
+            None => None,
+        };
+
+        let descriptions: Vec<(&str, Range<usize>)> = [
+            ("[nondimensional]", span(&raw.nondimensional)),
+            ("[base]", span(&raw.base)),
+            (
+                "[physical]",
+                if raw.bodies.is_some() {
+                    None
+                } else {
+                    span(&raw.physical)
+                },
+            ),
+            ("[bodies]", span(&raw.bodies)),
+        ]
+        .into_iter()
+        .filter_map(|(n, s)| s.map(|s| (n, s)))
+        .collect();
+        match descriptions.as_slice() {
+            [] => {
+                return Err(ctx.invalid(&whole, "system", "no system description: give one of [nondimensional], [base], [physical], or [bodies] with [physical]"))
+            }
+            [_] => {}
+            [(a, _), (b, sb), ..] => {
+                return Err(ctx.invalid(sb, *b, format!("two system descriptions ({a} and {b}): give exactly one")))
+            }
+        }
+        let need_model = |ctx: &Ctx| {
+            model.ok_or_else(|| {
+                ctx.invalid(
+                    &whole,
+                    "model",
+                    "missing required key: \"shccm\" or \"mcm\"",
+                )
+            })
+        };
+
+        let speeds = parse_speeds(&ctx, &raw)?;
+        let uses_speeds = raw.base.is_some() || (raw.physical.is_some() && raw.bodies.is_none());
+        if uses_speeds && speeds.is_empty() {
+            return Err(ctx.invalid(
+                &descriptions[0].1,
+                "v0",
+                "missing required key: impact speeds in m/s for [base] and [physical] scenes",
+            ));
+        }
+        if !uses_speeds {
+            if let Some(v) = &raw.v0 {
+                let why = if raw.bodies.is_some() {
+                    "[bodies] scenes take v0 = v2 - v1 from the bodies"
+                } else {
+                    "nondimensional scenes start at V(0) = -1"
+                };
+                return Err(ctx.invalid(&v.span(), "v0", format!("not used here: {why}")));
+            }
+        }
+        if let Some(i) = &raw.input {
+            if raw.nondimensional.is_some() || raw.bodies.is_some() {
+                let why = if raw.bodies.is_some() {
+                    "use [bodies.u1] and [bodies.u2]"
+                } else {
+                    "use the key U in [nondimensional]"
+                };
+                return Err(ctx.invalid(&i.span(), "[input]", format!("not used here: {why}")));
+            }
+        }
+
+        let systems = if let Some(nd) = &raw.nondimensional {
+            let kind = need_model(&ctx)?;
+            let t = nd.span();
+            let r = nd.get_ref();
+            let p = Nondim {
+                b: ctx.req(&r.b, &t, "[nondimensional].B")?,
+                gamma: ctx.req(&r.gamma, &t, "[nondimensional].Gamma")?,
+                kappa: ctx.req(&r.kappa, &t, "[nondimensional].kappa")?,
+                sigma: ctx.req(&r.sigma, &t, "[nondimensional].sigma")?,
+                n: ctx.req(&r.n, &t, "[nondimensional].n")?,
+                p: ctx.req(&r.p, &t, "[nondimensional].p")?,
+            };
+            let u = ctx.opt(&r.u, "[nondimensional].U")?.unwrap_or(0.0);
+            let span_of = |name: &str| match name {
+                "B" => span(&r.b),
+                "Gamma" => span(&r.gamma),
+                "kappa" => span(&r.kappa),
+                "sigma" => span(&r.sigma),
+                "n" => span(&r.n),
+                "p" => span(&r.p),
+                _ => None,
+            };
+            let params = NondimParams::new(kind, p)
+                .map_err(|e| ctx.model_error(e, "[nondimensional]", span_of, &t))?;
+            vec![SystemSpec {
+                name: None,
+                kind,
+                system: System::Nondimensional { params, u },
+            }]
+        } else if let Some(base) = &raw.base {
+            let entries: Vec<(&RawBase, Range<usize>)> = match base.get_ref() {
+                SeqOrMap::Map(b) => vec![(b, base.span())],
+                SeqOrMap::Seq(list) => list.iter().map(|b| (b.get_ref(), b.span())).collect(),
+            };
+            if entries.is_empty() {
+                return Err(ctx.invalid(&base.span(), "[base]", "no base parameter vectors"));
+            }
+            let input = match &raw.input {
+                Some(i) => signal(&ctx, i, "[input]", None)?,
+                None => Signal::zero(),
+            };
+            entries
+                .into_iter()
+                .map(|(b, t)| base_system(&ctx, b, &t, model, &input))
+                .collect::<Result<_, _>>()?
+        } else {
+            let phys = raw.physical.as_ref().ok_or_else(|| {
+                ctx.invalid(
+                    &descriptions[0].1,
+                    "[physical]",
+                    "missing: [bodies] take their contact-law parameters from [physical]",
+                )
+            })?;
+            let kind = need_model(&ctx)?;
+            let t = phys.span();
+            let r = phys.get_ref();
+            let law = Physical {
+                k: ctx.req(&r.k, &t, "[physical].k")?,
+                c: ctx.req(&r.c, &t, "[physical].c")?,
+                n: ctx.req(&r.n, &t, "[physical].n")?,
+                p: ctx.req(&r.p, &t, "[physical].p")?,
+                alpha: ctx.req(&r.alpha, &t, "[physical].alpha")?,
+                beta: ctx.req(&r.beta, &t, "[physical].beta")?,
+                gamma: ctx.req(&r.gamma, &t, "[physical].gamma")?,
+                a: ctx.req(&r.a, &t, "[physical].A")?,
+            };
+            let span_of = |name: &str| match name {
+                "k" => span(&r.k),
+                "c" => span(&r.c),
+                "n" => span(&r.n),
+                "p" => span(&r.p),
+                "alpha" => span(&r.alpha),
+                "beta" => span(&r.beta),
+                "gamma" => span(&r.gamma),
+                "A" => span(&r.a),
+                "m" => span(&r.m),
+                _ => None,
+            };
+            let params = PhysicalParams::new(kind, law)
+                .map_err(|e| ctx.model_error(e, "[physical]", span_of, &t))?;
+            match &raw.bodies {
+                None => {
+                    let m = ctx.req(&r.m, &t, "[physical].m")?;
+                    if m <= 0.0 {
+                        return Err(ctx.invalid(
+                            &span(&r.m).unwrap_or(t),
+                            "[physical].m",
+                            format!("{m} is not admissible: m > 0 (kg)"),
+                        ));
+                    }
+                    let input = match &raw.input {
+                        Some(i) => signal(&ctx, i, "[input]", Some(m))?,
+                        None => Signal::zero(),
+                    };
+                    vec![SystemSpec {
+                        name: None,
+                        kind,
+                        system: System::Physical { params, m, input },
+                    }]
+                }
+                Some(b) => {
+                    if let Some(m) = &r.m {
+                        return Err(ctx.invalid(
+                            &m.span(),
+                            "[physical].m",
+                            "not used with [bodies]: the effective mass follows from m1 and m2",
+                        ));
+                    }
+                    vec![SystemSpec {
+                        name: None,
+                        kind,
+                        system: System::Bodies {
+                            params,
+                            bodies: bodies(&ctx, b)?,
+                        },
+                    }]
+                }
+            }
+        };
+
+        Ok(Scene {
+            path: path.to_owned(),
+            systems,
+            speeds,
+            settings: solver(&ctx, &raw)?,
+            output: output(&ctx, &raw)?,
+        })
+    }
+}
+
+fn parse_speeds(ctx: &Ctx, raw: &RawScene) -> Result<Vec<f64>, CliError> {
+    let Some(v) = &raw.v0 else {
+        return Ok(Vec::new());
+    };
+    let speeds = match v.get_ref() {
+        SeqOrMap::Seq(list) => {
+            if list.is_empty() {
+                return Err(ctx.invalid(&v.span(), "v0", "an empty list: give at least one speed"));
+            }
+            list.iter()
+                .map(|s| ctx.num(s, "v0"))
+                .collect::<Result<Vec<_>, _>>()?
+        }
+        SeqOrMap::Map(r) => {
+            let (from, to) = (ctx.num(&r.from, "v0.from")?, ctx.num(&r.to, "v0.to")?);
+            let count = *r.count.get_ref();
+            if !(1..=1_000_000).contains(&count) {
+                return Err(ctx.invalid(
+                    &r.count.span(),
+                    "v0.count",
+                    format!("{count} is not admissible: 1 <= count <= 1000000"),
+                ));
+            }
+            if from <= 0.0 || to < from {
+                return Err(ctx.invalid(
+                    &r.from.span(),
+                    "v0.from",
+                    format!("from = {from}, to = {to}: need 0 < from <= to (m/s)"),
+                ));
+            }
+            let log = match r.spacing.as_ref().map(|s| s.get_ref().as_str()) {
+                None | Some("linear") => false,
+                Some("log") => true,
+                Some(other) => {
+                    let s = r.spacing.as_ref().map(|s| s.span()).unwrap_or_default();
+                    return Err(ctx.invalid(
+                        &s,
+                        "v0.spacing",
+                        format!("\"{other}\": use \"linear\" or \"log\""),
+                    ));
+                }
+            };
+            let n = count as usize;
+            (0..n)
+                .map(|i| {
+                    let f = if n == 1 {
+                        0.0
+                    } else {
+                        i as f64 / (n - 1) as f64
+                    };
+                    if log {
+                        from * (to / from).powf(f)
+                    } else {
+                        from + (to - from) * f
+                    }
+                })
+                .collect()
+        }
+    };
+    if let Some(bad) = speeds.iter().find(|s| **s <= 0.0) {
+        return Err(ctx.invalid(
+            &v.span(),
+            "v0",
+            format!("{bad} is not admissible: v0 > 0 (m/s)"),
+        ));
+    }
+    Ok(speeds)
+}
+
+fn base_system(
+    ctx: &Ctx,
+    b: &RawBase,
+    t: &Range<usize>,
+    model: Option<ModelKind>,
+    input: &Signal,
+) -> Result<SystemSpec, CliError> {
+    let kind = match &b.model {
+        Some(m) => model_kind(ctx, m, "[base].model")?,
+        None => model.ok_or_else(|| {
+            ctx.invalid(
+                t,
+                "model",
+                "missing required key: \"shccm\" or \"mcm\" (top level or in [base])",
+            )
+        })?,
+    };
+    let has_input = !bw_models::input::Input::is_zero(input);
+    let u_b = ctx.opt(&b.u_b, "[base].U_b")?;
+    let t_b = ctx.opt(&b.t_b, "[base].T_b")?;
+    if has_input && (u_b.is_none() || t_b.is_none()) {
+        let key = if u_b.is_none() {
+            "[base].U_b"
+        } else {
+            "[base].T_b"
+        };
+        return Err(ctx.invalid(
+            t,
+            key,
+            "missing: U_b and T_b are required when there is an [input]",
+        ));
+    }
+    let base = BaseParams {
+        b_b: ctx.req(&b.b_b, t, "[base].B_b")?,
+        gamma_b: ctx.req(&b.gamma_b, t, "[base].Gamma_b")?,
+        kappa: ctx.req(&b.kappa, t, "[base].kappa")?,
+        sigma_b: ctx.req(&b.sigma_b, t, "[base].sigma_b")?,
+        n: ctx.req(&b.n, t, "[base].n")?,
+        p: ctx.req(&b.p, t, "[base].p")?,
+        u_b: u_b.unwrap_or(1.0),
+        t_b: t_b.unwrap_or(1.0),
+    };
+    let span_of = |name: &str| match name {
+        "B_b" => span(&b.b_b),
+        "Gamma_b" => span(&b.gamma_b),
+        "kappa" => span(&b.kappa),
+        "sigma_b" => span(&b.sigma_b),
+        "n" => span(&b.n),
+        "p" => span(&b.p),
+        "U_b" => span(&b.u_b),
+        "T_b" => span(&b.t_b),
+        _ => None,
+    };
+    let map = BaseMap::new(kind, base).map_err(|e| ctx.model_error(e, "[base]", span_of, t))?;
+    Ok(SystemSpec {
+        name: b.name.as_ref().map(|n| n.get_ref().clone()),
+        kind,
+        system: System::Base {
+            map,
+            input: input.clone(),
+            time_scale_known: t_b.is_some(),
+        },
+    })
+}
+
+fn bodies(ctx: &Ctx, b: &Spanned<raw::RawBodies>) -> Result<Bodies<Signal, Signal>, CliError> {
+    let t = b.span();
+    let r = b.get_ref();
+    let m1 = ctx.req(&r.m1, &t, "[bodies].m1")?;
+    let m2 = match &r.m2 {
+        Some(m) if m.get_ref().0.is_nan() => {
+            return Err(ctx.invalid(&m.span(), "[bodies].m2", "NaN is not a mass"))
+        }
+        Some(m) => m.get_ref().0,
+        None => {
+            return Err(ctx.invalid(
+                &t,
+                "[bodies].m2",
+                "missing required key (a mass in kg or \"inf\")",
+            ))
+        }
+    };
+    let u1 =
+        r.u1.as_ref()
+            .map(|u| signal(ctx, u, "[bodies.u1]", Some(m1)))
+            .transpose()?
+            .unwrap_or_else(Signal::zero);
+    let u2 =
+        r.u2.as_ref()
+            .map(|u| signal(ctx, u, "[bodies.u2]", m2.is_finite().then_some(m2)))
+            .transpose()?
+            .unwrap_or_else(Signal::zero);
+    let (v1, v2) = (
+        ctx.req(&r.v1, &t, "[bodies].v1")?,
+        ctx.req(&r.v2, &t, "[bodies].v2")?,
+    );
+    let (l1, l2) = (
+        ctx.opt(&r.l1, "[bodies].l1")?.unwrap_or(0.0),
+        ctx.opt(&r.l2, "[bodies].l2")?.unwrap_or(0.0),
+    );
+    Bodies::new(m1, m2, v1, v2, l1, l2, u1, u2).map_err(|e| {
+        let span_of = |name: &str| match name {
+            "m1" => span(&r.m1),
+            "m2" => span(&r.m2),
+            "v1" | "v0" => span(&r.v1),
+            "v2" => span(&r.v2),
+            "l1" => span(&r.l1),
+            "l2" => span(&r.l2),
+            _ => None,
+        };
+        ctx.model_error(e, "[bodies]", span_of, &t)
+    })
+}
+
+fn signal(
+    ctx: &Ctx,
+    raw: &Spanned<RawInput>,
+    table: &str,
+    default_m: Option<f64>,
+) -> Result<Signal, CliError> {
+    let t = raw.span();
+    let r = raw.get_ref();
+    let kind = r.kind.as_ref().ok_or_else(|| {
+        ctx.invalid(
+            &t,
+            format!("{table}.kind"),
+            "missing: constant, gravity, arctan, table or sum",
+        )
+    })?;
+    let allowed: &[&str] = match kind.get_ref().as_str() {
+        "constant" => &["value"],
+        "gravity" => &["m", "g"],
+        "arctan" => &["m", "D", "omega"],
+        "table" => &["points"],
+        "sum" => &["terms"],
+        other => {
+            return Err(ctx.invalid(
+                &kind.span(),
+                format!("{table}.kind"),
+                format!("\"{other}\": use constant, gravity, arctan, table or sum"),
+            ))
+        }
+    };
+    let present = [
+        ("value", span(&r.value)),
+        ("m", span(&r.m)),
+        ("g", span(&r.g)),
+        ("D", span(&r.d)),
+        ("omega", span(&r.omega)),
+        ("points", span(&r.points)),
+        ("terms", r.terms.as_ref().map(|_| t.clone())),
+    ];
+    for (key, s) in present {
+        if let Some(s) = s {
+            if !allowed.contains(&key) {
+                return Err(ctx.invalid(
+                    &s,
+                    format!("{table}.{key}"),
+                    format!(
+                        "does not apply to kind \"{}\" (it takes {})",
+                        kind.get_ref(),
+                        allowed.join(", ")
+                    ),
+                ));
+            }
+        }
+    }
+    let mass = |ctx: &Ctx| -> Result<f64, CliError> {
+        let m = match ctx.opt(&r.m, &format!("{table}.m"))? {
+            Some(m) => m,
+            None => default_m.ok_or_else(|| {
+                ctx.invalid(
+                    &t,
+                    format!("{table}.m"),
+                    "missing: the mass this force acts on (kg)",
+                )
+            })?,
+        };
+        if m > 0.0 {
+            Ok(m)
+        } else {
+            Err(ctx.invalid(
+                &span(&r.m).unwrap_or(t.clone()),
+                format!("{table}.m"),
+                format!("{m} is not admissible: m > 0 (kg)"),
+            ))
+        }
+    };
+    Ok(match kind.get_ref().as_str() {
+        "constant" => Signal::Constant(ctx.req(&r.value, &t, &format!("{table}.value"))?),
+        "gravity" => {
+            let g = ctx.opt(&r.g, &format!("{table}.g"))?.unwrap_or(9.81);
+            Signal::Constant(-mass(ctx)? * g)
+        }
+        "arctan" => Signal::Arctan(Arctan {
+            m: mass(ctx)?,
+            d: ctx.req(&r.d, &t, &format!("{table}.D"))?,
+            omega: ctx.req(&r.omega, &t, &format!("{table}.omega"))?,
+        }),
+        "table" => {
+            let pts = r.points.as_ref().ok_or_else(|| {
+                ctx.invalid(&t, format!("{table}.points"), "missing: [[t, u], ...]")
+            })?;
+            let mut points = Vec::with_capacity(pts.get_ref().len());
+            for p in pts.get_ref() {
+                if p.len() != 2 {
+                    return Err(ctx.invalid(
+                        &pts.span(),
+                        format!("{table}.points"),
+                        "each point is [t, u]",
+                    ));
+                }
+                points.push((
+                    ctx.num(&p[0], &format!("{table}.points"))?,
+                    ctx.num(&p[1], &format!("{table}.points"))?,
+                ));
+            }
+            Signal::Table(
+                Table::new(&points).map_err(|e| {
+                    ctx.invalid(&pts.span(), format!("{table}.points"), e.to_string())
+                })?,
+            )
+        }
+        _ => {
+            let terms = r.terms.as_ref().ok_or_else(|| {
+                ctx.invalid(&t, format!("{table}.terms"), "missing: a list of inputs")
+            })?;
+            Signal::Sum(
+                terms
+                    .iter()
+                    .map(|term| signal(ctx, term, &format!("{table}.terms"), default_m))
+                    .collect::<Result<_, _>>()?,
+            )
+        }
+    })
+}
+
+fn solver(ctx: &Ctx, raw: &RawScene) -> Result<Settings, CliError> {
+    let mut s = Settings::default();
+    let Some(sv) = &raw.solver else { return Ok(s) };
+    let r = sv.get_ref();
+    if let Some(m) = &r.method {
+        s.method = match m.get_ref().as_str() {
+            "dopri5" => &DOPRI5,
+            "dop853" => &DOP853,
+            "vern7" => &VERN7,
+            other => {
+                return Err(ctx.invalid(
+                    &m.span(),
+                    "[solver].method",
+                    format!("\"{other}\": use \"dopri5\", \"dop853\" or \"vern7\""),
+                ))
+            }
+        };
+    }
+    if let Some(v) = ctx.opt(&r.rtol, "[solver].rtol")? {
+        s.rtol = v;
+    }
+    if let Some(v) = ctx.opt(&r.atol, "[solver].atol")? {
+        s.atol = v;
+    }
+    if let Some(v) = &r.max_step {
+        s.max_step = *v.get_ref();
+    }
+    if let Some(v) = ctx.opt(&r.t_max, "[solver].t_max")? {
+        s.t_max = v;
+    }
+    if let Some(v) = &r.max_steps {
+        if *v.get_ref() < 1 {
+            return Err(ctx.invalid(
+                &v.span(),
+                "[solver].max_steps",
+                format!("{} is not admissible: >= 1", v.get_ref()),
+            ));
+        }
+        s.max_steps = *v.get_ref() as u64;
+    }
+    if let Some(v) = &r.stop_at_kinks {
+        s.stop_at_kinks = *v.get_ref();
+    }
+    s.validate().map_err(|e| {
+        let span_of = |name: &str| match name {
+            "rtol" => span(&r.rtol),
+            "atol" => span(&r.atol),
+            "max_step" => span(&r.max_step),
+            "t_max" => span(&r.t_max),
+            _ => None,
+        };
+        ctx.model_error(e, "[solver]", span_of, &sv.span())
+    })?;
+    Ok(s)
+}
+
+fn output(ctx: &Ctx, raw: &RawScene) -> Result<OutputSpec, CliError> {
+    let mut o = OutputSpec {
+        trajectory: false,
+        dt: None,
+        loops: false,
+        sweep: false,
+        plots: false,
+    };
+    let Some(out) = &raw.output else { return Ok(o) };
+    let r = out.get_ref();
+    let flag = |v: &Option<Spanned<bool>>| v.as_ref().is_some_and(|b| *b.get_ref());
+    o.trajectory = flag(&r.trajectory);
+    o.loops = flag(&r.loops);
+    o.sweep = flag(&r.sweep);
+    o.plots = flag(&r.plots);
+    if let Some(dt) = &r.dt {
+        let v = ctx.num(dt, "[output].dt")?;
+        if v <= 0.0 {
+            return Err(ctx.invalid(
+                &dt.span(),
+                "[output].dt",
+                format!("{v} is not admissible: dt > 0"),
+            ));
+        }
+        o.dt = Some(v);
+    }
+    Ok(o)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const BASE: &str = "model = \"shccm\"\n[[base]]\nB_b = 1\nGamma_b = 0\nkappa = 0.5\nsigma_b = 0.1\nn = 1\np = 1\n[[base]]\nname = \"second\"\nmodel = \"mcm\"\nB_b = 1\nGamma_b = 0\nkappa = 0.5\nsigma_b = 0.1\nn = 1\np = 1\n";
+
+    #[test]
+    fn speed_ranges_and_base_arrays() {
+        let log = Scene::parse(
+            Path::new("s.toml"),
+            &format!("v0 = {{ from = 0.1, to = 10.0, count = 3, spacing = \"log\" }}\n{BASE}"),
+        )
+        .unwrap();
+        assert_eq!(log.speeds.len(), 3);
+        assert!(
+            (log.speeds[1] - 1.0).abs() < 1e-15
+                && log.speeds[0] == 0.1
+                && (log.speeds[2] - 10.0).abs() < 1e-14
+        );
+        let lin = Scene::parse(
+            Path::new("s.toml"),
+            &format!("v0 = {{ from = 1, to = 3, count = 3 }}\n{BASE}"),
+        )
+        .unwrap();
+        assert_eq!(lin.speeds, vec![1.0, 2.0, 3.0]);
+        assert_eq!(lin.systems.len(), 2);
+        assert_eq!(lin.systems[0].kind, ModelKind::Shccm);
+        assert_eq!(lin.systems[1].kind, ModelKind::Mcm);
+        assert_eq!(lin.systems[1].name.as_deref(), Some("second"));
+        let e = Scene::parse(
+            Path::new("s.toml"),
+            &format!("v0 = {{ from = 1, to = 3, count = 0 }}\n{BASE}"),
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("v0.count"), "{e}");
+    }
+}

@@ -1,0 +1,198 @@
+//! The scene file as written: serde types that keep the span of every value, so that errors can
+//! name the line. Unknown keys are rejected by `deny_unknown_fields`.
+
+use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
+use serde::de::{self, MapAccess, SeqAccess, Visitor};
+use serde::{Deserialize, Deserializer};
+use std::fmt;
+use std::marker::PhantomData;
+use toml::Spanned;
+
+/// A number with its position in the file.
+pub type Num = Spanned<f64>;
+
+/// A value that is either an array (`S`) or a table (`M`), deserialized without buffering so
+/// that spans inside survive.
+#[derive(Debug)]
+pub enum SeqOrMap<S, M> {
+    /// An array.
+    Seq(S),
+    /// A table.
+    Map(M),
+}
+
+impl<'de, S: Deserialize<'de>, M: Deserialize<'de>> Deserialize<'de> for SeqOrMap<S, M> {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V<S, M>(PhantomData<(S, M)>);
+        impl<'de, S: Deserialize<'de>, M: Deserialize<'de>> Visitor<'de> for V<S, M> {
+            type Value = SeqOrMap<S, M>;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("an array or a table")
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Self::Value, A::Error> {
+                S::deserialize(SeqAccessDeserializer::new(seq)).map(SeqOrMap::Seq)
+            }
+            fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Self::Value, A::Error> {
+                M::deserialize(MapAccessDeserializer::new(map)).map(SeqOrMap::Map)
+            }
+        }
+        d.deserialize_any(V(PhantomData))
+    }
+}
+
+/// A mass that may be infinite: a number, `inf`, or the string `"inf"`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Mass(pub f64);
+
+impl<'de> Deserialize<'de> for Mass {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl Visitor<'_> for V {
+            type Value = Mass;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a mass in kg or \"inf\"")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Mass, E> {
+                Ok(Mass(v))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Mass, E> {
+                Ok(Mass(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Mass, E> {
+                Ok(Mass(v as f64))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<Mass, E> {
+                if v == "inf" {
+                    Ok(Mass(f64::INFINITY))
+                } else {
+                    Err(E::invalid_value(de::Unexpected::Str(v), &self))
+                }
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// The whole scene.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawScene {
+    pub model: Option<Spanned<String>>,
+    pub v0: Option<Spanned<SeqOrMap<Vec<Num>, RawRange>>>,
+    pub nondimensional: Option<Spanned<RawNondim>>,
+    pub base: Option<Spanned<SeqOrMap<Vec<Spanned<RawBase>>, RawBase>>>,
+    pub physical: Option<Spanned<RawPhysical>>,
+    pub bodies: Option<Spanned<RawBodies>>,
+    pub input: Option<Spanned<RawInput>>,
+    pub solver: Option<Spanned<RawSolver>>,
+    pub output: Option<Spanned<RawOutput>>,
+}
+
+/// `v0 = { from = 0.1, to = 6.0, count = 40, spacing = "log" }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawRange {
+    pub from: Num,
+    pub to: Num,
+    pub count: Spanned<i64>,
+    pub spacing: Option<Spanned<String>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawNondim {
+    #[serde(rename = "B")]
+    pub b: Option<Num>,
+    #[serde(rename = "Gamma")]
+    pub gamma: Option<Num>,
+    pub kappa: Option<Num>,
+    pub sigma: Option<Num>,
+    pub n: Option<Num>,
+    pub p: Option<Num>,
+    #[serde(rename = "U")]
+    pub u: Option<Num>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawBase {
+    pub name: Option<Spanned<String>>,
+    pub model: Option<Spanned<String>>,
+    #[serde(rename = "B_b")]
+    pub b_b: Option<Num>,
+    #[serde(rename = "Gamma_b")]
+    pub gamma_b: Option<Num>,
+    pub kappa: Option<Num>,
+    pub sigma_b: Option<Num>,
+    pub n: Option<Num>,
+    pub p: Option<Num>,
+    #[serde(rename = "U_b")]
+    pub u_b: Option<Num>,
+    #[serde(rename = "T_b")]
+    pub t_b: Option<Num>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPhysical {
+    pub m: Option<Num>,
+    pub k: Option<Num>,
+    pub c: Option<Num>,
+    pub n: Option<Num>,
+    pub p: Option<Num>,
+    pub alpha: Option<Num>,
+    pub beta: Option<Num>,
+    pub gamma: Option<Num>,
+    #[serde(rename = "A")]
+    pub a: Option<Num>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawBodies {
+    pub m1: Option<Num>,
+    pub m2: Option<Spanned<Mass>>,
+    pub v1: Option<Num>,
+    pub v2: Option<Num>,
+    pub l1: Option<Num>,
+    pub l2: Option<Num>,
+    pub u1: Option<Spanned<RawInput>>,
+    pub u2: Option<Spanned<RawInput>>,
+}
+
+/// An input signal: `kind` and the keys that kind takes.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawInput {
+    pub kind: Option<Spanned<String>>,
+    pub value: Option<Num>,
+    pub m: Option<Num>,
+    pub g: Option<Num>,
+    #[serde(rename = "D")]
+    pub d: Option<Num>,
+    pub omega: Option<Num>,
+    pub points: Option<Spanned<Vec<Vec<Num>>>>,
+    pub terms: Option<Vec<Spanned<RawInput>>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSolver {
+    pub method: Option<Spanned<String>>,
+    pub rtol: Option<Num>,
+    pub atol: Option<Num>,
+    pub max_step: Option<Num>,
+    pub t_max: Option<Num>,
+    pub max_steps: Option<Spanned<i64>>,
+    pub stop_at_kinks: Option<Spanned<bool>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawOutput {
+    pub trajectory: Option<Spanned<bool>>,
+    pub dt: Option<Num>,
+    pub loops: Option<Spanned<bool>>,
+    pub sweep: Option<Spanned<bool>>,
+    pub plots: Option<Spanned<bool>>,
+}
