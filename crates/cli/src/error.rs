@@ -63,6 +63,16 @@ pub enum CliError {
         /// The drawing backend's message.
         message: String,
     },
+    /// An identification failed (or its data file is bad).
+    #[error("{path}: fit \"{fit}\": {source}")]
+    Identify {
+        /// The config.
+        path: PathBuf,
+        /// The fit's name.
+        fit: String,
+        /// What went wrong.
+        source: bwc_identify::IdentifyError,
+    },
     /// The thread pool could not be built.
     #[error("cannot start {threads} threads: {message}")]
     Threads {

@@ -1,7 +1,8 @@
 //! # bwc-cli: the command-line front ends of bwc
 //!
 //! `bwc-simulate run SCENE.toml` simulates the impacts a scene describes and writes tables and
-//! plots. The crate parses files into validated settings ([`scene`]) and calls the libraries
+//! plots; `bwc-identify run CONFIG.toml` fits base parameters to data ([`config`],
+//! [`identify`]). The crate parses files into validated settings ([`scene`]) and calls the libraries
 //! ([`simulate`]); errors ([`CliError`]) are reported once, by the binaries.
 //!
 //! ```
@@ -22,7 +23,9 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod config;
 mod error;
+pub mod identify;
 pub mod output;
 pub mod plot;
 pub mod scene;

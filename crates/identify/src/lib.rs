@@ -1,1 +1,105 @@
-//! Parameter identification (not yet implemented; see issue 5).
+//! # bwc-identify: derivative-free identification of base parameters
+//!
+//! Given measured CoR `e` and/or contact durations `t_d` at several impact speeds (paper
+//! Section 7), find the base parameters `P* = (B_b, Γ_b, κ, σ_b, n, p, U_b, T_b)` of a model
+//! that minimise `w1 J1 + w2 J2`, with `J_j` the mean squared error of `Θ_1` (CoR) and `Θ_2`
+//! (duration in s):
+//!
+//! * [`Dataset`]: measurements from CSV;
+//! * [`Space`]: bounds, fixed values, `Γ_b = g B_b` with `g ∈ [-1, 1]`, and the Villegas
+//!   constraints `T_b = m U_b`, `(m/k) κ / T_b^(p+1) <= 1`;
+//! * [`Objective`]: the costs, evaluated in parallel over the data points;
+//! * [`fit`]: argmin's particle swarm (seeded, particles in parallel) then Nelder-Mead, from
+//!   several starts; identical results for any thread count;
+//! * [`analyse`]: singular values of the sensitivity matrix at the optimum (faer).
+//!
+//! ```
+//! use bw_models::{input::Zero, BaseMap, BaseParams, ModelKind, Settings};
+//! use bwc_identify::{fit, Budget, Dataset, Objective, Param, Space, Weights};
+//! // Synthetic data from a known NDBWSHCCM; recover it with κ and σ_b free.
+//! let truth = BaseParams { b_b: 1.0, gamma_b: -1.0, kappa: 0.6, sigma_b: 0.03, n: 1.5, p: 1.5, u_b: 1.0, t_b: 1.0 };
+//! let map = BaseMap::new(ModelKind::Shccm, truth)?;
+//! let mut csv = String::from("v_0,e\n");
+//! for v0 in [0.2, 1.0, 4.0] {
+//!     csv += &format!("{v0},{}\n", bw_models::impact_at(&map, Zero, v0, &Settings::default())?.e);
+//! }
+//! let data = Dataset::parse(std::path::Path::new("synthetic.csv"), &csv)?;
+//! let free = |lo, hi| Param::Free { lo, hi, log: false };
+//! let space = Space::new(ModelKind::Shccm, [Param::Fixed(1.0), Param::Fixed(-1.0), free(0.1, 0.9), free(0.0, 0.1),
+//!     Param::Fixed(1.5), Param::Fixed(1.5), Param::Fixed(1.0), Param::Fixed(1.0)], None)?;
+//! let objective = Objective::new(&space, &data, &Zero, Settings::default(), Weights { j1: 1.0, j2: 0.0 })?;
+//! let result = fit(&objective, &Budget { particles: 8, iterations: 10, polish_iterations: 200, starts: 1 }, 7, None)?;
+//! assert!((result.params.kappa - 0.6).abs() < 1e-4 && (result.params.sigma_b - 0.03).abs() < 1e-4);
+//! # Ok::<(), bwc_identify::IdentifyError>(())
+//! ```
+#![deny(missing_docs)]
+
+mod data;
+mod fit;
+mod identifiability;
+mod objective;
+mod space;
+
+pub use data::{Dataset, Point};
+pub use fit::{fit, Budget, FitResult};
+pub use identifiability::{analyse, Identifiability};
+pub use objective::{predict, Costs, Objective, Prediction, Weights, FAILED};
+pub use space::{KnownMassStiffness, Param, Space, NAMES};
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong in an identification.
+#[derive(Debug, thiserror::Error)]
+pub enum IdentifyError {
+    /// A data file could not be read.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
+    /// A data file is malformed or holds an inadmissible value.
+    #[error("{path}:{line}: {message}")]
+    Data {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line.
+        line: u64,
+        /// What is wrong.
+        message: String,
+    },
+    /// A bound, fixed value or starting point is not admissible.
+    #[error("`{name}` in [{lo}, {hi}]: needs {allowed}")]
+    Bounds {
+        /// The quantity.
+        name: &'static str,
+        /// Lower bound (or the value).
+        lo: f64,
+        /// Upper bound (or the value).
+        hi: f64,
+        /// What is admissible.
+        allowed: &'static str,
+    },
+    /// The constraints cannot be met.
+    #[error("infeasible: {reason}")]
+    Infeasible {
+        /// Why.
+        reason: String,
+    },
+    /// The objectives are not usable with the data.
+    #[error("objectives: {reason}")]
+    Objectives {
+        /// Why.
+        reason: String,
+    },
+    /// The optimizer failed.
+    #[error("optimizer: {message}")]
+    Optimizer {
+        /// argmin's message.
+        message: String,
+    },
+    /// A model could not be built or simulated.
+    #[error(transparent)]
+    Model(#[from] bw_models::ModelError),
+}

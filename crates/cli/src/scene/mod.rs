@@ -13,7 +13,7 @@
 //! [output]                   # optional: trajectory, dt, loops, sweep, plots
 //! ```
 
-mod raw;
+pub(crate) mod raw;
 
 use crate::signal::Signal;
 use crate::CliError;
@@ -106,18 +106,18 @@ pub struct OutputSpec {
     pub plots: bool,
 }
 
-struct Ctx<'a> {
-    path: &'a Path,
-    src: &'a str,
+pub(crate) struct Ctx<'a> {
+    pub(crate) path: &'a Path,
+    pub(crate) src: &'a str,
 }
 
 impl Ctx<'_> {
-    fn line(&self, span: &Range<usize>) -> usize {
+    pub(crate) fn line(&self, span: &Range<usize>) -> usize {
         let end = span.start.min(self.src.len());
         self.src[..end].matches('\n').count() + 1
     }
 
-    fn invalid(
+    pub(crate) fn invalid(
         &self,
         span: &Range<usize>,
         key: impl Into<String>,
@@ -131,7 +131,7 @@ impl Ctx<'_> {
         }
     }
 
-    fn num(&self, v: &Num, key: &str) -> Result<f64, CliError> {
+    pub(crate) fn num(&self, v: &Num, key: &str) -> Result<f64, CliError> {
         let x = *v.get_ref();
         if x.is_finite() {
             Ok(x)
@@ -140,19 +140,24 @@ impl Ctx<'_> {
         }
     }
 
-    fn req(&self, v: &Option<Num>, table: &Range<usize>, key: &str) -> Result<f64, CliError> {
+    pub(crate) fn req(
+        &self,
+        v: &Option<Num>,
+        table: &Range<usize>,
+        key: &str,
+    ) -> Result<f64, CliError> {
         match v {
             Some(v) => self.num(v, key),
             None => Err(self.invalid(table, key, "missing required key")),
         }
     }
 
-    fn opt(&self, v: &Option<Num>, key: &str) -> Result<Option<f64>, CliError> {
+    pub(crate) fn opt(&self, v: &Option<Num>, key: &str) -> Result<Option<f64>, CliError> {
         v.as_ref().map(|v| self.num(v, key)).transpose()
     }
 
     /// Turns a model-library error into one that names the key and line.
-    fn model_error(
+    pub(crate) fn model_error(
         &self,
         e: ModelError,
         table: &str,
@@ -182,11 +187,24 @@ impl Ctx<'_> {
     }
 }
 
-fn span<T>(v: &Option<Spanned<T>>) -> Option<Range<usize>> {
+/// A TOML parse error as `file:line:column: message`.
+pub(crate) fn syntax_error(ctx: &Ctx, e: &toml::de::Error) -> CliError {
+    let src = ctx.src;
+    let at = e.span().map_or(0, |s| s.start.min(src.len()));
+    let line_start = src[..at].rfind('\n').map_or(0, |i| i + 1);
+    CliError::Syntax {
+        path: ctx.path.to_owned(),
+        line: ctx.line(&(at..at)),
+        column: src[line_start..at].chars().count() + 1,
+        message: e.message().trim().replace('\n', " "),
+    }
+}
+
+pub(crate) fn span<T>(v: &Option<Spanned<T>>) -> Option<Range<usize>> {
     v.as_ref().map(|s| s.span())
 }
 
-fn model_kind(ctx: &Ctx, v: &Spanned<String>, key: &str) -> Result<ModelKind, CliError> {
+pub(crate) fn model_kind(ctx: &Ctx, v: &Spanned<String>, key: &str) -> Result<ModelKind, CliError> {
     match v.get_ref().as_str() {
         "shccm" => Ok(ModelKind::Shccm),
         "mcm" => Ok(ModelKind::Mcm),
@@ -219,16 +237,7 @@ impl Scene {
     /// As [`Scene::load`].
     pub fn parse(path: &Path, src: &str) -> Result<Self, CliError> {
         let ctx = Ctx { path, src };
-        let raw: RawScene = toml::from_str(src).map_err(|e| {
-            let at = e.span().map_or(0, |s| s.start.min(src.len()));
-            let line_start = src[..at].rfind('\n').map_or(0, |i| i + 1);
-            CliError::Syntax {
-                path: path.to_owned(),
-                line: ctx.line(&(at..at)),
-                column: src[line_start..at].chars().count() + 1,
-                message: e.message().trim().replace('\n', " "),
-            }
-        })?;
+        let raw: RawScene = toml::from_str(src).map_err(|e| syntax_error(&ctx, &e))?;
         let whole = 0..0;
         let model = match &raw.model {
             Some(m) => Some(model_kind(&ctx, m, "model")?),
@@ -613,7 +622,7 @@ fn bodies(ctx: &Ctx, b: &Spanned<raw::RawBodies>) -> Result<Bodies<Signal, Signa
     })
 }
 
-fn signal(
+pub(crate) fn signal(
     ctx: &Ctx,
     raw: &Spanned<RawInput>,
     table: &str,

@@ -1,0 +1,177 @@
+//! `bwc-identify`: identify base parameters of the Bouc-Wen collision models from data.
+
+use bwc_cli::config::Config;
+use bwc_cli::identify::{eval_fit, render, run_fit, summary, FitReport};
+use bwc_cli::{output, CliError};
+use clap::{Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "bwc-identify",
+    version,
+    about = "Identify base parameters P* of the NDBWSHCCM / NDBWMCM from CoR and duration data",
+    after_help = "Examples:\n  bwc-identify run fixtures/kharaz.toml --out out/kharaz\n  bwc-identify run fixtures/villegas.toml --json --seed 7\n  bwc-identify eval fixtures/kharaz.toml   # costs at the paper's published vectors"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Fit every [[fit]] of a config from its bounds.
+    Run {
+        /// The config file (TOML).
+        config: PathBuf,
+        /// Directory for summary.json and per-fit CSV and SVG files.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Print exactly one JSON object on stdout: {"fits": [...]}.
+        #[arg(long)]
+        json: bool,
+        /// Base seed (combined with each fit's seed).
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Worker threads (default: all cores, or RAYON_NUM_THREADS).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1024))]
+        threads: Option<u64>,
+    },
+    /// Evaluate the costs at each fit's [fit.params] without optimizing.
+    Eval {
+        /// The config file (TOML).
+        config: PathBuf,
+        /// Directory for summary.json and per-fit CSV and SVG files.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Print exactly one JSON object on stdout.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    let result = match Cli::parse().command {
+        Command::Run {
+            config,
+            out,
+            json,
+            seed,
+            threads,
+        } => run(
+            &config,
+            out.as_deref(),
+            json,
+            Some(seed),
+            threads.map(|t| t as usize),
+        ),
+        Command::Eval { config, out, json } => run(&config, out.as_deref(), json, None, None),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("bwc-identify: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(
+    path: &Path,
+    out: Option<&Path>,
+    json: bool,
+    seed: Option<u64>,
+    threads: Option<usize>,
+) -> Result<(), CliError> {
+    let config = Config::load(path)?;
+    let work = || -> Result<Vec<FitReport>, CliError> {
+        match seed {
+            None => config.fits.iter().map(|f| eval_fit(path, f)).collect(),
+            Some(seed) => {
+                let total: u64 = config
+                    .fits
+                    .iter()
+                    .map(|f| {
+                        f.budget.evaluations(f.space.dim()) * (1 + f.pareto.unwrap_or(0) as u64)
+                    })
+                    .sum();
+                let target = if json {
+                    ProgressDrawTarget::hidden()
+                } else {
+                    ProgressDrawTarget::stderr()
+                };
+                let bar = ProgressBar::with_draw_target(Some(total), target);
+                bar.set_style(
+                    ProgressStyle::with_template(
+                        "{msg:24} {bar:32} {pos}/{len} evaluations, eta {eta}",
+                    )
+                    .expect("valid template"),
+                );
+                let tick = || bar.inc(1);
+                let mut reports = Vec::new();
+                for f in &config.fits {
+                    bar.set_message(f.name.clone());
+                    reports.push(run_fit(path, f, seed, &tick)?);
+                }
+                bar.finish_and_clear();
+                Ok(reports)
+            }
+        }
+    };
+    let reports = match threads {
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map_err(|e| CliError::Threads {
+                threads: n,
+                message: e.to_string(),
+            })?
+            .install(work)?,
+        None => work()?,
+    };
+    if let Some(dir) = out {
+        let files = render(path, &config.fits, &reports, dir)?;
+        let written = output::write_all(dir, &files)?;
+        if !json {
+            for p in written {
+                eprintln!("wrote {}", p.display());
+            }
+        }
+    }
+    if json {
+        println!("{}", summary(&reports));
+    } else {
+        for r in &reports {
+            let p = r.params;
+            println!(
+                "{} ({}): J1 = {}, J2 = {}, {} evaluations, {:.2} s",
+                r.name,
+                r.model,
+                r.costs.j1.map_or("-".into(), |j| format!("{j:.3e}")),
+                r.costs.j2.map_or("-".into(), |j| format!("{j:.3e}")),
+                r.evaluations,
+                r.wall_s
+            );
+            print!("    B_b = {:.6}, Gamma_b = {:.6}, kappa = {:.6}, sigma_b = {:.6e}, n = {:.6}, p = {:.6}", p.b_b, p.gamma_b, p.kappa, p.sigma_b, p.n, p.p);
+            if r.uses_input_scales {
+                print!(", U_b = {:.6e}, T_b = {:.6e}", p.u_b, p.t_b);
+            }
+            println!();
+            if let Some(id) = &r.identifiability {
+                let sv: Vec<String> = id
+                    .singular_values
+                    .iter()
+                    .map(|s| format!("{s:.2e}"))
+                    .collect();
+                println!(
+                    "    sensitivity singular values [{}]; weakest direction: {}",
+                    sv.join(", "),
+                    id.weakest_names().join(" + ")
+                );
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,604 @@
+//! Identification configs: `[[fit]]` tables validated into search spaces and objectives.
+//!
+//! ```toml
+//! [[fit]]
+//! name = "DSS NDBWSHCCM"
+//! model = "shccm"
+//! data = "data/kharaz_dss.csv"       # relative to the config
+//! objectives = { J1 = 1.0 }           # weights of J1 (CoR) and J2 (duration)
+//! log = ["sigma_b"]                   # quantities searched on a log scale
+//! [fit.bounds]                        # B_b, g = Gamma_b / B_b, kappa, sigma_b, n, p, U_b, T_b
+//! B_b = [0.0, 5.0]
+//! [fit.fixed]                         # values held fixed
+//! [fit.input]                         # physical input u(t), as in scenes
+//! [fit.known]                         # m, k: T_b = m U_b and (m/k) kappa / T_b^(p+1) <= 1
+//! [fit.optimizer]                     # particles, iterations, polish, starts, seed
+//! [fit.solver]                        # search accuracy (default rtol 1e-8)
+//! [fit.start]                         # optional starting point (full P*)
+//! [fit.params]                        # P* for `bwc-identify eval`
+//! [fit.pareto]                        # count: weights of a Pareto sweep over (J1, J2)
+//! ```
+
+use crate::scene::raw::{Num, RawInput, RawSolver};
+use crate::scene::{model_kind, signal, span, Ctx};
+use crate::signal::Signal;
+use crate::CliError;
+use bw_models::{BaseParams, ModelKind, Settings};
+use bwc_identify::{
+    Budget, Dataset, IdentifyError, KnownMassStiffness, Param, Space, Weights, NAMES,
+};
+use bwc_ode::{DOP853, DOPRI5, VERN7};
+use serde::Deserialize;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawConfig {
+    fit: Option<Vec<Spanned<RawFit>>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFit {
+    name: Option<Spanned<String>>,
+    model: Option<Spanned<String>>,
+    data: Option<Spanned<String>>,
+    objectives: Option<Spanned<RawObjectives>>,
+    log: Option<Spanned<Vec<Spanned<String>>>>,
+    bounds: Option<Spanned<RawBounds>>,
+    fixed: Option<Spanned<RawValues>>,
+    start: Option<Spanned<RawPoint>>,
+    params: Option<Spanned<RawPoint>>,
+    input: Option<Spanned<RawInput>>,
+    known: Option<Spanned<RawKnown>>,
+    optimizer: Option<Spanned<RawOptimizer>>,
+    solver: Option<Spanned<RawSolver>>,
+    pareto: Option<Spanned<RawPareto>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawObjectives {
+    #[serde(rename = "J1")]
+    j1: Option<Num>,
+    #[serde(rename = "J2")]
+    j2: Option<Num>,
+}
+
+type Pair = Spanned<Vec<Num>>;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBounds {
+    #[serde(rename = "B_b")]
+    b_b: Option<Pair>,
+    g: Option<Pair>,
+    kappa: Option<Pair>,
+    sigma_b: Option<Pair>,
+    n: Option<Pair>,
+    p: Option<Pair>,
+    #[serde(rename = "U_b")]
+    u_b: Option<Pair>,
+    #[serde(rename = "T_b")]
+    t_b: Option<Pair>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawValues {
+    #[serde(rename = "B_b")]
+    b_b: Option<Num>,
+    g: Option<Num>,
+    kappa: Option<Num>,
+    sigma_b: Option<Num>,
+    n: Option<Num>,
+    p: Option<Num>,
+    #[serde(rename = "U_b")]
+    u_b: Option<Num>,
+    #[serde(rename = "T_b")]
+    t_b: Option<Num>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPoint {
+    #[serde(rename = "B_b")]
+    b_b: Option<Num>,
+    #[serde(rename = "Gamma_b")]
+    gamma_b: Option<Num>,
+    kappa: Option<Num>,
+    sigma_b: Option<Num>,
+    n: Option<Num>,
+    p: Option<Num>,
+    #[serde(rename = "U_b")]
+    u_b: Option<Num>,
+    #[serde(rename = "T_b")]
+    t_b: Option<Num>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawKnown {
+    m: Option<Num>,
+    k: Option<Num>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawOptimizer {
+    particles: Option<Spanned<i64>>,
+    iterations: Option<Spanned<i64>>,
+    polish: Option<Spanned<i64>>,
+    starts: Option<Spanned<i64>>,
+    seed: Option<Spanned<i64>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPareto {
+    count: Option<Spanned<i64>>,
+}
+
+/// One validated fit.
+#[derive(Debug, Clone)]
+pub struct FitConfig {
+    /// Name (unique in the config).
+    pub name: String,
+    /// The model.
+    pub kind: ModelKind,
+    /// The measurements.
+    pub data: Dataset,
+    /// The search space.
+    pub space: Space,
+    /// Physical input `u(t)` (N).
+    pub input: Signal,
+    /// Weights of `J1` and `J2`.
+    pub weights: Weights,
+    /// Optimizer budget.
+    pub budget: Budget,
+    /// Seed of this fit (combined with `--seed`).
+    pub seed: u64,
+    /// Solver settings of the search.
+    pub settings: Settings,
+    /// Starting point on the unit cube, if given.
+    pub start: Option<Vec<f64>>,
+    /// Parameters for `eval`, if given.
+    pub params: Option<BaseParams>,
+    /// Whether `U_b`, `T_b` matter (an input, a duration objective, or a known mass).
+    pub uses_input_scales: bool,
+    /// Number of weights of a Pareto sweep, if asked for.
+    pub pareto: Option<usize>,
+}
+
+/// A validated config.
+#[derive(Debug, Clone)]
+pub struct Config {
+    /// The file.
+    pub path: PathBuf,
+    /// The fits, in file order.
+    pub fits: Vec<FitConfig>,
+}
+
+fn count(
+    ctx: &Ctx,
+    v: &Option<Spanned<i64>>,
+    key: &str,
+    min: i64,
+    max: i64,
+    default: i64,
+) -> Result<i64, CliError> {
+    match v {
+        None => Ok(default),
+        Some(x) if (min..=max).contains(x.get_ref()) => Ok(*x.get_ref()),
+        Some(x) => Err(ctx.invalid(
+            &x.span(),
+            key,
+            format!("{} is not admissible: {min} <= {key} <= {max}", x.get_ref()),
+        )),
+    }
+}
+
+impl Config {
+    /// Reads and validates a config and its data files.
+    ///
+    /// # Errors
+    /// [`CliError::Io`], [`CliError::Syntax`] and [`CliError::Invalid`] as for scenes;
+    /// [`CliError::Identify`] for a data file's own errors (with its path and line).
+    pub fn load(path: &Path) -> Result<Self, CliError> {
+        let src = std::fs::read_to_string(path).map_err(|source| CliError::Io {
+            path: path.to_owned(),
+            source,
+        })?;
+        let ctx = Ctx { path, src: &src };
+        let raw: RawConfig =
+            toml::from_str(&src).map_err(|e| crate::scene::syntax_error(&ctx, &e))?;
+        let fits = raw.fit.unwrap_or_default();
+        if fits.is_empty() {
+            return Err(ctx.invalid(
+                &(0..0),
+                "[[fit]]",
+                "no fits: add at least one [[fit]] table",
+            ));
+        }
+        let dir = path.parent().unwrap_or(Path::new("."));
+        let mut out: Vec<FitConfig> = Vec::new();
+        for (i, f) in fits.iter().enumerate() {
+            let fit = parse_fit(&ctx, dir, f, i)?;
+            if out.iter().any(|o| o.name == fit.name) {
+                return Err(ctx.invalid(
+                    &f.span(),
+                    "[[fit]].name",
+                    format!("\"{}\" is used twice: names must be unique", fit.name),
+                ));
+            }
+            out.push(fit);
+        }
+        Ok(Config {
+            path: path.to_owned(),
+            fits: out,
+        })
+    }
+}
+
+fn parse_fit(
+    ctx: &Ctx,
+    dir: &Path,
+    f: &Spanned<RawFit>,
+    index: usize,
+) -> Result<FitConfig, CliError> {
+    let t = f.span();
+    let r = f.get_ref();
+    let name = r
+        .name
+        .as_ref()
+        .map_or_else(|| format!("fit {}", index + 1), |n| n.get_ref().clone());
+    let kind = match &r.model {
+        Some(m) => model_kind(ctx, m, "[[fit]].model")?,
+        None => {
+            return Err(ctx.invalid(
+                &t,
+                "[[fit]].model",
+                "missing required key: \"shccm\" or \"mcm\"",
+            ))
+        }
+    };
+    let data_key = r.data.as_ref().ok_or_else(|| {
+        ctx.invalid(
+            &t,
+            "[[fit]].data",
+            "missing required key: a CSV file relative to the config",
+        )
+    })?;
+    let data_path = dir.join(data_key.get_ref());
+    let data = Dataset::load(&data_path).map_err(|source| CliError::Identify {
+        path: ctx.path.to_owned(),
+        fit: name.clone(),
+        source,
+    })?;
+
+    let weights = match &r.objectives {
+        None => Weights { j1: 1.0, j2: 0.0 },
+        Some(o) => {
+            let o_ref = o.get_ref();
+            let j1 = ctx.opt(&o_ref.j1, "objectives.J1")?.unwrap_or(0.0);
+            let j2 = ctx.opt(&o_ref.j2, "objectives.J2")?.unwrap_or(0.0);
+            Weights { j1, j2 }
+        }
+    };
+
+    // Bounds and fixed values.
+    let empty_b = RawBounds {
+        b_b: None,
+        g: None,
+        kappa: None,
+        sigma_b: None,
+        n: None,
+        p: None,
+        u_b: None,
+        t_b: None,
+    };
+    let empty_v = RawValues {
+        b_b: None,
+        g: None,
+        kappa: None,
+        sigma_b: None,
+        n: None,
+        p: None,
+        u_b: None,
+        t_b: None,
+    };
+    let b = r.bounds.as_ref().map_or(&empty_b, |b| b.get_ref());
+    let v = r.fixed.as_ref().map_or(&empty_v, |v| v.get_ref());
+    let bounds = [
+        &b.b_b, &b.g, &b.kappa, &b.sigma_b, &b.n, &b.p, &b.u_b, &b.t_b,
+    ];
+    let fixed = [
+        &v.b_b, &v.g, &v.kappa, &v.sigma_b, &v.n, &v.p, &v.u_b, &v.t_b,
+    ];
+    let mut log = [false; 8];
+    if let Some(l) = &r.log {
+        for item in l.get_ref() {
+            match NAMES.iter().position(|n| n == item.get_ref()) {
+                Some(i) => log[i] = true,
+                None => {
+                    return Err(ctx.invalid(
+                        &item.span(),
+                        "[[fit]].log",
+                        format!(
+                            "\"{}\" is not a base parameter: use {}",
+                            item.get_ref(),
+                            NAMES.join(", ")
+                        ),
+                    ))
+                }
+            }
+        }
+    }
+    let known = match &r.known {
+        None => None,
+        Some(k) => {
+            let kr = k.get_ref();
+            Some(KnownMassStiffness {
+                m: ctx.req(&kr.m, &k.span(), "[fit.known].m")?,
+                k: ctx.req(&kr.k, &k.span(), "[fit.known].k")?,
+            })
+        }
+    };
+    let input = match &r.input {
+        Some(i) => signal(ctx, i, "[fit.input]", known.map(|k| k.m))?,
+        None => Signal::zero(),
+    };
+    let uses_input_scales =
+        !bw_models::input::Input::is_zero(&input) || weights.j2 > 0.0 || known.is_some();
+    let mut params = [Param::Fixed(1.0); 8];
+    let bounds_span = r.bounds.as_ref().map_or(t.clone(), |b| b.span());
+    for i in 0..8 {
+        let key = NAMES[i];
+        params[i] =
+            match (bounds[i], fixed[i]) {
+                (Some(_), Some(x)) => {
+                    return Err(ctx.invalid(
+                        &x.span(),
+                        format!("[fit.fixed].{key}"),
+                        "both bounded and fixed: give one",
+                    ))
+                }
+                (Some(pair), None) => {
+                    if pair.get_ref().len() != 2 {
+                        return Err(ctx.invalid(
+                            &pair.span(),
+                            format!("[fit.bounds].{key}"),
+                            "give [lower, upper]",
+                        ));
+                    }
+                    let lo = ctx.num(&pair.get_ref()[0], &format!("[fit.bounds].{key}"))?;
+                    let hi = ctx.num(&pair.get_ref()[1], &format!("[fit.bounds].{key}"))?;
+                    Param::Free {
+                        lo,
+                        hi,
+                        log: log[i],
+                    }
+                }
+                (None, Some(x)) => Param::Fixed(ctx.num(x, &format!("[fit.fixed].{key}"))?),
+                (None, None) if i == 7 && known.is_some() => Param::Derived,
+                // U_b and T_b only matter with an input, a duration objective or a known mass.
+                (None, None) if i >= 6 && !uses_input_scales => Param::Fixed(1.0),
+                (None, None) => return Err(ctx.invalid(
+                    &bounds_span,
+                    format!("[fit.bounds].{key}"),
+                    format!(
+                        "missing: give bounds for {key} in [fit.bounds] or a value in [fit.fixed]"
+                    ),
+                )),
+            };
+    }
+    let space = Space::new(kind, params, known).map_err(|e| match e {
+        IdentifyError::Bounds {
+            name,
+            lo,
+            hi,
+            allowed,
+        } => {
+            let i = NAMES.iter().position(|n| *n == name);
+            let s = i
+                .and_then(|i| span(bounds[i]).or_else(|| span(fixed[i])))
+                .or_else(|| r.known.as_ref().map(|k| k.span()))
+                .unwrap_or(t.clone());
+            ctx.invalid(
+                &s,
+                format!("[fit].{name}"),
+                format!("[{lo}, {hi}] is not admissible: {allowed}"),
+            )
+        }
+        other => ctx.invalid(&t, format!("[[fit]] \"{name}\""), other.to_string()),
+    })?;
+
+    let point = |p: &Spanned<RawPoint>, table: &str| -> Result<BaseParams, CliError> {
+        let s = p.span();
+        let q = p.get_ref();
+        let key = |k: &str| format!("[fit.{table}].{k}");
+        let uf = |v: &Option<Num>, k: &str| -> Result<f64, CliError> {
+            if uses_input_scales {
+                ctx.req(v, &s, &key(k))
+            } else {
+                Ok(ctx.opt(v, &key(k))?.unwrap_or(1.0))
+            }
+        };
+        let mut bp = BaseParams {
+            b_b: ctx.req(&q.b_b, &s, &key("B_b"))?,
+            gamma_b: ctx.req(&q.gamma_b, &s, &key("Gamma_b"))?,
+            kappa: ctx.req(&q.kappa, &s, &key("kappa"))?,
+            sigma_b: ctx.req(&q.sigma_b, &s, &key("sigma_b"))?,
+            n: ctx.req(&q.n, &s, &key("n"))?,
+            p: ctx.req(&q.p, &s, &key("p"))?,
+            u_b: uf(&q.u_b, "U_b")?,
+            t_b: 1.0,
+        };
+        bp.t_b = match known {
+            Some(k) => k.m * bp.u_b,
+            None => uf(&q.t_b, "T_b")?,
+        };
+        bw_models::BaseMap::new(kind, bp).map_err(|e| {
+            let span_of = |n: &str| match n {
+                "B_b" => span(&q.b_b),
+                "Gamma_b" => span(&q.gamma_b),
+                "kappa" => span(&q.kappa),
+                "sigma_b" => span(&q.sigma_b),
+                "n" => span(&q.n),
+                "p" => span(&q.p),
+                "U_b" => span(&q.u_b),
+                "T_b" => span(&q.t_b),
+                _ => None,
+            };
+            ctx.model_error(e, &format!("[fit.{table}]"), span_of, &s)
+        })?;
+        Ok(bp)
+    };
+    let start = match &r.start {
+        Some(p) => {
+            let bp = point(p, "start")?;
+            Some(
+                space
+                    .encode(&bp)
+                    .map_err(|e| ctx.invalid(&p.span(), "[fit.start]", e.to_string()))?,
+            )
+        }
+        None => None,
+    };
+    let params_eval = r.params.as_ref().map(|p| point(p, "params")).transpose()?;
+
+    let o = r.optimizer.as_ref();
+    let empty_o = RawOptimizer {
+        particles: None,
+        iterations: None,
+        polish: None,
+        starts: None,
+        seed: None,
+    };
+    let or = o.map_or(&empty_o, |o| o.get_ref());
+    let d = Budget::default();
+    let budget = Budget {
+        particles: count(
+            ctx,
+            &or.particles,
+            "[fit.optimizer].particles",
+            2,
+            10_000,
+            d.particles as i64,
+        )? as usize,
+        iterations: count(
+            ctx,
+            &or.iterations,
+            "[fit.optimizer].iterations",
+            0,
+            1_000_000,
+            d.iterations as i64,
+        )? as u64,
+        polish_iterations: count(
+            ctx,
+            &or.polish,
+            "[fit.optimizer].polish",
+            0,
+            1_000_000,
+            d.polish_iterations as i64,
+        )? as u64,
+        starts: count(
+            ctx,
+            &or.starts,
+            "[fit.optimizer].starts",
+            1,
+            1_000,
+            d.starts as i64,
+        )? as usize,
+    };
+    let seed = count(
+        ctx,
+        &or.seed,
+        "[fit.optimizer].seed",
+        0,
+        i64::MAX,
+        index as i64,
+    )? as u64;
+
+    let mut settings = Settings {
+        rtol: 1e-8,
+        atol: 1e-10,
+        ..Settings::default()
+    };
+    if let Some(sv) = &r.solver {
+        let s = sv.get_ref();
+        if let Some(m) = &s.method {
+            settings.method = match m.get_ref().as_str() {
+                "dopri5" => &DOPRI5,
+                "dop853" => &DOP853,
+                "vern7" => &VERN7,
+                other => {
+                    return Err(ctx.invalid(
+                        &m.span(),
+                        "[fit.solver].method",
+                        format!("\"{other}\": use \"dopri5\", \"dop853\" or \"vern7\""),
+                    ))
+                }
+            };
+        }
+        if let Some(x) = ctx.opt(&s.rtol, "[fit.solver].rtol")? {
+            settings.rtol = x;
+        }
+        if let Some(x) = ctx.opt(&s.atol, "[fit.solver].atol")? {
+            settings.atol = x;
+        }
+        if let Some(x) = ctx.opt(&s.t_max, "[fit.solver].t_max")? {
+            settings.t_max = x;
+        }
+        if let Some(x) = &s.stop_at_kinks {
+            settings.stop_at_kinks = *x.get_ref();
+        }
+        settings.validate().map_err(|e| {
+            ctx.model_error(
+                e,
+                "[fit.solver]",
+                |n| match n {
+                    "rtol" => span(&s.rtol),
+                    "atol" => span(&s.atol),
+                    "t_max" => span(&s.t_max),
+                    _ => None,
+                },
+                &sv.span(),
+            )
+        })?;
+    }
+    let pareto = match &r.pareto {
+        None => None,
+        Some(p) => {
+            Some(count(ctx, &p.get_ref().count, "[fit.pareto].count", 2, 1_000, 11)? as usize)
+        }
+    };
+    // The objectives must match the data (checked by the library, reported at the objectives key).
+    let objective_span: Range<usize> = r.objectives.as_ref().map_or(t.clone(), |o| o.span());
+    bwc_identify::Objective::new(&space, &data, &input, settings, weights)
+        .map_err(|e| ctx.invalid(&objective_span, "[[fit]].objectives", e.to_string()))?;
+    if pareto.is_some() && !(data.has_cor() && data.has_durations()) {
+        return Err(ctx.invalid(
+            &r.pareto.as_ref().map_or(t.clone(), |p| p.span()),
+            "[fit.pareto]",
+            "a Pareto sweep needs both `e` and `t_d` in the data",
+        ));
+    }
+    Ok(FitConfig {
+        name,
+        kind,
+        data,
+        space,
+        input,
+        weights,
+        budget,
+        seed,
+        settings,
+        start,
+        params: params_eval,
+        uses_input_scales,
+        pareto,
+    })
+}

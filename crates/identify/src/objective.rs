@@ -1,0 +1,220 @@
+//! Aggregate quantities `Θ_1` (CoR, eq:Theta_1) and `Θ_2` (duration in s, eq:Theta_2), and the
+//! costs `J_j = (1/M) Σ (Θ̃_j - Θ_j(P*, u, v0))²` (eq:J) over a dataset.
+
+use crate::data::Dataset;
+use crate::space::Space;
+use crate::IdentifyError;
+use bw_models::input::Input;
+use bw_models::{impact_at, BaseMap, ModelError, Settings};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// The model's prediction at one data point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Prediction {
+    /// Impact speed (m/s).
+    pub v0: f64,
+    /// `Θ_1`: CoR (0 without separation).
+    pub e: f64,
+    /// `Θ_2`: duration `T_d T_b v0^(-(p-1)/(p+1))` (s); the horizon without separation.
+    pub t_d: f64,
+    /// Whether the bodies separated.
+    pub separated: bool,
+}
+
+/// `Θ_1` and `Θ_2` of base map `map` with physical input `u` at every point of `data`
+/// (evaluated in parallel; the result is in data order and independent of the thread count).
+///
+/// # Errors
+/// The first [`ModelError`] of a failed simulation.
+pub fn predict<I: Input + Sync>(
+    map: &BaseMap,
+    u: &I,
+    data: &Dataset,
+    settings: &Settings,
+) -> Result<Vec<Prediction>, ModelError> {
+    data.points
+        .par_iter()
+        .map(|pt| {
+            let out = impact_at(map, u, pt.v0, settings)?;
+            let scale = map.time_scale(pt.v0);
+            Ok(Prediction {
+                v0: pt.v0,
+                e: out.e,
+                t_d: out.t_s.unwrap_or(settings.t_max) * scale,
+                separated: out.separated(),
+            })
+        })
+        .collect()
+}
+
+/// The costs of predictions against data: `J1` over the points with a measured CoR, `J2` over
+/// those with a measured duration (`None` where there are none).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Costs {
+    /// Mean squared CoR error.
+    pub j1: Option<f64>,
+    /// Mean squared duration error (s²).
+    pub j2: Option<f64>,
+}
+
+impl Costs {
+    /// Compares predictions with the data they were made for.
+    pub fn of(data: &Dataset, predictions: &[Prediction]) -> Self {
+        let mean = |it: &mut dyn Iterator<Item = f64>| {
+            let (mut s, mut n) = (0.0, 0usize);
+            for r in it {
+                s += r * r;
+                n += 1;
+            }
+            (n > 0).then(|| s / n as f64)
+        };
+        let pairs = || data.points.iter().zip(predictions);
+        Costs {
+            j1: mean(&mut pairs().filter_map(|(d, p)| d.e.map(|e| e - p.e))),
+            j2: mean(&mut pairs().filter_map(|(d, p)| d.t_d.map(|t| t - p.t_d))),
+        }
+    }
+
+    /// The weighted sum `w1 J1 + w2 J2` (a missing cost counts as 0).
+    pub fn weighted(&self, w: Weights) -> f64 {
+        w.j1 * self.j1.unwrap_or(0.0) + w.j2 * self.j2.unwrap_or(0.0)
+    }
+}
+
+/// Weights of the scalarization `w1 J1 + w2 J2`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Weights {
+    /// Weight of `J1`.
+    pub j1: f64,
+    /// Weight of `J2`.
+    pub j2: f64,
+}
+
+/// Cost of a point whose simulation failed: worse than any feasible point.
+pub const FAILED: f64 = 1e3;
+
+/// The scalarized identification problem on the unit cube of a [`Space`].
+pub struct Objective<'a, I> {
+    space: &'a Space,
+    data: &'a Dataset,
+    input: &'a I,
+    settings: Settings,
+    weights: Weights,
+    evaluations: AtomicU64,
+    progress: Option<&'a (dyn Fn() + Sync)>,
+}
+
+impl<'a, I: Input + Sync> Objective<'a, I> {
+    /// The problem of fitting `space` to `data` with input `u`, weights and solver settings.
+    ///
+    /// # Errors
+    /// [`IdentifyError::Objectives`] for negative or non-finite weights, all weights zero, or a
+    /// weight on a quantity the data do not contain; [`IdentifyError::Infeasible`] for a
+    /// duration objective without `T_b` (or a known mass) to express durations in seconds.
+    pub fn new(
+        space: &'a Space,
+        data: &'a Dataset,
+        u: &'a I,
+        settings: Settings,
+        weights: Weights,
+    ) -> Result<Self, IdentifyError> {
+        let bad = |reason: &str| {
+            Err(IdentifyError::Objectives {
+                reason: reason.to_string(),
+            })
+        };
+        if !(weights.j1 >= 0.0
+            && weights.j2 >= 0.0
+            && weights.j1.is_finite()
+            && weights.j2.is_finite())
+        {
+            return bad("weights must be finite and >= 0");
+        }
+        if weights.j1 + weights.j2 == 0.0 {
+            return bad("at least one weight must be positive");
+        }
+        if weights.j1 > 0.0 && !data.has_cor() {
+            return bad("J1 has a weight but the data have no column `e`");
+        }
+        if weights.j2 > 0.0 && !data.has_durations() {
+            return bad("J2 has a weight but the data have no column `t_d`");
+        }
+        settings.validate()?;
+        Ok(Self {
+            space,
+            data,
+            input: u,
+            settings,
+            weights,
+            evaluations: AtomicU64::new(0),
+            progress: None,
+        })
+    }
+
+    /// Calls `progress` after every cost evaluation.
+    pub fn with_progress(mut self, progress: &'a (dyn Fn() + Sync)) -> Self {
+        self.progress = Some(progress);
+        self
+    }
+
+    /// The search space.
+    pub fn space(&self) -> &Space {
+        self.space
+    }
+
+    /// The data.
+    pub fn data(&self) -> &Dataset {
+        self.data
+    }
+
+    /// The weights.
+    pub fn weights(&self) -> Weights {
+        self.weights
+    }
+
+    /// Cost evaluations so far.
+    pub fn evaluations(&self) -> u64 {
+        self.evaluations.load(Ordering::Relaxed)
+    }
+
+    /// Predictions and costs at a point of the unit cube.
+    ///
+    /// # Errors
+    /// [`IdentifyError::Model`] when a simulation fails or the point is not admissible.
+    pub fn evaluate(&self, s: &[f64]) -> Result<(Vec<Prediction>, Costs), IdentifyError> {
+        let p = self.space.decode(s);
+        let map = self.space.map(&p)?;
+        let predictions = predict(&map, self.input, self.data, &self.settings)?;
+        let costs = Costs::of(self.data, &predictions);
+        Ok((predictions, costs))
+    }
+
+    /// The scalar cost at `s`: `w1 J1 + w2 J2`, plus a penalty `1 + 10 v` for a violation `v`
+    /// of the inequality constraint and `(s - clamp(s))²` outside the cube (Nelder-Mead is
+    /// unbounded); [`FAILED`] when a simulation fails. Always finite.
+    pub fn scalar(&self, s: &[f64]) -> f64 {
+        self.evaluations.fetch_add(1, Ordering::Relaxed);
+        if let Some(p) = self.progress {
+            p();
+        }
+        let outside: f64 = s.iter().map(|x| (x - x.clamp(0.0, 1.0)).powi(2)).sum();
+        let v = self.space.violation(&self.space.decode(s));
+        let penalty = outside + if v > 0.0 { 1.0 + 10.0 * v } else { 0.0 };
+        match self.evaluate(s) {
+            Ok((_, c)) if c.weighted(self.weights).is_finite() => {
+                c.weighted(self.weights) + penalty
+            }
+            _ => FAILED + penalty,
+        }
+    }
+}
+
+impl<I: Input + Sync> argmin::core::CostFunction for &Objective<'_, I> {
+    type Param = Vec<f64>;
+    type Output = f64;
+
+    fn cost(&self, s: &Self::Param) -> Result<f64, argmin::core::Error> {
+        Ok(self.scalar(s))
+    }
+}

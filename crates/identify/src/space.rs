@@ -1,0 +1,372 @@
+//! The search space: which base parameters are free, their bounds and scales, and the
+//! constraints of Section 7.1. The optimizers work on the unit cube `[0, 1]^d`; a point of it is
+//! decoded into base parameters `P*`. `Γ_b` is searched as `g = Γ_b / B_b ∈ [-1, 1]`, so that
+//! `-B_b <= Γ_b <= B_b` holds by construction.
+
+use crate::IdentifyError;
+use bw_models::{BaseMap, BaseParams, ModelKind};
+
+/// Names of the searchable quantities, in order.
+pub const NAMES: [&str; 8] = ["B_b", "g", "kappa", "sigma_b", "n", "p", "U_b", "T_b"];
+
+/// One searchable quantity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Param {
+    /// Held at a value.
+    Fixed(f64),
+    /// Computed from the others: `T_b = m U_b` under [`KnownMassStiffness`].
+    Derived,
+    /// Searched in `[lo, hi]`, on a logarithmic scale when `log` (then `lo > 0`).
+    Free {
+        /// Lower bound.
+        lo: f64,
+        /// Upper bound.
+        hi: f64,
+        /// Logarithmic scale.
+        log: bool,
+    },
+}
+
+/// The Villegas constraints (eq:VRBR:c1, eq:VRBR:c2) for a known mass `m` (kg) and stiffness
+/// `k` (N/m^p): `T_b = m U_b` (T_b is eliminated) and `(m/k) κ / T_b^(p+1) <= 1`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KnownMassStiffness {
+    /// Mass `m` (kg).
+    pub m: f64,
+    /// Stiffness `k`.
+    pub k: f64,
+}
+
+/// A validated search space.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Space {
+    kind: ModelKind,
+    params: [Param; 8],
+    known: Option<KnownMassStiffness>,
+    free: Vec<usize>,
+}
+
+/// Admissible range of each quantity (for messages) and a check.
+fn admissible(kind: ModelKind, i: usize, v: f64) -> Result<(), &'static str> {
+    let ok = match i {
+        0 => v >= 0.0,
+        1 => (-1.0..=1.0).contains(&v),
+        2 => v > 0.0 && v < 1.0,
+        3 if kind == ModelKind::Mcm => v > 0.0,
+        3 => v >= 0.0,
+        4 | 5 => v >= 1.0,
+        _ => v > 0.0,
+    };
+    if ok && v.is_finite() {
+        return Ok(());
+    }
+    Err(match i {
+        0 => "B_b >= 0",
+        1 => "-1 <= g = Gamma_b / B_b <= 1",
+        2 => "0 < kappa < 1",
+        3 if kind == ModelKind::Mcm => "sigma_b > 0 for the NDBWMCM",
+        3 => "sigma_b >= 0",
+        4 => "n >= 1",
+        5 => "p >= 1",
+        6 => "U_b > 0",
+        _ => "T_b > 0",
+    })
+}
+
+impl Space {
+    /// Builds a space from one entry per name in [`NAMES`].
+    ///
+    /// # Errors
+    /// [`IdentifyError::Bounds`] for `lo > hi`, a bound or fixed value outside the admissible
+    /// set, or a log scale with `lo <= 0`; [`IdentifyError::Infeasible`] if `T_b` is given while
+    /// it is tied to `U_b`, or if no point satisfies the constraints; [`IdentifyError::Bounds`]
+    /// naming `m`/`k` for a non-positive mass or stiffness.
+    pub fn new(
+        kind: ModelKind,
+        params: [Param; 8],
+        known: Option<KnownMassStiffness>,
+    ) -> Result<Self, IdentifyError> {
+        let bad =
+            |name: &'static str, lo: f64, hi: f64, allowed: &'static str| IdentifyError::Bounds {
+                name,
+                lo,
+                hi,
+                allowed,
+            };
+        for (i, p) in params.iter().enumerate() {
+            let name = NAMES[i];
+            match (known.is_some() && i == 7, p) {
+                (true, Param::Derived) => continue,
+                (true, _) => {
+                    return Err(IdentifyError::Infeasible { reason: "T_b = m U_b is eliminated by the known mass: give no bound or value for T_b".into() })
+                }
+                (false, Param::Derived) => {
+                    return Err(IdentifyError::Infeasible { reason: format!("{name} can only be derived (T_b = m U_b) when the mass and stiffness are known") })
+                }
+                _ => {}
+            }
+            match *p {
+                Param::Derived => unreachable!("handled above"),
+                Param::Fixed(v) => admissible(kind, i, v).map_err(|a| bad(name, v, v, a))?,
+                Param::Free { lo, hi, log } => {
+                    if !(lo <= hi) {
+                        return Err(bad(name, lo, hi, "lower bound <= upper bound"));
+                    }
+                    admissible(kind, i, lo).map_err(|a| bad(name, lo, hi, a))?;
+                    admissible(kind, i, hi).map_err(|a| bad(name, lo, hi, a))?;
+                    if log && lo <= 0.0 {
+                        return Err(bad(name, lo, hi, "lower bound > 0 on a logarithmic scale"));
+                    }
+                }
+            }
+        }
+        if let Some(c) = known {
+            if !(c.m > 0.0 && c.m.is_finite()) {
+                return Err(bad("m", c.m, c.m, "m > 0 (kg)"));
+            }
+            if !(c.k > 0.0 && c.k.is_finite()) {
+                return Err(bad("k", c.k, c.k, "k > 0"));
+            }
+        }
+        let free = (0..8)
+            .filter(|&i| matches!(params[i], Param::Free { .. }) && !(known.is_some() && i == 7))
+            .collect();
+        let space = Self {
+            kind,
+            params,
+            known,
+            free,
+        };
+        if space.known.is_some() {
+            // The inequality is easiest to meet at small κ, large T_b (large U_b) and small p.
+            let mut s = vec![0.0; space.dim()];
+            for (j, &i) in space.free.iter().enumerate() {
+                s[j] = match i {
+                    6 => 1.0,
+                    _ => 0.0,
+                };
+            }
+            if space.violation(&space.decode(&s)) > 0.0 {
+                return Err(IdentifyError::Infeasible {
+                    reason: "no point in the bounds satisfies (m/k) kappa / T_b^(p+1) <= 1".into(),
+                });
+            }
+        }
+        Ok(space)
+    }
+
+    /// The model.
+    pub fn kind(&self) -> ModelKind {
+        self.kind
+    }
+
+    /// Number of free quantities.
+    pub fn dim(&self) -> usize {
+        self.free.len()
+    }
+
+    /// Names of the free quantities, in search order.
+    pub fn free_names(&self) -> Vec<&'static str> {
+        self.free.iter().map(|&i| NAMES[i]).collect()
+    }
+
+    /// The Villegas constraints, if any.
+    pub fn known(&self) -> Option<KnownMassStiffness> {
+        self.known
+    }
+
+    /// Base parameters at a point `s` of the unit cube (coordinates are clamped into it).
+    pub fn decode(&self, s: &[f64]) -> BaseParams {
+        let mut v = [0.0; 8];
+        for (i, p) in self.params.iter().enumerate() {
+            if let Param::Fixed(x) = p {
+                v[i] = *x;
+            }
+        }
+        for (j, &i) in self.free.iter().enumerate() {
+            let t = s[j].clamp(0.0, 1.0);
+            if let Param::Free { lo, hi, log } = self.params[i] {
+                v[i] = if log {
+                    lo * (hi / lo).powf(t)
+                } else {
+                    lo + (hi - lo) * t
+                };
+                // Land exactly on the bounds at the ends of the cube.
+                if t == 0.0 {
+                    v[i] = lo;
+                } else if t == 1.0 {
+                    v[i] = hi;
+                }
+            }
+        }
+        if let Some(c) = self.known {
+            v[7] = c.m * v[6];
+        }
+        BaseParams {
+            b_b: v[0],
+            gamma_b: v[1] * v[0],
+            kappa: v[2],
+            sigma_b: v[3],
+            n: v[4],
+            p: v[5],
+            u_b: v[6],
+            t_b: v[7],
+        }
+    }
+
+    /// The point of the unit cube for base parameters `p` (the inverse of [`Space::decode`]).
+    ///
+    /// # Errors
+    /// [`IdentifyError::Bounds`] if a free quantity of `p` lies outside its bounds.
+    pub fn encode(&self, p: &BaseParams) -> Result<Vec<f64>, IdentifyError> {
+        let g = if p.b_b > 0.0 { p.gamma_b / p.b_b } else { 0.0 };
+        let v = [p.b_b, g, p.kappa, p.sigma_b, p.n, p.p, p.u_b, p.t_b];
+        self.free
+            .iter()
+            .map(|&i| match self.params[i] {
+                Param::Free { lo, hi, log } => {
+                    if !(v[i] >= lo && v[i] <= hi) {
+                        return Err(IdentifyError::Bounds {
+                            name: NAMES[i],
+                            lo: v[i],
+                            hi: v[i],
+                            allowed: "a starting point inside the bounds",
+                        });
+                    }
+                    Ok(if hi == lo {
+                        0.5
+                    } else if log {
+                        (v[i] / lo).ln() / (hi / lo).ln()
+                    } else {
+                        (v[i] - lo) / (hi - lo)
+                    })
+                }
+                Param::Fixed(_) | Param::Derived => unreachable!("only free indices"),
+            })
+            .collect()
+    }
+
+    /// How far `p` violates the inequality constraint (0 when satisfied).
+    pub fn violation(&self, p: &BaseParams) -> f64 {
+        match self.known {
+            Some(c) => (c.m / c.k * p.kappa / p.t_b.powf(p.p + 1.0) - 1.0).max(0.0),
+            None => 0.0,
+        }
+    }
+
+    /// The base map of `p`.
+    ///
+    /// # Errors
+    /// [`IdentifyError::Model`] if `p` is not admissible for the model.
+    pub fn map(&self, p: &BaseParams) -> Result<BaseMap, IdentifyError> {
+        Ok(BaseMap::new(self.kind, *p)?)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn free(lo: f64, hi: f64) -> Param {
+        Param::Free { lo, hi, log: false }
+    }
+
+    #[test]
+    fn decode_encode_and_validation() {
+        let params = [
+            free(0.0, 4.0),
+            free(-1.0, 1.0),
+            free(0.1, 0.9),
+            Param::Free {
+                lo: 1e-4,
+                hi: 1.0,
+                log: true,
+            },
+            Param::Fixed(1.0),
+            free(1.0, 3.0),
+            Param::Fixed(1.0),
+            Param::Fixed(1.0),
+        ];
+        let s = Space::new(ModelKind::Shccm, params, None).unwrap();
+        assert_eq!(s.dim(), 5);
+        assert_eq!(s.free_names(), vec!["B_b", "g", "kappa", "sigma_b", "p"]);
+        let p = s.decode(&[0.5, 0.5, 1.0, 0.5, 0.0]);
+        assert_eq!(
+            (p.b_b, p.gamma_b, p.kappa, p.n, p.p),
+            (2.0, 0.0, 0.9, 1.0, 1.0)
+        );
+        assert!((p.sigma_b - 1e-2).abs() < 1e-15);
+        let back = s.encode(&p).unwrap();
+        assert!(
+            back.iter()
+                .zip([0.5, 0.5, 1.0, 0.5, 0.0])
+                .all(|(a, b)| (a - b).abs() < 1e-12),
+            "{back:?}"
+        );
+        // Γ_b stays within ±B_b everywhere.
+        let q = s.decode(&[1.0, -1.0, 0.5, 0.5, 0.5]);
+        assert_eq!(q.gamma_b, -q.b_b);
+        let mut swapped = params;
+        swapped[2] = free(0.9, 0.1);
+        assert!(matches!(
+            Space::new(ModelKind::Shccm, swapped, None),
+            Err(IdentifyError::Bounds { name: "kappa", .. })
+        ));
+        let mut out = params;
+        out[2] = free(0.0, 0.9);
+        assert!(matches!(
+            Space::new(ModelKind::Shccm, out, None),
+            Err(IdentifyError::Bounds { name: "kappa", .. })
+        ));
+        let mut mcm_sigma = params;
+        mcm_sigma[3] = free(0.0, 1.0);
+        assert!(Space::new(ModelKind::Mcm, mcm_sigma, None).is_err());
+        assert!(
+            s.encode(&bw_models::BaseParams { b_b: 5.0, ..p }).is_err(),
+            "start outside bounds"
+        );
+    }
+
+    #[test]
+    fn villegas_constraints() {
+        let known = Some(KnownMassStiffness { m: 0.506, k: 255.0 });
+        let mut params = [
+            free(0.0, 20.0),
+            free(-1.0, 1.0),
+            free(0.1, 0.9),
+            free(0.01, 0.2),
+            free(1.0, 2.0),
+            free(1.0, 1.5),
+            free(0.01, 0.2),
+            Param::Derived,
+        ];
+        let s = Space::new(ModelKind::Shccm, params, known).unwrap();
+        let p = s.decode(&vec![0.5; s.dim()]);
+        assert!((p.t_b - 0.506 * p.u_b).abs() < 1e-15);
+        assert_eq!(s.dim(), 7);
+        // Paper's Table 5 (NDBWSHCCM): κ = 0.324, p = 1, T_b = 0.0255: (m/k) κ / T_b^2 = 0.989 <= 1.
+        let paper = BaseParams {
+            b_b: 17.4,
+            gamma_b: 13.1,
+            kappa: 0.324,
+            sigma_b: 0.0794,
+            n: 1.0,
+            p: 1.0,
+            u_b: 0.0503,
+            t_b: 0.0255,
+        };
+        assert_eq!(s.violation(&paper), 0.0);
+        assert!(s.violation(&BaseParams { t_b: 0.02, ..paper }) > 0.0);
+        params[7] = free(0.01, 0.1);
+        assert!(matches!(
+            Space::new(ModelKind::Shccm, params, known),
+            Err(IdentifyError::Infeasible { .. })
+        ));
+        params[7] = Param::Derived;
+        params[6] = free(1e-4, 1e-3);
+        assert!(matches!(
+            Space::new(ModelKind::Shccm, params, known),
+            Err(IdentifyError::Infeasible { .. })
+        ));
+    }
+}
