@@ -356,43 +356,44 @@ fn parse_fit(
     let bounds_span = r.bounds.as_ref().map_or(t.clone(), |b| b.span());
     for i in 0..8 {
         let key = NAMES[i];
-        params[i] =
-            match (bounds[i], fixed[i]) {
-                (Some(_), Some(x)) => {
+        params[i] = match (bounds[i], fixed[i]) {
+            (Some(_), Some(x)) => {
+                return Err(ctx.invalid(
+                    &x.span(),
+                    format!("[fit.fixed].{key}"),
+                    "both bounded and fixed: give one",
+                ))
+            }
+            (Some(pair), None) => {
+                if pair.get_ref().len() != 2 {
                     return Err(ctx.invalid(
-                        &x.span(),
-                        format!("[fit.fixed].{key}"),
-                        "both bounded and fixed: give one",
-                    ))
+                        &pair.span(),
+                        format!("[fit.bounds].{key}"),
+                        "give [lower, upper]",
+                    ));
                 }
-                (Some(pair), None) => {
-                    if pair.get_ref().len() != 2 {
-                        return Err(ctx.invalid(
-                            &pair.span(),
-                            format!("[fit.bounds].{key}"),
-                            "give [lower, upper]",
-                        ));
-                    }
-                    let lo = ctx.num(&pair.get_ref()[0], &format!("[fit.bounds].{key}"))?;
-                    let hi = ctx.num(&pair.get_ref()[1], &format!("[fit.bounds].{key}"))?;
-                    Param::Free {
-                        lo,
-                        hi,
-                        log: log[i],
-                    }
+                let lo = ctx.num(&pair.get_ref()[0], &format!("[fit.bounds].{key}"))?;
+                let hi = ctx.num(&pair.get_ref()[1], &format!("[fit.bounds].{key}"))?;
+                Param::Free {
+                    lo,
+                    hi,
+                    log: log[i],
                 }
-                (None, Some(x)) => Param::Fixed(ctx.num(x, &format!("[fit.fixed].{key}"))?),
-                (None, None) if i == 7 && known.is_some() => Param::Derived,
-                // U_b and T_b only matter with an input, a duration objective or a known mass.
-                (None, None) if i >= 6 && !uses_input_scales => Param::Fixed(1.0),
-                (None, None) => return Err(ctx.invalid(
+            }
+            (None, Some(x)) => Param::Fixed(ctx.num(x, &format!("[fit.fixed].{key}"))?),
+            (None, None) if i == 7 && known.is_some() => Param::Derived,
+            // U_b and T_b only matter with an input, a duration objective or a known mass.
+            (None, None) if i >= 6 && !uses_input_scales => Param::Fixed(1.0),
+            (None, None) => {
+                return Err(ctx.invalid(
                     &bounds_span,
                     format!("[fit.bounds].{key}"),
                     format!(
                         "missing: give bounds for {key} in [fit.bounds] or a value in [fit.fixed]"
                     ),
-                )),
-            };
+                ))
+            }
+        };
     }
     let space = Space::new(kind, params, known).map_err(|e| match e {
         IdentifyError::Bounds {
@@ -402,13 +403,14 @@ fn parse_fit(
             allowed,
         } => {
             let i = NAMES.iter().position(|n| *n == name);
-            let s = i
-                .and_then(|i| span(bounds[i]).or_else(|| span(fixed[i])))
-                .or_else(|| r.known.as_ref().map(|k| k.span()))
-                .unwrap_or(t.clone());
+            let (table, s) = match i {
+                Some(i) if bounds[i].is_some() => ("[fit.bounds]", span(bounds[i])),
+                Some(i) if fixed[i].is_some() => ("[fit.fixed]", span(fixed[i])),
+                _ => ("[fit.known]", r.known.as_ref().map(|k| k.span())),
+            };
             ctx.invalid(
-                &s,
-                format!("[fit].{name}"),
+                &s.unwrap_or(t.clone()),
+                format!("{table}.{name}"),
                 format!("[{lo}, {hi}] is not admissible: {allowed}"),
             )
         }

@@ -4,7 +4,9 @@ use crate::config::FitConfig;
 use crate::plot::{self, Series, SeriesLabelPosition};
 use crate::CliError;
 use bw_models::{BaseParams, Settings};
-use bwc_identify::{analyse, fit, predict, Costs, Identifiability, Objective, Prediction, Weights};
+use bwc_identify::{
+    analyse, fit, predict, Budget, Costs, Identifiability, Objective, Prediction, Weights,
+};
 use serde_json::{json, Value};
 use std::path::Path;
 use std::time::Instant;
@@ -90,6 +92,13 @@ pub fn run_fit(
         };
         let ve = var(f.data.points.iter().filter_map(|p| p.e).collect());
         let vt = var(f.data.points.iter().filter_map(|p| p.t_d).collect());
+        // Each weight starts from the main optimum: a small swarm and the full polish suffice.
+        let budget = Budget {
+            particles: (f.budget.particles / 4).max(8),
+            iterations: f.budget.iterations / 4,
+            polish_iterations: f.budget.polish_iterations,
+            starts: 1,
+        };
         for k in 0..count {
             let w = k as f64 / (count - 1) as f64;
             let weights = Weights {
@@ -101,7 +110,7 @@ pub fn run_fit(
                 .with_progress(progress);
             let r = fit(
                 &o,
-                &f.budget,
+                &budget,
                 seed ^ f.seed ^ (k as u64 + 1),
                 Some(&result.point),
             )

@@ -347,3 +347,227 @@ fn help_shows_examples() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("Examples") && text.contains("bwc-simulate run"));
 }
+
+fn identify(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_bwc-identify"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
+#[test]
+fn identify_eval_reports_the_json_contract() {
+    let config = fixtures().join("kharaz.toml");
+    let v = json(&identify(&["eval", config.to_str().unwrap(), "--json"]));
+    let fits = v["fits"].as_array().unwrap();
+    assert_eq!(fits.len(), 4);
+    for f in fits {
+        for key in [
+            "name",
+            "model",
+            "params",
+            "J1",
+            "J2",
+            "evaluations",
+            "wall_s",
+        ] {
+            assert!(f.get(key).is_some(), "missing {key}");
+        }
+        for key in ["B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "U_b", "T_b"] {
+            assert!(f["params"].get(key).is_some(), "missing params.{key}");
+        }
+        // u = 0 and no durations: U_b, T_b and J2 are unused.
+        assert!(f["params"]["U_b"].is_null() && f["params"]["T_b"].is_null() && f["J2"].is_null());
+        let j1 = f["J1"].as_f64().unwrap();
+        // The published vectors fit the reconstructed data (the mean of their own curves).
+        assert!(j1 > 0.0 && j1 < 1e-4, "{}: J1 = {j1}", f["name"]);
+    }
+    assert_eq!(fits[0]["params"]["B_b"], 2.38);
+}
+
+/// Writes a synthetic dataset of a known NDBWSHCCM and a config that frees κ and σ_b.
+fn synthetic_config(dir: &Path) -> PathBuf {
+    use bw_models::{impact_at, input::Zero, BaseMap, BaseParams, ModelKind, Settings};
+    let truth = BaseParams {
+        b_b: 1.0,
+        gamma_b: -1.0,
+        kappa: 0.6,
+        sigma_b: 0.03,
+        n: 1.5,
+        p: 1.5,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    let map = BaseMap::new(ModelKind::Shccm, truth).unwrap();
+    let mut csv = String::from("# synthetic: kappa = 0.6, sigma_b = 0.03\nv_0,e\n");
+    for v0 in [0.2, 0.5, 1.0, 2.0, 4.0] {
+        csv += &format!(
+            "{v0},{}\n",
+            impact_at(&map, Zero, v0, &Settings::default()).unwrap().e
+        );
+    }
+    std::fs::write(dir.join("synthetic.csv"), csv).unwrap();
+    let config = dir.join("fit.toml");
+    std::fs::write(
+        &config,
+        "[[fit]]\nname = \"synthetic\"\nmodel = \"shccm\"\ndata = \"synthetic.csv\"\n[fit.bounds]\nkappa = [0.1, 0.9]\nsigma_b = [0.0, 0.1]\n\
+         [fit.fixed]\nB_b = 1.0\ng = -1.0\nn = 1.5\np = 1.5\n[fit.optimizer]\nparticles = 8\niterations = 10\npolish = 300\nstarts = 1\n",
+    )
+    .unwrap();
+    config
+}
+
+#[test]
+fn identify_run_recovers_synthetic_parameters_on_any_thread_count() {
+    let dir = scratch("identify-synthetic");
+    let config = synthetic_config(&dir);
+    let out_dir = dir.join("out");
+    let one = json(&identify(&[
+        "run",
+        config.to_str().unwrap(),
+        "--json",
+        "--threads",
+        "1",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]));
+    let two = json(&identify(&[
+        "run",
+        config.to_str().unwrap(),
+        "--json",
+        "--threads",
+        "2",
+    ]));
+    let strip = |mut v: serde_json::Value| {
+        v["fits"][0].as_object_mut().unwrap().remove("wall_s");
+        v
+    };
+    assert_eq!(strip(one.clone()), strip(two));
+    let f = &one["fits"][0];
+    assert!(
+        (f["params"]["kappa"].as_f64().unwrap() - 0.6).abs() < 1e-5,
+        "{f}"
+    );
+    assert!(
+        (f["params"]["sigma_b"].as_f64().unwrap() - 0.03).abs() < 1e-5,
+        "{f}"
+    );
+    assert!(f["J1"].as_f64().unwrap() < 1e-12);
+    assert_eq!(
+        f["identifiability"]["singular_values"]
+            .as_array()
+            .unwrap()
+            .len(),
+        2
+    );
+    let csv = std::fs::read_to_string(out_dir.join("synthetic.csv")).unwrap();
+    assert!(csv.starts_with("v_0,e,e_model,t_d,t_d_model"));
+    assert!(out_dir.join("synthetic_cor.svg").exists() && out_dir.join("summary.json").exists());
+}
+
+/// A bad config: exit 1, a message naming the file (and line and key where there is one),
+/// nothing written.
+fn identify_rejects(name: &str, config: &str, data: Option<&str>, needles: &[&str]) {
+    let dir = scratch(&format!("bad-identify-{name}"));
+    if let Some(d) = data {
+        std::fs::write(dir.join("d.csv"), d).unwrap();
+    }
+    let path = dir.join("c.toml");
+    std::fs::write(&path, config).unwrap();
+    let out_dir = dir.join("out");
+    let out = identify(&[
+        "run",
+        path.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{name}: {err}");
+    for n in needles {
+        assert!(err.contains(n), "{name}: {n:?} not in {err}");
+    }
+    assert!(!out_dir.exists(), "{name}: output written");
+}
+
+#[test]
+fn bad_identification_inputs_are_clear_errors() {
+    let good_data = "v_0,e\n0.5,0.9\n1.0,0.8\n";
+    let head = "[[fit]]\nname = \"f\"\nmodel = \"shccm\"\ndata = \"d.csv\"\n";
+    let bounds = "[fit.bounds]\nB_b = [0.0, 2.0]\ng = [-1.0, 1.0]\nkappa = [0.1, 0.9]\nsigma_b = [0.0, 0.1]\nn = [1.0, 2.0]\np = [1.0, 2.0]\n";
+    let good = format!("{head}{bounds}");
+    identify_rejects("missing-data-file", &good, None, &["d.csv"]);
+    identify_rejects(
+        "malformed-row",
+        &good,
+        Some("v_0,e\n0.5,0.9\n1.0,abc\n"),
+        &["d.csv:3", "abc"],
+    );
+    identify_rejects(
+        "negative-speed",
+        &good,
+        Some("v_0,e\n-0.5,0.9\n"),
+        &["d.csv:2", "v_0 > 0"],
+    );
+    identify_rejects(
+        "nan",
+        &good,
+        Some("v_0,e\n0.5,nan\n"),
+        &["d.csv:2", "not finite"],
+    );
+    identify_rejects("empty-data", &good, Some("v_0,e\n"), &["no data rows"]);
+    identify_rejects(
+        "swapped-bounds",
+        &good.replace("kappa = [0.1, 0.9]", "kappa = [0.9, 0.1]"),
+        Some(good_data),
+        &[
+            "c.toml:8",
+            "[fit.bounds].kappa",
+            "lower bound <= upper bound",
+        ],
+    );
+    identify_rejects(
+        "bound-outside-admissible",
+        &good.replace("kappa = [0.1, 0.9]", "kappa = [0.1, 1.5]"),
+        Some(good_data),
+        &["kappa", "0 < kappa < 1"],
+    );
+    identify_rejects(
+        "start-outside-bounds",
+        &format!("{good}[fit.start]\nB_b = 3.0\nGamma_b = 0.0\nkappa = 0.5\nsigma_b = 0.01\nn = 1.0\np = 1.0\n"),
+        Some(good_data),
+        &["[fit.start]", "B_b"],
+    );
+    identify_rejects(
+        "infeasible",
+        &format!("{head}objectives = {{ J1 = 1.0 }}\n{bounds}U_b = [1e-4, 1e-3]\n[fit.known]\nm = 0.5\nk = 255.0\n"),
+        Some(good_data),
+        &["infeasible"],
+    );
+    identify_rejects(
+        "unknown-key",
+        &format!("{good}speed = 3\n"),
+        Some(good_data),
+        &["c.toml:", "speed"],
+    );
+    identify_rejects(
+        "missing-bound",
+        &good.replace("n = [1.0, 2.0]\n", ""),
+        Some(good_data),
+        &["[fit.bounds].n", "missing"],
+    );
+    identify_rejects(
+        "duration-without-data",
+        &format!(
+            "{head}objectives = {{ J2 = 1.0 }}\n{bounds}U_b = [0.01, 1.0]\nT_b = [0.01, 1.0]\n"
+        ),
+        Some(good_data),
+        &["t_d"],
+    );
+    identify_rejects("no-fits", "", None, &["no fits"]);
+    identify_rejects(
+        "duplicate-names",
+        &format!("{good}{good}"),
+        Some(good_data),
+        &["used twice"],
+    );
+}

@@ -109,7 +109,7 @@ impl Space {
                 Param::Derived => unreachable!("handled above"),
                 Param::Fixed(v) => admissible(kind, i, v).map_err(|a| bad(name, v, v, a))?,
                 Param::Free { lo, hi, log } => {
-                    if !(lo <= hi) {
+                    if lo.is_nan() || hi.is_nan() || lo > hi {
                         return Err(bad(name, lo, hi, "lower bound <= upper bound"));
                     }
                     admissible(kind, i, lo).map_err(|a| bad(name, lo, hi, a))?;
@@ -121,10 +121,10 @@ impl Space {
             }
         }
         if let Some(c) = known {
-            if !(c.m > 0.0 && c.m.is_finite()) {
+            if !c.m.is_finite() || c.m <= 0.0 {
                 return Err(bad("m", c.m, c.m, "m > 0 (kg)"));
             }
-            if !(c.k > 0.0 && c.k.is_finite()) {
+            if !c.k.is_finite() || c.k <= 0.0 {
                 return Err(bad("k", c.k, c.k, "k > 0"));
             }
         }
@@ -225,7 +225,7 @@ impl Space {
             .iter()
             .map(|&i| match self.params[i] {
                 Param::Free { lo, hi, log } => {
-                    if !(v[i] >= lo && v[i] <= hi) {
+                    if v[i].is_nan() || v[i] < lo || v[i] > hi {
                         return Err(IdentifyError::Bounds {
                             name: NAMES[i],
                             lo: v[i],
