@@ -399,3 +399,203 @@ pub fn render(
     }
     Ok(files)
 }
+
+/// The result of one loop fit (or evaluation).
+#[derive(Debug, Clone)]
+pub struct LoopReport {
+    /// Fit name.
+    pub name: String,
+    /// `"shccm"` or `"mcm"`.
+    pub model: &'static str,
+    /// The contact law (SI).
+    pub law: bw_models::Physical,
+    /// Loop cost at the law (see `bwc_identify::loop_cost`).
+    pub cost: f64,
+    /// Cost evaluations.
+    pub evaluations: u64,
+    /// Wall time (s).
+    pub wall_s: f64,
+    /// Simulated loops, one per measured loop.
+    pub curves: Vec<bwc_identify::Curve>,
+}
+
+/// Fits the contact law of a loop fit from its bounds.
+///
+/// # Errors
+/// [`CliError::Identify`] if the optimizer or the final evaluation fails.
+pub fn run_loop_fit(
+    config: &Path,
+    f: &crate::config::LoopFitConfig,
+    seed: u64,
+    progress: &(dyn Fn() + Sync),
+) -> Result<LoopReport, CliError> {
+    let clock = Instant::now();
+    let err = |source| CliError::Identify {
+        path: config.to_owned(),
+        fit: f.name.clone(),
+        source,
+    };
+    let objective = bwc_identify::LoopObjective::new(&f.space, &f.loops, f.m, Settings::default())
+        .map_err(err)?;
+    let counted = Counted {
+        inner: &objective,
+        progress,
+    };
+    let min = bwc_identify::minimize(&counted, &f.budget, seed ^ f.seed, None).map_err(err)?;
+    let (cost, curves) = objective.evaluate(&min.point).map_err(err)?;
+    Ok(LoopReport {
+        name: f.name.clone(),
+        model: f.kind.name(),
+        law: f.space.decode(&min.point),
+        cost,
+        evaluations: min.evaluations,
+        wall_s: clock.elapsed().as_secs_f64(),
+        curves,
+    })
+}
+
+/// Evaluates the loop cost at a loop fit's `[loop_fit.params]`.
+///
+/// # Errors
+/// [`CliError::Invalid`] without `[loop_fit.params]`; [`CliError::Identify`] when a simulation fails.
+pub fn eval_loop_fit(
+    config: &Path,
+    f: &crate::config::LoopFitConfig,
+) -> Result<LoopReport, CliError> {
+    let clock = Instant::now();
+    let law = f.params.ok_or_else(|| CliError::Invalid {
+        path: config.to_owned(),
+        line: 1,
+        key: format!("[loop_fit.params] of \"{}\"", f.name),
+        message: "missing: `eval` needs the parameters to evaluate".into(),
+    })?;
+    let err = |source| CliError::Identify {
+        path: config.to_owned(),
+        fit: f.name.clone(),
+        source,
+    };
+    let objective = bwc_identify::LoopObjective::new(&f.space, &f.loops, f.m, Settings::default())
+        .map_err(err)?;
+    let curves = objective.simulate(&law).map_err(err)?;
+    let cost = f
+        .loops
+        .iter()
+        .zip(&curves)
+        .map(|(l, c)| bwc_identify::loop_cost(l, c))
+        .sum::<f64>()
+        / f.loops.len() as f64;
+    Ok(LoopReport {
+        name: f.name.clone(),
+        model: f.kind.name(),
+        law,
+        cost,
+        evaluations: 1,
+        wall_s: clock.elapsed().as_secs_f64(),
+        curves,
+    })
+}
+
+/// Counts progress for a cube problem.
+struct Counted<'a, P> {
+    inner: &'a P,
+    progress: &'a (dyn Fn() + Sync),
+}
+
+impl<P: bwc_identify::CubeProblem> bwc_identify::CubeProblem for Counted<'_, P> {
+    fn dim(&self) -> usize {
+        self.inner.dim()
+    }
+    fn cost_at(&self, s: &[f64]) -> f64 {
+        (self.progress)();
+        self.inner.cost_at(s)
+    }
+    fn evaluations(&self) -> u64 {
+        self.inner.evaluations()
+    }
+}
+
+/// JSON entries of loop fits (in `"fits"` after the base-parameter fits).
+pub fn loop_summary(reports: &[LoopReport]) -> Vec<Value> {
+    reports
+        .iter()
+        .map(|r| {
+            let l = r.law;
+            json!({
+                "name": r.name, "model": r.model, "kind": "loops",
+                "params": {"k": l.k, "c": l.c, "n": l.n, "p": l.p, "alpha": l.alpha, "beta": l.beta, "gamma": l.gamma, "A": l.a},
+                "cost": r.cost, "J1": null, "J2": null, "evaluations": r.evaluations, "wall_s": r.wall_s,
+            })
+        })
+        .collect()
+}
+
+/// Renders a loop fit: `<name>_loops.csv` (v_0, source, x, F) and `<name>_loops.svg`.
+///
+/// # Errors
+/// [`CliError::Csv`] or [`CliError::Plot`] when rendering fails.
+pub fn render_loops(
+    f: &crate::config::LoopFitConfig,
+    r: &LoopReport,
+    out: &Path,
+) -> Result<Vec<(String, Vec<u8>)>, CliError> {
+    let stem = slug(&r.name);
+    let csv_name = format!("{stem}_loops.csv");
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let cerr = |source| CliError::Csv {
+        path: out.join(&csv_name),
+        source,
+    };
+    w.write_record(["v_0", "source", "x", "F"]).map_err(cerr)?;
+    let mut series = Vec::new();
+    for (l, c) in f.loops.iter().zip(&r.curves) {
+        for (x, force) in l.x.iter().zip(&l.f) {
+            w.write_record([
+                l.v0.to_string(),
+                "data".into(),
+                x.to_string(),
+                force.to_string(),
+            ])
+            .map_err(|source| CliError::Csv {
+                path: out.join(&csv_name),
+                source,
+            })?;
+        }
+        for (x, force) in c {
+            w.write_record([
+                l.v0.to_string(),
+                "model".into(),
+                x.to_string(),
+                force.to_string(),
+            ])
+            .map_err(|source| CliError::Csv {
+                path: out.join(&csv_name),
+                source,
+            })?;
+        }
+        series.push(Series {
+            label: format!("data, v0 = {} m/s", l.v0),
+            points: l.x.iter().zip(&l.f).map(|(x, f)| (-x * 1e3, *f)).collect(),
+        });
+        series.push(Series {
+            label: format!("{}, v0 = {} m/s", r.model, l.v0),
+            points: c.iter().map(|(x, f)| (-x * 1e3, *f)).collect(),
+        });
+    }
+    let svg_name = format!("{stem}_loops.svg");
+    let svg = plot::chart(
+        &format!("{}: loops (cost {:.2e})", r.name, r.cost),
+        "|x| (mm)",
+        "F (N)",
+        &series,
+        false,
+        SeriesLabelPosition::UpperLeft,
+    )
+    .map_err(|message| CliError::Plot {
+        path: out.join(&svg_name),
+        message,
+    })?;
+    Ok(vec![
+        (csv_name, w.into_inner().expect("in-memory writer")),
+        (svg_name, svg.into_bytes()),
+    ])
+}

@@ -571,3 +571,15 @@ fn bad_identification_inputs_are_clear_errors() {
         &["used twice"],
     );
 }
+
+#[test]
+fn identify_eval_of_loop_fits() {
+    let config = fixtures().join("cross.toml");
+    let v = json(&identify(&["eval", config.to_str().unwrap(), "--json"]));
+    let fits = v["fits"].as_array().unwrap();
+    assert_eq!(fits.len(), 2);
+    assert_eq!(fits[0]["kind"], "loops");
+    assert_eq!(fits[0]["params"]["k"], 117080063.0);
+    assert!(fits[0]["cost"].as_f64().unwrap() < 1e-7);
+    assert!(fits[1]["cost"].as_f64().unwrap() < 1e-2);
+}

@@ -71,13 +71,113 @@ fn optimizer_error(e: argmin::core::Error) -> IdentifyError {
     }
 }
 
-/// Fits the objective: `budget.starts` particle swarms seeded from `seed`, each best point (and
-/// `start`, if given) polished by Nelder-Mead; the best result wins. Deterministic for a seed,
-/// whatever the number of threads.
+/// A cost on the unit cube `[0, 1]^d`, always finite (penalised outside the cube).
+pub trait CubeProblem: Sync {
+    /// Dimension `d`.
+    fn dim(&self) -> usize;
+    /// The cost at `s`.
+    fn cost_at(&self, s: &[f64]) -> f64;
+    /// Cost evaluations so far.
+    fn evaluations(&self) -> u64;
+}
+
+impl<I: Input + Sync> CubeProblem for Objective<'_, I> {
+    fn dim(&self) -> usize {
+        self.space().dim()
+    }
+    fn cost_at(&self, s: &[f64]) -> f64 {
+        self.scalar(s)
+    }
+    fn evaluations(&self) -> u64 {
+        Objective::evaluations(self)
+    }
+}
+
+/// argmin's view of a [`CubeProblem`].
+struct Cube<'a, P>(&'a P);
+
+impl<P: CubeProblem> argmin::core::CostFunction for Cube<'_, P> {
+    type Param = Vec<f64>;
+    type Output = f64;
+    fn cost(&self, s: &Self::Param) -> Result<f64, argmin::core::Error> {
+        Ok(self.0.cost_at(s))
+    }
+}
+
+/// The best point found by [`minimize`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Minimum {
+    /// The point, clamped into the cube.
+    pub point: Vec<f64>,
+    /// Its cost.
+    pub cost: f64,
+    /// Cost evaluations used.
+    pub evaluations: u64,
+}
+
+/// Minimises a cube problem: `budget.starts` particle swarms seeded from `seed`, each best
+/// point (and `start`, if given) polished by Nelder-Mead twice (the second time from a fresh
+/// simplex); the best wins. Deterministic for a seed, whatever the number of threads.
 ///
 /// # Errors
-/// [`IdentifyError::Optimizer`] for a degenerate budget or an optimizer failure;
-/// [`IdentifyError::Model`] if the optimum cannot be evaluated.
+/// [`IdentifyError::Optimizer`] for a degenerate budget or an optimizer failure.
+pub fn minimize<P: CubeProblem>(
+    problem: &P,
+    budget: &Budget,
+    seed: u64,
+    start: Option<&[f64]>,
+) -> Result<Minimum, IdentifyError> {
+    let d = problem.dim();
+    if budget.particles < 2 || budget.starts == 0 {
+        return Err(IdentifyError::Optimizer {
+            message: "need at least 2 particles and 1 start".into(),
+        });
+    }
+    let before = problem.evaluations();
+    if d == 0 {
+        let cost = problem.cost_at(&[]);
+        return Ok(Minimum {
+            point: Vec::new(),
+            cost,
+            evaluations: problem.evaluations() - before,
+        });
+    }
+    let mut candidates: Vec<Vec<f64>> = start.map(|s| vec![s.to_vec()]).unwrap_or_default();
+    for k in 0..budget.starts {
+        let rng = rand::rngs::StdRng::seed_from_u64(
+            seed ^ (k as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15),
+        );
+        let swarm = ParticleSwarm::new((vec![0.0; d], vec![1.0; d]), budget.particles)
+            .with_rng_generator(rng);
+        let res = Executor::new(Cube(problem), swarm)
+            .configure(|s| s.max_iters(budget.iterations))
+            .run()
+            .map_err(optimizer_error)?;
+        if let Some(best) = res.state().get_best_param() {
+            candidates.push(best.position.clone());
+        }
+    }
+    let mut best: Option<(Vec<f64>, f64)> = None;
+    for c in candidates {
+        // Simplices collapse prematurely in narrow valleys; a restart is cheap.
+        let (s, _) = polish(problem, c, budget.polish_iterations / 2)?;
+        let (s, cost) = polish(problem, s, budget.polish_iterations / 2)?;
+        if best.as_ref().is_none_or(|(_, bc)| cost < *bc) {
+            best = Some((s, cost));
+        }
+    }
+    let (point, cost) = best.expect("at least one candidate");
+    Ok(Minimum {
+        point: point.iter().map(|x| x.clamp(0.0, 1.0)).collect(),
+        cost,
+        evaluations: problem.evaluations() - before,
+    })
+}
+
+/// Fits base parameters: [`minimize`] the objective, then evaluate the optimum.
+///
+/// # Errors
+/// As [`minimize`]; [`IdentifyError::Model`] if the optimum cannot be evaluated.
 pub fn fit<I: Input + Sync>(
     objective: &Objective<'_, I>,
     budget: &Budget,
@@ -85,63 +185,22 @@ pub fn fit<I: Input + Sync>(
     start: Option<&[f64]>,
 ) -> Result<FitResult, IdentifyError> {
     let clock = Instant::now();
-    let d = objective.space().dim();
-    if budget.particles < 2 || budget.starts == 0 {
-        return Err(IdentifyError::Optimizer {
-            message: "need at least 2 particles and 1 start".into(),
-        });
-    }
-    let before = objective.evaluations();
-    let mut best: Option<(Vec<f64>, f64)> = None;
-    let mut keep = |s: Vec<f64>, c: f64| {
-        if best.as_ref().is_none_or(|(_, bc)| c < *bc) {
-            best = Some((s, c));
-        }
-    };
-    let mut candidates: Vec<Vec<f64>> = start.map(|s| vec![s.to_vec()]).unwrap_or_default();
-    if d > 0 {
-        for k in 0..budget.starts {
-            let rng = rand::rngs::StdRng::seed_from_u64(
-                seed ^ (k as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15),
-            );
-            let swarm = ParticleSwarm::new((vec![0.0; d], vec![1.0; d]), budget.particles)
-                .with_rng_generator(rng);
-            let res = Executor::new(objective, swarm)
-                .configure(|s| s.max_iters(budget.iterations))
-                .run()
-                .map_err(optimizer_error)?;
-            let state = res.state();
-            if let Some(best) = state.get_best_param() {
-                candidates.push(best.position.clone());
-            }
-        }
-        for c in candidates {
-            // Nelder-Mead, then once more from its result with a fresh simplex: simplices
-            // collapse prematurely in narrow valleys, and a restart is cheap.
-            let (s, _) = polish(objective, c, budget.polish_iterations / 2)?;
-            let (s, cost) = polish(objective, s, budget.polish_iterations / 2)?;
-            keep(s, cost);
-        }
-    } else {
-        keep(Vec::new(), objective.scalar(&[]));
-    }
-    let (point, cost) = best.expect("at least one candidate");
-    let point: Vec<f64> = point.iter().map(|x| x.clamp(0.0, 1.0)).collect();
-    let (predictions, costs) = objective.evaluate(&point)?;
+    let m = minimize(objective, budget, seed, start)?;
+    let (predictions, costs) = objective.evaluate(&m.point)?;
     Ok(FitResult {
-        params: objective.space().decode(&point),
-        point,
+        params: objective.space().decode(&m.point),
+        point: m.point,
         costs,
-        cost,
+        cost: m.cost,
         predictions,
-        evaluations: objective.evaluations() - before,
+        evaluations: m.evaluations,
         wall_s: clock.elapsed().as_secs_f64(),
     })
 }
 
 /// Nelder-Mead from `x0` with an initial simplex of edge 0.05 (pointing into the cube).
-fn polish<I: Input + Sync>(
-    objective: &Objective<'_, I>,
+fn polish<P: CubeProblem>(
+    problem: &P,
     x0: Vec<f64>,
     iterations: u64,
 ) -> Result<(Vec<f64>, f64), IdentifyError> {
@@ -155,7 +214,7 @@ fn polish<I: Input + Sync>(
     let nm = NelderMead::new(simplex)
         .with_sd_tolerance(1e-13)
         .map_err(optimizer_error)?;
-    let res = Executor::new(objective, nm)
+    let res = Executor::new(Cube(problem), nm)
         .configure(|s| s.max_iters(iterations))
         .run()
         .map_err(optimizer_error)?;

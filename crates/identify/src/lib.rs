@@ -11,7 +11,8 @@
 //! * [`Objective`]: the costs, evaluated in parallel over the data points;
 //! * [`fit`]: argmin's particle swarm (seeded, particles in parallel) then Nelder-Mead, from
 //!   several starts; identical results for any thread count;
-//! * [`analyse`]: singular values of the sensitivity matrix at the optimum (faer).
+//! * [`analyse`]: singular values of the sensitivity matrix at the optimum (faer);
+//! * [`LoopObjective`]: hysteresis-loop fitting of the SI contact law with known mass.
 //!
 //! ```
 //! use bw_models::{input::Zero, BaseMap, BaseParams, ModelKind, Settings};
@@ -37,12 +38,14 @@
 mod data;
 mod fit;
 mod identifiability;
+mod loops;
 mod objective;
 mod space;
 
 pub use data::{Dataset, Point};
-pub use fit::{fit, Budget, FitResult};
+pub use fit::{fit, minimize, Budget, CubeProblem, FitResult, Minimum};
 pub use identifiability::{analyse, Identifiability};
+pub use loops::{loop_cost, Curve, LawSpace, Loop, LoopObjective, LAW_NAMES};
 pub use objective::{predict, Costs, Objective, Prediction, Weights, FAILED};
 pub use space::{KnownMassStiffness, Param, Space, NAMES};
 

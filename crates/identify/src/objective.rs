@@ -209,12 +209,3 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
         }
     }
 }
-
-impl<I: Input + Sync> argmin::core::CostFunction for &Objective<'_, I> {
-    type Param = Vec<f64>;
-    type Output = f64;
-
-    fn cost(&self, s: &Self::Param) -> Result<f64, argmin::core::Error> {
-        Ok(self.scalar(s))
-    }
-}

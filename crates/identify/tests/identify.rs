@@ -264,3 +264,113 @@ fn objectives_must_match_the_data() {
         );
     }
 }
+
+fn cross_loops() -> Vec<Loop> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/data");
+    [
+        ("cross_2_15.csv", 2.15),
+        ("cross_3_03.csv", 3.03),
+        ("cross_4_18.csv", 4.18),
+        ("cross_5_02.csv", 5.02),
+    ]
+    .iter()
+    .map(|(f, v0)| Loop::load(&dir.join(f), *v0).unwrap())
+    .collect()
+}
+
+fn table4_shccm() -> [Param; 8] {
+    [
+        117080063.0,
+        5854003.0,
+        1.1,
+        1.7,
+        0.1,
+        981.05,
+        -961.4 / 981.05,
+        0.925,
+    ]
+    .map(Param::Fixed)
+}
+
+/// The loop cost is 0 for identical loops, and the published BWSHCCM law (Table 4) reproduces
+/// the loops that were generated from it (by an independent implementation) to round-off.
+#[test]
+fn loop_cost_and_the_published_law() {
+    let loops = cross_loops();
+    let same: Vec<(f64, f64)> = loops[0]
+        .x
+        .iter()
+        .zip(&loops[0].f)
+        .map(|(x, f)| (*x, *f))
+        .collect();
+    assert_eq!(loop_cost(&loops[0], &same), 0.0);
+    let scaled: Vec<(f64, f64)> = same.iter().map(|(x, f)| (*x, 1.1 * f)).collect();
+    assert!(loop_cost(&loops[0], &scaled) > 1e-3);
+    let space = LawSpace::new(ModelKind::Shccm, table4_shccm()).unwrap();
+    let objective = LoopObjective::new(&space, &loops, 0.145, Settings::default()).unwrap();
+    let (cost, curves) = objective.evaluate(&[]).unwrap();
+    assert!(cost < 1e-7, "cost {cost}");
+    assert_eq!(curves.len(), 4);
+    // The loops' peak forces match the data (within the data's 3-digit rounding).
+    for (l, c) in loops.iter().zip(&curves) {
+        let (fd, fm) = (
+            l.f.iter().fold(0.0f64, |a, v| a.max(*v)),
+            c.iter().fold(0.0f64, |a, v| a.max(v.1)),
+        );
+        assert!((fd - fm).abs() < 2e-3 * fd, "v0 {}: {fd} vs {fm}", l.v0);
+    }
+}
+
+/// From bounds on k and c (others at Table 4), the loop fit recovers the published law.
+#[test]
+fn loop_fit_recovers_stiffness_and_damping() {
+    let loops = cross_loops();
+    let mut params = table4_shccm();
+    params[0] = Param::Free {
+        lo: 1e7,
+        hi: 1e9,
+        log: true,
+    };
+    params[1] = Param::Free {
+        lo: 1e5,
+        hi: 1e8,
+        log: true,
+    };
+    let space = LawSpace::new(ModelKind::Shccm, params).unwrap();
+    let objective = LoopObjective::new(&space, &loops, 0.145, Settings::default()).unwrap();
+    let m = minimize(
+        &objective,
+        &Budget {
+            particles: 8,
+            iterations: 10,
+            polish_iterations: 200,
+            starts: 1,
+        },
+        5,
+        None,
+    )
+    .unwrap();
+    let law = space.decode(&m.point);
+    assert!(m.cost < 1e-7, "cost {}", m.cost);
+    assert!(
+        (law.k / 117080063.0 - 1.0).abs() < 1e-3 && (law.c / 5854003.0 - 1.0).abs() < 1e-3,
+        "{law:?}"
+    );
+    assert!(
+        LawSpace::new(
+            ModelKind::Mcm,
+            [
+                Param::Fixed(1.0),
+                Param::Fixed(0.0),
+                Param::Fixed(1.0),
+                Param::Fixed(1.0),
+                Param::Fixed(0.5),
+                Param::Fixed(1.0),
+                Param::Fixed(0.0),
+                Param::Fixed(1.0)
+            ]
+        )
+        .is_err(),
+        "c = 0 for the MCM"
+    );
+}

@@ -1,7 +1,10 @@
 //! `bwc-identify`: identify base parameters of the Bouc-Wen collision models from data.
 
 use bwc_cli::config::Config;
-use bwc_cli::identify::{eval_fit, render, run_fit, summary, FitReport};
+use bwc_cli::identify::{
+    eval_fit, eval_loop_fit, loop_summary, render, render_loops, run_fit, run_loop_fit, summary,
+    FitReport, LoopReport,
+};
 use bwc_cli::{output, CliError};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -86,9 +89,20 @@ fn run(
     threads: Option<usize>,
 ) -> Result<(), CliError> {
     let config = Config::load(path)?;
-    let work = || -> Result<Vec<FitReport>, CliError> {
+    let work = || -> Result<(Vec<FitReport>, Vec<LoopReport>), CliError> {
         match seed {
-            None => config.fits.iter().map(|f| eval_fit(path, f)).collect(),
+            None => Ok((
+                config
+                    .fits
+                    .iter()
+                    .map(|f| eval_fit(path, f))
+                    .collect::<Result<_, _>>()?,
+                config
+                    .loop_fits
+                    .iter()
+                    .map(|f| eval_loop_fit(path, f))
+                    .collect::<Result<_, _>>()?,
+            )),
             Some(seed) => {
                 let total: u64 = config
                     .fits
@@ -96,7 +110,12 @@ fn run(
                     .map(|f| {
                         f.budget.evaluations(f.space.dim()) * (1 + f.pareto.unwrap_or(0) as u64)
                     })
-                    .sum();
+                    .sum::<u64>()
+                    + config
+                        .loop_fits
+                        .iter()
+                        .map(|f| f.budget.evaluations(f.space.free_names().len()))
+                        .sum::<u64>();
                 let target = if json {
                     ProgressDrawTarget::hidden()
                 } else {
@@ -115,12 +134,17 @@ fn run(
                     bar.set_message(f.name.clone());
                     reports.push(run_fit(path, f, seed, &tick)?);
                 }
+                let mut loop_reports = Vec::new();
+                for f in &config.loop_fits {
+                    bar.set_message(f.name.clone());
+                    loop_reports.push(run_loop_fit(path, f, seed, &tick)?);
+                }
                 bar.finish_and_clear();
-                Ok(reports)
+                Ok((reports, loop_reports))
             }
         }
     };
-    let reports = match threads {
+    let (reports, loop_reports) = match threads {
         Some(n) => rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .build()
@@ -132,7 +156,11 @@ fn run(
         None => work()?,
     };
     if let Some(dir) = out {
-        let files = render(path, &config.fits, &reports, dir)?;
+        let mut files = render(path, &config.fits, &reports, dir)?;
+        files[0].1 = (combined(&reports, &loop_reports).to_string() + "\n").into_bytes();
+        for (f, r) in config.loop_fits.iter().zip(&loop_reports) {
+            files.extend(render_loops(f, r, dir)?);
+        }
         let written = output::write_all(dir, &files)?;
         if !json {
             for p in written {
@@ -141,7 +169,7 @@ fn run(
         }
     }
     if json {
-        println!("{}", summary(&reports));
+        println!("{}", combined(&reports, &loop_reports));
     } else {
         for r in &reports {
             let p = r.params;
@@ -173,5 +201,28 @@ fn run(
             }
         }
     }
+    for r in &loop_reports {
+        if json {
+            break;
+        }
+        let l = r.law;
+        println!(
+            "{} ({}, loops): cost = {:.3e}, {} evaluations, {:.2} s",
+            r.name, r.model, r.cost, r.evaluations, r.wall_s
+        );
+        println!(
+            "    k = {:.6e}, c = {:.6e}, n = {:.4}, p = {:.4}, alpha = {:.4}, beta = {:.4e}, gamma = {:.4e}, A = {:.4}",
+            l.k, l.c, l.n, l.p, l.alpha, l.beta, l.gamma, l.a
+        );
+    }
     Ok(())
+}
+
+/// `{"fits": [...]}` with the base-parameter fits first, then the loop fits.
+fn combined(reports: &[FitReport], loops: &[LoopReport]) -> serde_json::Value {
+    let mut v = summary(reports);
+    if let Some(fits) = v["fits"].as_array_mut() {
+        fits.extend(loop_summary(loops));
+    }
+    v
 }
