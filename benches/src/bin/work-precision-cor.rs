@@ -1,60 +1,106 @@
-//! Work-precision of one CoR evaluation (NDBWSHCCM and NDBWMCM at Table 3's DSS (1), several
-//! impact speeds): error in e and T_s against a reference at rtol 1e-14, RHS evaluations and
-//! time, for each method, stepping over the non-smooth points or stopping at them.
+//! Work-precision of one CoR evaluation: error in e and T_s against RHS evaluations and time,
+//! for each method, stepping over the non-smooth points or stopping at them, over rtol 1e-4 ...
+//! 1e-13, on four cases:
 //!
-//! `cargo run --release -p bwc-benches --bin work-precision-cor`
+//! * NDBWSHCCM and NDBWMCM at Table 3's DSS (1), v0 in {0.5, 2, 5} m/s (errors against a
+//!   reference at rtol 1e-14; evaluations and time summed over the speeds);
+//! * the elastic limit (p = 2.5: T_s = 3.16983185381971, e = 1) and the Hunt-Crossley limit
+//!   (sigma = 0.5: e = 0.748434931597434), where the answer is known exactly.
+//!
+//! Side by side in the same run: the paper's setup in SciPy (benches/scipy_cor.py, skipped with a
+//! message when python3 is absent). Writes `cor.csv` and SVG plots into the directory given as
+//! the first argument (default `target/work-precision`).
+//!
+//! `cargo run --release -p bwc-benches --bin work-precision-cor [-- OUT_DIR]`
 
-use bw_models::{ModelKind, Settings};
+use bw_models::input::Zero;
+use bw_models::{impact, BaseMap, Impact, ModelKind, Ndbwshccm, Nondim, NondimParams, Settings};
 use bwc_benches::{cor, median_seconds};
-use bwc_ode::{tableau, DOP853, VERN7};
+use bwc_cli::plot::{chart, Series, SeriesLabelPosition};
+use bwc_ode::{tableau, VERN7};
+use std::fmt::Write as _;
+
+type Case = (
+    &'static str,
+    Box<dyn Fn(&Settings) -> Vec<Impact>>,
+    Vec<(Option<f64>, Option<f64>)>,
+);
 
 fn main() {
-    let speeds = [0.5, 2.0, 5.0];
-    println!("# error = max over v0 in {speeds:?} m/s of |e - e_ref| and |T_s - T_ref|; evals and time summed over the speeds");
-    println!(
-        "{:<6} {:<7} {:<6} {:>7} {:>11} {:>11} {:>8} {:>10}",
-        "model", "method", "kinks", "rtol", "err_e", "err_Ts", "evals", "time_us"
+    let out = std::path::PathBuf::from(
+        std::env::args()
+            .nth(1)
+            .unwrap_or_else(|| "target/work-precision".into()),
     );
+    std::fs::create_dir_all(&out).expect("output directory");
+    let speeds = [0.5, 2.0, 5.0];
+    let tight = Settings {
+        method: &VERN7,
+        rtol: 1e-14,
+        atol: 1e-16,
+        ..Settings::default()
+    };
+    let mut cases: Vec<Case> = Vec::new();
     for kind in [ModelKind::Shccm, ModelKind::Mcm] {
-        let map = cor::dss1(kind);
-        // Reference: two independent tight runs must agree.
-        let refs: Vec<(f64, f64)> = speeds
-            .iter()
-            .map(|&v0| {
-                let a = cor::evaluate(
-                    &map,
-                    v0,
-                    &Settings {
-                        method: &VERN7,
-                        rtol: 1e-14,
-                        atol: 1e-16,
-                        ..Settings::default()
-                    },
-                )
-                .unwrap();
-                let b = cor::evaluate(
-                    &map,
-                    v0,
-                    &Settings {
-                        method: &DOP853,
-                        rtol: 1e-14,
-                        atol: 1e-16,
-                        stop_at_kinks: false,
-                        ..Settings::default()
-                    },
-                )
-                .unwrap();
-                assert!(
-                    (a.e - b.e).abs() < 1e-11,
-                    "references disagree: {} vs {}",
-                    a.e,
-                    b.e
-                );
-                (a.e, a.t_s.unwrap())
-            })
-            .collect();
+        let map: BaseMap = cor::dss1(kind);
+        let run = move |s: &Settings| {
+            speeds
+                .iter()
+                .map(|&v0| cor::evaluate(&map, v0, s).unwrap())
+                .collect::<Vec<_>>()
+        };
+        let refs = run(&tight).iter().map(|o| (Some(o.e), o.t_s)).collect();
+        cases.push((
+            if kind == ModelKind::Shccm {
+                "shccm_dss1"
+            } else {
+                "mcm_dss1"
+            },
+            Box::new(run),
+            refs,
+        ));
+    }
+    let limit = |sigma: f64, p: f64| {
+        let params = NondimParams::new(
+            ModelKind::Shccm,
+            Nondim {
+                b: 0.0,
+                gamma: 0.0,
+                kappa: 0.5,
+                sigma,
+                n: 1.0,
+                p,
+            },
+        )
+        .unwrap();
+        let model = Ndbwshccm::new(&params, Zero).unwrap();
+        move |s: &Settings| vec![impact(&model, s).unwrap()]
+    };
+    #[allow(clippy::excessive_precision)]
+    cases.push((
+        "elastic_p2.5",
+        Box::new(limit(0.0, 2.5)),
+        vec![(Some(1.0), Some(3.1698318538197101997))],
+    ));
+    #[allow(clippy::excessive_precision)]
+    cases.push((
+        "hunt_crossley_0.5",
+        Box::new(limit(0.5, 1.5)),
+        vec![(Some(0.748434931597434158), None)],
+    ));
+
+    let mut csv = String::from("case,method,kinks,rtol,err_e,err_Ts,rhs_evals,time_us\n");
+    println!(
+        "{:<18} {:<7} {:<6} {:>7} {:>10} {:>10} {:>8} {:>9}",
+        "case", "method", "kinks", "rtol", "err_e", "err_Ts", "evals", "time_us"
+    );
+    for (name, run, refs) in &cases {
+        let mut by_evals = Vec::new();
+        let mut by_time = Vec::new();
         for tab in tableau::all() {
             for kinks in [false, true] {
+                let mut pe = Vec::new();
+                let mut pt = Vec::new();
                 for k in 4..=13 {
                     let rtol = 10f64.powi(-k);
                     let s = Settings {
@@ -64,31 +110,119 @@ fn main() {
                         stop_at_kinks: kinks,
                         ..Settings::default()
                     };
-                    let (mut err_e, mut err_t, mut evals) = (0.0f64, 0.0f64, 0);
-                    for (&v0, &(e_ref, t_ref)) in speeds.iter().zip(&refs) {
-                        let out = cor::evaluate(&map, v0, &s).unwrap();
-                        err_e = err_e.max((out.e - e_ref).abs());
-                        err_t = err_t.max((out.t_s.unwrap() - t_ref).abs());
-                        evals += out.stats.rhs_evals;
-                    }
-                    let secs = median_seconds(|| {
-                        for &v0 in &speeds {
-                            std::hint::black_box(cor::evaluate(&map, v0, &s).unwrap());
+                    let outs = run(&s);
+                    let (mut ee, mut et) = (0.0f64, 0.0f64);
+                    for (o, (e_ref, t_ref)) in outs.iter().zip(refs) {
+                        if let Some(e) = e_ref {
+                            ee = ee.max((o.e - e).abs());
                         }
+                        if let (Some(t), Some(ts)) = (t_ref, o.t_s) {
+                            et = et.max((ts - t).abs());
+                        }
+                    }
+                    let evals: u64 = outs.iter().map(|o| o.stats.rhs_evals).sum();
+                    let secs = median_seconds(|| {
+                        std::hint::black_box(run(&s));
                     });
+                    let err = ee.max(et).max(1e-17);
                     println!(
-                        "{:<6} {:<7} {:<6} {:>7.0e} {:>11.2e} {:>11.2e} {:>8} {:>10.1}",
-                        kind.name(),
+                        "{name:<18} {:<7} {:<6} {:>7.0e} {:>10.2e} {:>10.2e} {:>8} {:>9.1}",
                         tab.name,
                         kinks,
                         rtol,
-                        err_e,
-                        err_t,
+                        ee,
+                        et,
                         evals,
                         secs * 1e6
                     );
+                    let _ = writeln!(
+                        csv,
+                        "{name},{},{kinks},{rtol:e},{ee:e},{et:e},{evals},{:.3}",
+                        tab.name,
+                        secs * 1e6
+                    );
+                    pe.push((evals as f64, err.log10()));
+                    pt.push(((secs * 1e6).log10(), err.log10()));
                 }
+                let label = format!(
+                    "{}{}",
+                    tab.name,
+                    if kinks { " + stops at kinks" } else { "" }
+                );
+                by_evals.push(Series {
+                    label: label.clone(),
+                    points: pe,
+                });
+                by_time.push(Series { label, points: pt });
             }
         }
+        let title = format!("{name}: log10 error vs RHS evaluations");
+        std::fs::write(
+            out.join(format!("{name}_evals.svg")),
+            chart(
+                &title,
+                "RHS evaluations",
+                "log10 max(|err e|, |err T_s|)",
+                &by_evals,
+                true,
+                SeriesLabelPosition::UpperRight,
+            )
+            .unwrap(),
+        )
+        .unwrap();
+        let title = format!("{name}: log10 error vs time");
+        std::fs::write(
+            out.join(format!("{name}_time.svg")),
+            chart(
+                &title,
+                "log10 time (us)",
+                "log10 max(|err e|, |err T_s|)",
+                &by_time,
+                true,
+                SeriesLabelPosition::UpperRight,
+            )
+            .unwrap(),
+        )
+        .unwrap();
     }
+    std::fs::write(out.join("cor.csv"), csv).unwrap();
+
+    // The paper's setup in SciPy, on the SHCCM case.
+    let script = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scipy_cor.py");
+    match std::process::Command::new("python3").arg(&script).output() {
+        Ok(o) if o.status.success() => {
+            println!(
+                "\n# SciPy solve_ivp DOP853 rtol 1e-10 atol 1e-12 (the paper's setup), shccm_dss1:"
+            );
+            println!(
+                "{:<6} {:>9} {:>10} {:>10} {:>8} {:>10}",
+                "v0", "max_step", "err_e", "err_Ts", "nfev", "time_us"
+            );
+            let refs = &cases[0].2;
+            for (line, (e_ref, t_ref)) in String::from_utf8_lossy(&o.stdout)
+                .lines()
+                .zip(refs.iter().flat_map(|r| [r, r]))
+            {
+                let v: serde_json::Value = serde_json::from_str(line).unwrap();
+                println!(
+                    "{:<6} {:>9} {:>10.2e} {:>10.2e} {:>8} {:>10.1}",
+                    v["v0"],
+                    v["max_step"],
+                    (v["e"].as_f64().unwrap() - e_ref.unwrap()).abs(),
+                    (v["T_s"].as_f64().unwrap() - t_ref.unwrap()).abs(),
+                    v["nfev"],
+                    v["time_s"].as_f64().unwrap() * 1e6
+                );
+            }
+        }
+        Ok(o) => println!(
+            "\n# SciPy comparison failed: {}",
+            String::from_utf8_lossy(&o.stderr)
+                .lines()
+                .last()
+                .unwrap_or("")
+        ),
+        Err(_) => println!("\n# SciPy comparison skipped: python3 not found"),
+    }
+    println!("\nwrote {}", out.display());
 }

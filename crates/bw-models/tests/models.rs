@@ -667,3 +667,67 @@ mod paper_settings {
         }
     }
 }
+
+/// Tolerance proportionality: the error in e falls roughly in proportion to rtol over
+/// 1e-6 ... 1e-12 (least-squares slope of log err against log rtol in [0.6, 1.4], every error
+/// below 20 rtol), so users can trade time for accuracy. Measured slopes: about 1 for Table 3
+/// parameters, 0.67 in the Hunt-Crossley limit (which is already at 5e-12 for rtol 1e-12).
+#[test]
+fn error_is_proportional_to_the_tolerance() {
+    let v2 = 2f64.powf(2.0 * 2.93 / 3.62);
+    let sets = [
+        nd(
+            ModelKind::Shccm,
+            2.38 * v2,
+            -2.38 * v2,
+            0.677,
+            0.0696,
+            2.93,
+            2.62,
+        ),
+        nd(ModelKind::Mcm, 0.44, -0.418, 0.113, 0.05, 1.27, 3.14),
+        nd(ModelKind::Shccm, 0.0, 0.0, 0.5, 0.5, 1.0, 1.5),
+    ];
+    for params in sets {
+        let run = |rtol: f64| {
+            let s = Settings {
+                rtol,
+                atol: rtol * 1e-2,
+                ..Settings::default()
+            };
+            match params.kind() {
+                ModelKind::Shccm => {
+                    impact(&Ndbwshccm::new(&params, Zero).unwrap(), &s)
+                        .unwrap()
+                        .e
+                }
+                ModelKind::Mcm => impact(&Ndbwmcm::new(&params, Zero).unwrap(), &s).unwrap().e,
+            }
+        };
+        let reference = run(1e-14);
+        let pts: Vec<(f64, f64)> = (6..=12)
+            .map(|k| {
+                let rtol = 10f64.powi(-k);
+                let err = (run(rtol) - reference).abs().max(1e-16);
+                assert!(
+                    err < 20.0 * rtol,
+                    "{:?}: error {err:e} at rtol {rtol:e}",
+                    params.get()
+                );
+                (rtol.log10(), err.log10())
+            })
+            .collect();
+        let n = pts.len() as f64;
+        let (mx, my) = (
+            pts.iter().map(|p| p.0).sum::<f64>() / n,
+            pts.iter().map(|p| p.1).sum::<f64>() / n,
+        );
+        let slope = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>()
+            / pts.iter().map(|p| (p.0 - mx).powi(2)).sum::<f64>();
+        assert!(
+            (0.6..=1.4).contains(&slope),
+            "{:?}: slope {slope}",
+            params.get()
+        );
+    }
+}

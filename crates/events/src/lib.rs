@@ -176,8 +176,8 @@ pub enum Step<const N: usize> {
         /// The switching instant.
         t: f64,
     },
-    /// The terminal condition first holds at `t`, state `y` (from the dense output; the
-    /// integrator itself is at the end of the step).
+    /// The terminal condition first holds at `t`, state `y`; the integrator was stopped exactly
+    /// at `t` (the last step retaken to end there), so it can be restarted from the event.
     Event {
         /// Event instant.
         t: f64,
@@ -312,6 +312,14 @@ impl<C, S> Locator<C, S> {
                     let g = self.condition.values(t, &y);
                     if self.condition.holds(&g_start, &g) {
                         it.record_event();
+                        // Retake the step to end exactly at the event: the state there then
+                        // comes from a full step (the method's order) rather than from the
+                        // interpolant of a step that may straddle a non-smooth point (a force
+                        // like |x|^p with non-integer p vanishes exactly at separation).
+                        if t < t1 {
+                            it.retake_to(t)?;
+                            return Ok(Step::Event { t, y: *it.y() });
+                        }
                         return Ok(Step::Event { t, y });
                     }
                     // A boundary crossed without entering the set. Unless a switching point
