@@ -233,7 +233,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
         match locator.step(&mut it, t_end)? {
             Step::Event { t, y } => {
                 let upto = t.min(it.t());
-                grid.emit(&mut it, upto, &mut sink);
+                grid.emit(&mut it, upto, &mut sink)?;
                 sink(t, &y);
                 let e = model.velocity(&y) / model.impact_speed();
                 return Ok(Impact {
@@ -245,7 +245,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
             }
             Step::Continued | Step::Switched { .. } => {
                 let upto = it.t();
-                grid.emit(&mut it, upto, &mut sink);
+                grid.emit(&mut it, upto, &mut sink)?;
                 if sampling == Sampling::Steps {
                     sink(it.t(), it.y());
                 }
@@ -259,6 +259,9 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
         stats: it.stats(),
     })
 }
+
+/// Most grid samples one impact may produce (a tiny `dt` must not exhaust memory).
+pub const MAX_SAMPLES: usize = 10_000_000;
 
 /// Emits the points of a uniform grid as the integration passes them.
 struct GridSampler {
@@ -275,19 +278,27 @@ impl GridSampler {
         it: &mut Integrator<F, N>,
         upto: f64,
         sink: &mut impl FnMut(f64, &State<N>),
-    ) {
+    ) -> Result<(), ModelError> {
         let Sampling::Grid { dt } = self.sampling else {
-            return;
+            return Ok(());
         };
         let mut t = self.next as f64 * dt;
         if t > upto {
-            return;
+            return Ok(());
         }
         let dense = it.dense();
         while t <= upto {
+            if self.next > MAX_SAMPLES {
+                return Err(ModelError::InvalidSetting {
+                    name: "dt",
+                    value: dt,
+                    allowed: "a grid of at most 10,000,000 samples per impact: increase dt",
+                });
+            }
             sink(t, &dense.eval(t));
             self.next += 1;
             t = self.next as f64 * dt;
         }
+        Ok(())
     }
 }

@@ -731,3 +731,22 @@ fn error_is_proportional_to_the_tolerance() {
         );
     }
 }
+
+/// A tiny sampling interval is an error, not an exhausted memory (found by fuzzing scenes).
+#[test]
+fn trajectory_samples_are_bounded() {
+    let m = Ndbwshccm::new(&nd(ModelKind::Shccm, 0.0, 0.0, 0.5, 0.1, 1.0, 1.0), Zero).unwrap();
+    let mut n = 0usize;
+    let e = simulate(
+        &m,
+        &Settings::default(),
+        Sampling::Grid { dt: 1e-300 },
+        |_, _| n += 1,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e, ModelError::InvalidSetting { name: "dt", .. }),
+        "{e}"
+    );
+    assert!(n <= bw_models::MAX_SAMPLES + 1);
+}

@@ -272,9 +272,17 @@ impl Config {
             path: path.to_owned(),
             source,
         })?;
-        let ctx = Ctx { path, src: &src };
+        Self::parse(path, &src)
+    }
+
+    /// Validates a config given as text; data files are read relative to `path`'s folder.
+    ///
+    /// # Errors
+    /// As [`Config::load`].
+    pub fn parse(path: &Path, src: &str) -> Result<Self, CliError> {
+        let ctx = Ctx { path, src };
         let raw: RawConfig =
-            toml::from_str(&src).map_err(|e| crate::scene::syntax_error(&ctx, &e))?;
+            toml::from_str(src).map_err(|e| crate::scene::syntax_error(&ctx, &e))?;
         let fits = raw.fit.unwrap_or_default();
         let loop_fits = raw.loop_fit.unwrap_or_default();
         if fits.is_empty() && loop_fits.is_empty() {
