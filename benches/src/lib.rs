@@ -108,3 +108,5 @@ pub mod cor {
         impact_at(map, Zero, v0, settings)
     }
 }
+
+pub mod stress;

@@ -1,0 +1,68 @@
+//! Stress sweep over random admissible parameter sets of both models (issue 7): counts and time
+//! per class, the slowest cases, and any energy created without input.
+//!
+//! `cargo run --release -p bwc-benches --bin stress -- [COUNT] [SEED]` (default 100000, 1)
+
+use bwc_benches::stress::{sweep, Class};
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+fn main() {
+    let count: u64 = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(100_000);
+    let seed: u64 = std::env::args()
+        .nth(2)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(1);
+    let clock = Instant::now();
+    let outcomes = sweep(seed, count);
+    let wall = clock.elapsed().as_secs_f64();
+    let mut classes: BTreeMap<&str, (usize, f64, f64)> = BTreeMap::new();
+    for o in &outcomes {
+        let e = classes.entry(o.class.name()).or_default();
+        e.0 += 1;
+        e.1 += o.seconds;
+        e.2 = e.2.max(o.seconds);
+    }
+    println!(
+        "# {count} cases, seed {seed}, {wall:.1} s wall ({} threads)",
+        rayon::current_num_threads()
+    );
+    println!(
+        "{:<32} {:>8} {:>8} {:>12} {:>10}",
+        "class", "count", "share", "mean_ms", "max_ms"
+    );
+    for (name, (n, total, max)) in &classes {
+        println!(
+            "{name:<32} {n:>8} {:>7.3}% {:>12.3} {:>10.1}",
+            100.0 * *n as f64 / count as f64,
+            1e3 * total / *n as f64,
+            1e3 * max
+        );
+    }
+    let mut slow: Vec<_> = outcomes.iter().collect();
+    slow.sort_by(|a, b| b.seconds.total_cmp(&a.seconds));
+    println!("\n# slowest cases");
+    for o in slow.iter().take(8) {
+        println!(
+            "{:>8.1} ms {:>9} evals {:<28} {:?}",
+            o.seconds * 1e3,
+            o.rhs_evals,
+            o.class.name(),
+            o.case
+        );
+    }
+    let bugs: Vec<_> = outcomes
+        .iter()
+        .filter(|o| matches!(o.class, Class::EnergyCreated(_) | Class::Other(_)))
+        .collect();
+    println!(
+        "\n# energy created without input, or unclassified failures: {}",
+        bugs.len()
+    );
+    for o in bugs.iter().take(20) {
+        println!("{:?} {:?}", o.class, o.case);
+    }
+}

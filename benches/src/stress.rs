@@ -1,0 +1,194 @@
+//! Stress sweep: random admissible parameter sets of both models, including the edges of the
+//! admissible sets, each run classified (issue 7, STABILITY.md).
+
+use bw_models::input::{FromFn, Input};
+use bw_models::{impact_at, BaseMap, BaseParams, ModelError, ModelKind, Settings};
+use rand::{Rng, SeedableRng};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// One sampled case.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Case {
+    /// The model.
+    pub kind: ModelKind,
+    /// Base parameters.
+    pub base: BaseParams,
+    /// Impact speed (m/s).
+    pub v0: f64,
+    /// Input `u(t) = a + b sin(w t)` (N), scaled to `U(T)` by the base map.
+    pub input: (f64, f64, f64),
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Class {
+    /// Separated with finite `T_s` and `e`.
+    Separated,
+    /// Separated with `e > 1 + 1e-9` although `u = 0`: energy was created (a bug).
+    EnergyCreated(f64),
+    /// No separation by the horizon (`e = 0`).
+    NoSeparation,
+    /// The base map left the admissible set at this speed (overflow of `v0^(2n/(p+1))`).
+    Inadmissible,
+    /// Step size underflow.
+    StepSizeTooSmall,
+    /// Step limit reached (typically stiffness: large `sigma` in the MCM).
+    TooManySteps,
+    /// NaN or infinity in the state.
+    NonFinite,
+    /// Anything else (should not happen).
+    Other(String),
+}
+
+impl Class {
+    /// Short name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Class::Separated => "separated",
+            Class::EnergyCreated(_) => "energy created (BUG)",
+            Class::NoSeparation => "no separation by the horizon",
+            Class::Inadmissible => "inadmissible at this speed",
+            Class::StepSizeTooSmall => "step size underflow",
+            Class::TooManySteps => "too many steps",
+            Class::NonFinite => "non-finite state",
+            Class::Other(_) => "other failure",
+        }
+    }
+}
+
+/// The outcome of one case.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// The case.
+    pub case: Case,
+    /// Its class.
+    pub class: Class,
+    /// Wall time (s).
+    pub seconds: f64,
+    /// RHS evaluations (0 when not simulated).
+    pub rhs_evals: u64,
+}
+
+fn log_uniform(rng: &mut impl Rng, lo: f64, hi: f64) -> f64 {
+    lo * (hi / lo).powf(rng.random::<f64>())
+}
+
+/// Case `i` of the sweep with seed `seed` (independent of any other case: parallel and
+/// sequential sweeps sample the same cases).
+pub fn sample(seed: u64, i: u64) -> Case {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed ^ i.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+    let kind = if rng.random::<bool>() {
+        ModelKind::Shccm
+    } else {
+        ModelKind::Mcm
+    };
+    let edge = |rng: &mut rand::rngs::StdRng, lo: f64, hi: f64| match rng.random_range(0..10) {
+        0 => lo,
+        1 => hi,
+        _ => lo + (hi - lo) * rng.random::<f64>(),
+    };
+    let n = edge(&mut rng, 1.0, 10.0);
+    let p = edge(&mut rng, 1.0, 10.0);
+    let b_b = if rng.random_range(0..10) == 0 {
+        0.0
+    } else {
+        log_uniform(&mut rng, 1e-3, 1e3)
+    };
+    let gamma_b = match rng.random_range(0..10) {
+        0 => -b_b,
+        1 => b_b,
+        _ => b_b * (2.0 * rng.random::<f64>() - 1.0),
+    };
+    let logit = 13.8 * (2.0 * rng.random::<f64>() - 1.0); // kappa in [1e-6, 1 - 1e-6]
+    let kappa = (1.0 / (1.0 + (-logit).exp())).clamp(1e-6, 1.0 - 1e-6);
+    let sigma_b = match (kind, rng.random_range(0..20)) {
+        (ModelKind::Shccm, 0..=1) => 0.0,
+        (ModelKind::Mcm, 0) => 1e-16,
+        _ => log_uniform(&mut rng, 1e-6, 1e3),
+    };
+    let v0 = log_uniform(&mut rng, 1e-4, 1e3);
+    // Input: none (half the cases), a constant push or pull, or a sign-changing one.
+    let input = match rng.random_range(0..4) {
+        0 | 1 => (0.0, 0.0, 0.0),
+        2 => (20.0 * rng.random::<f64>() - 10.0, 0.0, 0.0),
+        _ => (
+            0.0,
+            10.0 * rng.random::<f64>(),
+            log_uniform(&mut rng, 0.1, 10.0),
+        ),
+    };
+    Case {
+        kind,
+        base: BaseParams {
+            b_b,
+            gamma_b,
+            kappa,
+            sigma_b,
+            n,
+            p,
+            u_b: 1.0,
+            t_b: 1.0,
+        },
+        v0,
+        input,
+    }
+}
+
+/// Runs one case: horizon 100 (nondimensional), at most 200,000 steps.
+pub fn run(case: &Case) -> Outcome {
+    let clock = Instant::now();
+    let settings = Settings {
+        t_max: 100.0,
+        max_steps: 200_000,
+        ..Settings::default()
+    };
+    let (a, b, w) = case.input;
+    let u = FromFn(move |t: f64| a + b * (w * t).sin());
+    let unforced = a == 0.0 && b == 0.0;
+    let (class, evals) = match BaseMap::new(case.kind, case.base).and_then(|map| {
+        // Nondimensional input of magnitude |U| <= 10 at every speed: scale u by 1 / U_factor.
+        let (_, s) = map.at(case.v0)?;
+        let scaled = FromFn(move |t: f64| u.at(t) / s.factor);
+        impact_at(&map, scaled, case.v0, &settings)
+    }) {
+        Ok(out) if out.separated() && out.e.is_finite() => {
+            if unforced && out.e > 1.0 + 1e-9 {
+                (Class::EnergyCreated(out.e), out.stats.rhs_evals)
+            } else {
+                (Class::Separated, out.stats.rhs_evals)
+            }
+        }
+        Ok(out) if !out.separated() => (Class::NoSeparation, out.stats.rhs_evals),
+        Ok(out) => (
+            Class::Other(format!("non-finite e = {}", out.e)),
+            out.stats.rhs_evals,
+        ),
+        Err(ModelError::InvalidParameter { .. }) => (Class::Inadmissible, 0),
+        Err(ModelError::Solver(bwc_events::Error::Solver(e))) => (
+            match e {
+                bwc_ode::Error::StepSizeTooSmall { .. } => Class::StepSizeTooSmall,
+                bwc_ode::Error::TooManySteps { .. } => Class::TooManySteps,
+                bwc_ode::Error::NonFiniteState { .. }
+                | bwc_ode::Error::NonFiniteInitialValue { .. } => Class::NonFinite,
+                other => Class::Other(other.to_string()),
+            },
+            0,
+        ),
+        Err(other) => (Class::Other(other.to_string()), 0),
+    };
+    Outcome {
+        case: *case,
+        class,
+        seconds: clock.elapsed().as_secs_f64(),
+        rhs_evals: evals,
+    }
+}
+
+/// Runs cases `0..count` of seed `seed` in parallel (results in case order).
+pub fn sweep(seed: u64, count: u64) -> Vec<Outcome> {
+    (0..count)
+        .into_par_iter()
+        .map(|i| run(&sample(seed, i)))
+        .collect()
+}
