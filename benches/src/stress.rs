@@ -1,7 +1,7 @@
 //! Stress sweep: random admissible parameter sets of both models, including the edges of the
 //! admissible sets, each run classified (issue 7, STABILITY.md).
 
-use bw_models::input::{FromFn, Input};
+use bw_models::input::{Constant, FromFn, Input};
 use bw_models::{impact_at, BaseMap, BaseParams, ModelError, ModelKind, Settings};
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
@@ -149,8 +149,16 @@ pub fn run(case: &Case) -> Outcome {
     let (class, evals) = match BaseMap::new(case.kind, case.base).and_then(|map| {
         // Nondimensional input of magnitude |U| <= 10 at every speed: scale u by 1 / U_factor.
         let (_, s) = map.at(case.v0)?;
-        let scaled = FromFn(move |t: f64| u.at(t) / s.factor);
-        impact_at(&map, scaled, case.v0, &settings)
+        if b == 0.0 {
+            impact_at(&map, Constant(a / s.factor), case.v0, &settings)
+        } else {
+            impact_at(
+                &map,
+                FromFn(move |t: f64| u.at(t) / s.factor),
+                case.v0,
+                &settings,
+            )
+        }
     }) {
         Ok(out) if out.separated() && out.e.is_finite() => {
             if unforced && out.e > 1.0 + 1e-9 {

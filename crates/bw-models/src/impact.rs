@@ -100,8 +100,11 @@ pub struct Impact {
     pub t_s: Option<f64>,
     /// Coefficient of restitution `e = v(t_s) / v0` (0 without separation).
     pub e: f64,
-    /// State at separation (at the horizon without separation).
+    /// State at separation (at the horizon, or where the contact settled, without separation).
     pub state: [f64; 4],
+    /// Without separation: the time at which the contact had settled (at rest with the force
+    /// balancing a constant input, an equilibrium), if the simulation stopped there early.
+    pub settled_at: Option<f64>,
     /// Solver statistics.
     pub stats: Stats,
 }
@@ -229,6 +232,9 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
     let t_end = settings.t_max * ts;
     sink(0.0, &y0);
     let mut grid = GridSampler { sampling, next: 1 };
+    // With a constant input, a state where the right-hand side vanishes is an equilibrium: the
+    // contact has settled and will never end.
+    let settles = model.input_is_constant();
     while it.t() < t_end {
         match locator.step(&mut it, t_end)? {
             Step::Event { t, y } => {
@@ -241,6 +247,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
                     e,
                     state: pad(&y),
                     stats: it.stats(),
+                    settled_at: None,
                 });
             }
             Step::Continued | Step::Switched { .. } => {
@@ -248,6 +255,16 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
                 grid.emit(&mut it, upto, &mut sink)?;
                 if sampling == Sampling::Steps {
                     sink(it.t(), it.y());
+                }
+                if settles && at_rest(model, it.derivative(), settings.atol) {
+                    let stats = it.stats();
+                    return Ok(Impact {
+                        t_s: None,
+                        e: 0.0,
+                        state: pad(it.y()),
+                        stats,
+                        settled_at: Some(it.t()),
+                    });
                 }
             }
         }
@@ -257,11 +274,21 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
         e: 0.0,
         state: pad(it.y()),
         stats: it.stats(),
+        settled_at: None,
     })
 }
 
 /// Most grid samples one impact may produce (a tiny `dt` must not exhaust memory).
 pub const MAX_SAMPLES: usize = 10_000_000;
+
+/// Whether every component of `f` is below `10 atol` in natural units (state scale per time
+/// scale): the state is at rest.
+fn at_rest<M: CollisionModel<N>, const N: usize>(model: &M, f: &State<N>, atol: f64) -> bool {
+    let scale = model.state_scale() / model.time_scale();
+    f.iter()
+        .zip(scale.iter())
+        .all(|(d, s)| d.abs() <= 10.0 * atol * s)
+}
 
 /// Emits the points of a uniform grid as the integration passes them.
 struct GridSampler {

@@ -9,6 +9,12 @@ pub trait Input {
     fn is_zero(&self) -> bool {
         false
     }
+
+    /// Whether the input is constant in time (then a state at rest is an equilibrium and a
+    /// simulation may stop there).
+    fn is_constant(&self) -> bool {
+        self.is_zero()
+    }
 }
 
 /// No input: `u = 0`.
@@ -36,6 +42,9 @@ impl Input for Constant {
     }
     fn is_zero(&self) -> bool {
         self.0 == 0.0
+    }
+    fn is_constant(&self) -> bool {
+        true
     }
 }
 
@@ -74,6 +83,9 @@ impl<A: Input, B: Input> Input for Sum<A, B> {
     fn is_zero(&self) -> bool {
         self.0.is_zero() && self.1.is_zero()
     }
+    fn is_constant(&self) -> bool {
+        self.0.is_constant() && self.1.is_constant()
+    }
 }
 
 /// `factor * inner(time_scale * t)`: an input seen on another time and force scale (used for
@@ -95,6 +107,9 @@ impl<I: Input> Input for Scaled<I> {
     }
     fn is_zero(&self) -> bool {
         self.factor == 0.0 || self.inner.is_zero()
+    }
+    fn is_constant(&self) -> bool {
+        self.factor == 0.0 || self.inner.is_constant()
     }
 }
 
@@ -172,6 +187,9 @@ impl<I: Input + ?Sized> Input for &I {
     }
     fn is_zero(&self) -> bool {
         (**self).is_zero()
+    }
+    fn is_constant(&self) -> bool {
+        (**self).is_constant()
     }
 }
 

@@ -21,6 +21,8 @@ pub trait CollisionModel<const N: usize>: System<N> {
     fn velocity(&self, y: &State<N>) -> f64;
     /// The external input at `t`.
     fn input(&self, t: f64) -> f64;
+    /// Whether the input is constant in time.
+    fn input_is_constant(&self) -> bool;
     /// Impact speed `v0` (1 for nondimensional models), so that `e = v(t_s) / v0`.
     fn impact_speed(&self) -> f64;
     /// Natural magnitude of each state component (ones for nondimensional models; the scales
@@ -127,6 +129,9 @@ impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
     fn input(&self, t: f64) -> f64 {
         self.input.at(t)
     }
+    fn input_is_constant(&self) -> bool {
+        self.input.is_constant()
+    }
     fn impact_speed(&self) -> f64 {
         1.0
     }
@@ -213,6 +218,9 @@ impl<I: Input> CollisionModel<4> for Ndbwmcm<I> {
     fn input(&self, t: f64) -> f64 {
         self.input.at(t)
     }
+    fn input_is_constant(&self) -> bool {
+        self.input.is_constant()
+    }
     fn impact_speed(&self) -> f64 {
         1.0
     }
@@ -286,6 +294,9 @@ impl CollisionModel<4> for NdbwmcmEarlier {
     fn input(&self, _t: f64) -> f64 {
         0.0
     }
+    fn input_is_constant(&self) -> bool {
+        true
+    }
     fn impact_speed(&self) -> f64 {
         1.0
     }
@@ -358,6 +369,9 @@ impl<I: Input> CollisionModel<3> for Bwshccm<I> {
     fn input(&self, t: f64) -> f64 {
         self.input.at(t)
     }
+    fn input_is_constant(&self) -> bool {
+        self.input.is_constant()
+    }
     fn impact_speed(&self) -> f64 {
         self.v0
     }
@@ -426,6 +440,9 @@ impl<I: Input> CollisionModel<4> for Bwmcm<I> {
     }
     fn input(&self, t: f64) -> f64 {
         self.input.at(t)
+    }
+    fn input_is_constant(&self) -> bool {
+        self.input.is_constant()
     }
     fn impact_speed(&self) -> f64 {
         self.v0
@@ -508,6 +525,9 @@ impl CollisionModel<4> for BwmcmEarlier {
     }
     fn input(&self, _t: f64) -> f64 {
         0.0
+    }
+    fn input_is_constant(&self) -> bool {
+        true
     }
     fn impact_speed(&self) -> f64 {
         self.v0

@@ -40,4 +40,12 @@ impl Input for Signal {
             _ => false,
         }
     }
+
+    fn is_constant(&self) -> bool {
+        match self {
+            Signal::Constant(_) => true,
+            Signal::Sum(terms) => terms.iter().all(Input::is_constant),
+            _ => false,
+        }
+    }
 }
