@@ -7,23 +7,6 @@ use bwc_benches::stress::{sweep, Class};
 use std::collections::BTreeMap;
 use std::time::Instant;
 
-/// Writes to stdout, ignoring a closed pipe (`... | head` must not panic).
-macro_rules! out {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
-    }};
-}
-
-/// As [`out!`] without the newline.
-#[allow(unused_macros)]
-macro_rules! outp {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = write!(std::io::stdout().lock(), $($arg)*);
-    }};
-}
-
 fn main() {
     let count: u64 = std::env::args()
         .nth(1)
@@ -43,11 +26,11 @@ fn main() {
         e.1 += o.seconds;
         e.2 = e.2.max(o.seconds);
     }
-    out!(
+    bwc_cli::out!(
         "# {count} cases, seed {seed}, {wall:.1} s wall ({} threads)",
         rayon::current_num_threads()
     );
-    out!(
+    bwc_cli::out!(
         "{:<32} {:>8} {:>8} {:>12} {:>10}",
         "class",
         "count",
@@ -56,7 +39,7 @@ fn main() {
         "max_ms"
     );
     for (name, (n, total, max)) in &classes {
-        out!(
+        bwc_cli::out!(
             "{name:<32} {n:>8} {:>7.3}% {:>12.3} {:>10.1}",
             100.0 * *n as f64 / count as f64,
             1e3 * total / *n as f64,
@@ -65,9 +48,9 @@ fn main() {
     }
     let mut slow: Vec<_> = outcomes.iter().collect();
     slow.sort_by(|a, b| b.seconds.total_cmp(&a.seconds));
-    out!("\n# slowest cases");
+    bwc_cli::out!("\n# slowest cases");
     for o in slow.iter().take(8) {
-        out!(
+        bwc_cli::out!(
             "{:>8.1} ms {:>9} evals {:<28} {:?}",
             o.seconds * 1e3,
             o.rhs_evals,
@@ -79,11 +62,11 @@ fn main() {
         .iter()
         .filter(|o| matches!(o.class, Class::EnergyCreated(_) | Class::Other(_)))
         .collect();
-    out!(
+    bwc_cli::out!(
         "\n# energy created without input, or unclassified failures: {}",
         bugs.len()
     );
     for o in bugs.iter().take(20) {
-        out!("{:?} {:?}", o.class, o.case);
+        bwc_cli::out!("{:?} {:?}", o.class, o.case);
     }
 }

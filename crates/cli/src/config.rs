@@ -27,7 +27,6 @@ use bw_models::{BaseParams, ModelKind, Settings};
 use bwc_identify::{
     Budget, Dataset, IdentifyError, KnownMassStiffness, Param, Space, Weights, NAMES,
 };
-use bwc_ode::{DOP853, DOPRI5, VERN7};
 use serde::Deserialize;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -609,53 +608,12 @@ fn parse_fit(
         index as i64,
     )? as u64;
 
-    let mut settings = Settings {
+    let search = Settings {
         rtol: 1e-8,
         atol: 1e-10,
         ..Settings::default()
     };
-    if let Some(sv) = &r.solver {
-        let s = sv.get_ref();
-        if let Some(m) = &s.method {
-            settings.method = match m.get_ref().as_str() {
-                "dopri5" => &DOPRI5,
-                "dop853" => &DOP853,
-                "vern7" => &VERN7,
-                other => {
-                    return Err(ctx.invalid(
-                        &m.span(),
-                        "[fit.solver].method",
-                        format!("\"{other}\": use \"dopri5\", \"dop853\" or \"vern7\""),
-                    ))
-                }
-            };
-        }
-        if let Some(x) = ctx.opt(&s.rtol, "[fit.solver].rtol")? {
-            settings.rtol = x;
-        }
-        if let Some(x) = ctx.opt(&s.atol, "[fit.solver].atol")? {
-            settings.atol = x;
-        }
-        if let Some(x) = ctx.opt(&s.t_max, "[fit.solver].t_max")? {
-            settings.t_max = x;
-        }
-        if let Some(x) = &s.stop_at_kinks {
-            settings.stop_at_kinks = *x.get_ref();
-        }
-        settings.validate().map_err(|e| {
-            ctx.model_error(
-                e,
-                "[fit.solver]",
-                |n| match n {
-                    "rtol" => span(&s.rtol),
-                    "atol" => span(&s.atol),
-                    "t_max" => span(&s.t_max),
-                    _ => None,
-                },
-                &sv.span(),
-            )
-        })?;
-    }
+    let settings = crate::scene::solver_settings(ctx, &r.solver, "[fit.solver]", search)?;
     let pareto = match &r.pareto {
         None => None,
         Some(p) => {

@@ -33,3 +33,22 @@ pub mod signal;
 pub mod simulate;
 
 pub use error::CliError;
+
+/// `writeln!` to stdout, ignoring errors such as a closed pipe (`bwc-simulate ... | head` must
+/// not panic, as `println!` would).
+#[macro_export]
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
+/// [`out!`] without the newline.
+#[macro_export]
+macro_rules! outp {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stdout().lock(), $($arg)*);
+    }};
+}

@@ -11,23 +11,6 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-/// Writes to stdout, ignoring a closed pipe (`... | head` must not panic).
-macro_rules! out {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
-    }};
-}
-
-/// As [`out!`] without the newline.
-#[allow(unused_macros)]
-macro_rules! outp {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = write!(std::io::stdout().lock(), $($arg)*);
-    }};
-}
-
 #[derive(Parser)]
 #[command(
     name = "bwc-identify",
@@ -186,11 +169,11 @@ fn run(
         }
     }
     if json {
-        out!("{}", combined(&reports, &loop_reports));
+        bwc_cli::out!("{}", combined(&reports, &loop_reports));
     } else {
         for r in &reports {
             let p = r.params;
-            out!(
+            bwc_cli::out!(
                 "{} ({}): J1 = {}, J2 = {}, {} evaluations, {:.2} s",
                 r.name,
                 r.model,
@@ -199,18 +182,18 @@ fn run(
                 r.evaluations,
                 r.wall_s
             );
-            outp!("    B_b = {:.6}, Gamma_b = {:.6}, kappa = {:.6}, sigma_b = {:.6e}, n = {:.6}, p = {:.6}", p.b_b, p.gamma_b, p.kappa, p.sigma_b, p.n, p.p);
+            bwc_cli::outp!("    B_b = {:.6}, Gamma_b = {:.6}, kappa = {:.6}, sigma_b = {:.6e}, n = {:.6}, p = {:.6}", p.b_b, p.gamma_b, p.kappa, p.sigma_b, p.n, p.p);
             if r.uses_input_scales {
-                outp!(", U_b = {:.6e}, T_b = {:.6e}", p.u_b, p.t_b);
+                bwc_cli::outp!(", U_b = {:.6e}, T_b = {:.6e}", p.u_b, p.t_b);
             }
-            out!();
+            bwc_cli::out!();
             if let Some(id) = &r.identifiability {
                 let sv: Vec<String> = id
                     .singular_values
                     .iter()
                     .map(|s| format!("{s:.2e}"))
                     .collect();
-                out!(
+                bwc_cli::out!(
                     "    sensitivity singular values [{}]; weakest direction: {}",
                     sv.join(", "),
                     id.weakest_names().join(" + ")
@@ -223,7 +206,7 @@ fn run(
             break;
         }
         let l = r.law;
-        out!(
+        bwc_cli::out!(
             "{} ({}, loops): cost = {:.3e}, {} evaluations, {:.2} s",
             r.name,
             r.model,
@@ -231,7 +214,7 @@ fn run(
             r.evaluations,
             r.wall_s
         );
-        out!(
+        bwc_cli::out!(
             "    k = {:.6e}, c = {:.6e}, n = {:.4}, p = {:.4}, alpha = {:.4}, beta = {:.4e}, gamma = {:.4e}, A = {:.4}",
             l.k, l.c, l.n, l.p, l.alpha, l.beta, l.gamma, l.a
         );

@@ -8,23 +8,6 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-/// Writes to stdout, ignoring a closed pipe (`... | head` must not panic).
-macro_rules! out {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
-    }};
-}
-
-/// As [`out!`] without the newline.
-#[allow(unused_macros)]
-macro_rules! outp {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = write!(std::io::stdout().lock(), $($arg)*);
-    }};
-}
-
 #[derive(Parser)]
 #[command(
     name = "bwc-simulate",
@@ -117,9 +100,9 @@ fn run(
         }
     }
     if json {
-        out!("{}", output::Summary::new(&runs).to_json());
+        bwc_cli::out!("{}", output::Summary::new(&runs).to_json());
     } else {
-        out!(
+        bwc_cli::out!(
             "{:<24} {:>12} {:>16} {:>14} {:>10}",
             "run",
             "e",
@@ -132,7 +115,7 @@ fn run(
                 .t_s
                 .map_or("no separation".to_string(), |t| format!("{t:.9e}"));
             let td = r.t_d.map_or("-".to_string(), |t| format!("{t:.6e}"));
-            out!(
+            bwc_cli::out!(
                 "{:<24} {:>12.9} {:>16} {:>14} {:>10}",
                 r.label(),
                 r.e,

@@ -23,7 +23,7 @@ use bw_models::{
     PhysicalParams, Settings,
 };
 use bwc_ode::{DOP853, DOPRI5, VERN7};
-use raw::{Num, RawBase, RawInput, RawScene, SeqOrMap};
+use raw::{Num, RawBase, RawInput, RawScene, RawSolver, SeqOrMap};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
@@ -433,7 +433,7 @@ impl Scene {
             path: path.to_owned(),
             systems,
             speeds,
-            settings: solver(&ctx, &raw)?,
+            settings: solver_settings(&ctx, &raw.solver, "[solver]", Settings::default())?,
             output: output(&ctx, &raw)?,
         })
     }
@@ -745,10 +745,18 @@ pub(crate) fn signal(
     })
 }
 
-fn solver(ctx: &Ctx, raw: &RawScene) -> Result<Settings, CliError> {
-    let mut s = Settings::default();
-    let Some(sv) = &raw.solver else { return Ok(s) };
+/// Parses a `[solver]`-like table (`method`, `rtol`, `atol`, `max_step`, `t_max`, `max_steps`,
+/// `stop_at_kinks`) over `defaults`.
+pub(crate) fn solver_settings(
+    ctx: &Ctx,
+    table: &Option<Spanned<RawSolver>>,
+    name: &str,
+    defaults: Settings,
+) -> Result<Settings, CliError> {
+    let mut s = defaults;
+    let Some(sv) = table else { return Ok(s) };
     let r = sv.get_ref();
+    let key = |k: &str| format!("{name}.{k}");
     if let Some(m) = &r.method {
         s.method = match m.get_ref().as_str() {
             "dopri5" => &DOPRI5,
@@ -757,29 +765,29 @@ fn solver(ctx: &Ctx, raw: &RawScene) -> Result<Settings, CliError> {
             other => {
                 return Err(ctx.invalid(
                     &m.span(),
-                    "[solver].method",
+                    key("method"),
                     format!("\"{other}\": use \"dopri5\", \"dop853\" or \"vern7\""),
                 ))
             }
         };
     }
-    if let Some(v) = ctx.opt(&r.rtol, "[solver].rtol")? {
+    if let Some(v) = ctx.opt(&r.rtol, &key("rtol"))? {
         s.rtol = v;
     }
-    if let Some(v) = ctx.opt(&r.atol, "[solver].atol")? {
+    if let Some(v) = ctx.opt(&r.atol, &key("atol"))? {
         s.atol = v;
     }
     if let Some(v) = &r.max_step {
         s.max_step = *v.get_ref();
     }
-    if let Some(v) = ctx.opt(&r.t_max, "[solver].t_max")? {
+    if let Some(v) = ctx.opt(&r.t_max, &key("t_max"))? {
         s.t_max = v;
     }
     if let Some(v) = &r.max_steps {
         if *v.get_ref() < 1 {
             return Err(ctx.invalid(
                 &v.span(),
-                "[solver].max_steps",
+                key("max_steps"),
                 format!("{} is not admissible: >= 1", v.get_ref()),
             ));
         }
@@ -789,14 +797,14 @@ fn solver(ctx: &Ctx, raw: &RawScene) -> Result<Settings, CliError> {
         s.stop_at_kinks = *v.get_ref();
     }
     s.validate().map_err(|e| {
-        let span_of = |name: &str| match name {
+        let span_of = |n: &str| match n {
             "rtol" => span(&r.rtol),
             "atol" => span(&r.atol),
             "max_step" => span(&r.max_step),
             "t_max" => span(&r.t_max),
             _ => None,
         };
-        ctx.model_error(e, "[solver]", span_of, &sv.span())
+        ctx.model_error(e, name, span_of, &sv.span())
     })?;
     Ok(s)
 }
