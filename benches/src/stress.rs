@@ -160,7 +160,7 @@ pub fn run(case: &Case) -> Outcome {
             )
         }
     }) {
-        Ok(out) if out.separated() && out.e.is_finite() => {
+        Ok(out) if out.separated() && out.e.is_finite() && out.e >= 0.0 => {
             if unforced && out.e > 1.0 + 1e-9 {
                 (Class::EnergyCreated(out.e), out.stats.rhs_evals)
             } else {

@@ -241,7 +241,9 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
                 let upto = t.min(it.t());
                 grid.emit(&mut it, upto, &mut sink)?;
                 sink(t, &y);
-                let e = model.velocity(&y) / model.impact_speed();
+                // v(t_s) >= 0 by the definition of t_s; the state of the step retaken to end at
+                // t_s may carry a rounding-level negative value, clamped here so that e >= 0.
+                let e = model.velocity(&y).max(0.0) / model.impact_speed();
                 return Ok(Impact {
                     t_s: Some(t),
                     e,
