@@ -301,8 +301,14 @@ pub fn render(
                 message,
             }
         };
-        if f.data.has_cor() {
-            let name = format!("{stem}_cor.svg");
+        // Data points and the model curve of one aggregate quantity against v0.
+        let quantity = |suffix: &str,
+                        title: &str,
+                        ylabel: &str,
+                        cost: String,
+                        data: &dyn Fn(&bwc_identify::Point) -> Option<f64>,
+                        model: &dyn Fn(&Prediction) -> f64| {
+            let name = format!("{stem}_{suffix}.svg");
             let series = [
                 Series {
                     label: "data".into(),
@@ -310,52 +316,39 @@ pub fn render(
                         .data
                         .points
                         .iter()
-                        .filter_map(|p| p.e.map(|e| (p.v0, e)))
+                        .filter_map(|p| data(p).map(|y| (p.v0, y)))
                         .collect(),
                 },
                 Series {
-                    label: format!("{} (J1 = {:.2e})", r.model, r.costs.j1.unwrap_or(f64::NAN)),
-                    points: curve.iter().map(|c| (c.v0, c.e)).collect(),
+                    label: format!("{} ({cost})", r.model),
+                    points: curve.iter().map(|c| (c.v0, model(c))).collect(),
                 },
             ];
-            let svg = plot::chart(
-                &format!("{}: CoR", r.name),
+            plot::chart(
+                &format!("{}: {title}", r.name),
                 "v0 (m/s)",
-                "e",
+                ylabel,
                 &series,
                 false,
                 SeriesLabelPosition::UpperRight,
             )
-            .map_err(perr(name.clone()))?;
-            files.push((name, svg.into_bytes()));
+            .map(|svg| (name.clone(), svg.into_bytes()))
+            .map_err(perr(name))
+        };
+        if f.data.has_cor() {
+            let cost = format!("J1 = {:.2e}", r.costs.j1.unwrap_or(f64::NAN));
+            files.push(quantity("cor", "CoR", "e", cost, &|p| p.e, &|c| c.e)?);
         }
         if f.data.has_durations() && r.uses_input_scales {
-            let name = format!("{stem}_t_d.svg");
-            let series = [
-                Series {
-                    label: "data".into(),
-                    points: f
-                        .data
-                        .points
-                        .iter()
-                        .filter_map(|p| p.t_d.map(|t| (p.v0, t)))
-                        .collect(),
-                },
-                Series {
-                    label: format!("{} (J2 = {:.2e})", r.model, r.costs.j2.unwrap_or(f64::NAN)),
-                    points: curve.iter().map(|c| (c.v0, c.t_d)).collect(),
-                },
-            ];
-            let svg = plot::chart(
-                &format!("{}: contact duration", r.name),
-                "v0 (m/s)",
+            let cost = format!("J2 = {:.2e}", r.costs.j2.unwrap_or(f64::NAN));
+            files.push(quantity(
+                "t_d",
+                "contact duration",
                 "t_d (s)",
-                &series,
-                false,
-                SeriesLabelPosition::UpperRight,
-            )
-            .map_err(perr(name.clone()))?;
-            files.push((name, svg.into_bytes()));
+                cost,
+                &|p| p.t_d,
+                &|c| c.t_d,
+            )?);
         }
         if !r.pareto.is_empty() {
             let name = format!("{stem}_pareto.csv");
