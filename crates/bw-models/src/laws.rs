@@ -24,11 +24,9 @@ fn expect(params: &PhysicalParams, kind: ModelKind) -> Result<(), ModelError> {
     }
 }
 
-/// The Bouc-Wen-Simon-Hunt-Crossley collision law: a nonlinear dashpot in parallel with a
-/// Bouc-Wen element, `ẋ = u`, `ż = A u - β|z|^(n-1) z |u| - γ|z|^n u`,
-/// `F = -α k |x|^(p-1) x - (1-α) k |z|^(p-1) z - c |x|^p u`.
+/// The contact-law parameters both laws use, with the exponents classified once.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Bwshccl {
+pub(crate) struct Coefficients {
     pub(crate) k: f64,
     pub(crate) c: f64,
     pub(crate) alpha: f64,
@@ -39,13 +37,9 @@ pub struct Bwshccl {
     pub(crate) p: Pow,
 }
 
-impl Bwshccl {
-    /// The law with validated SHCCM parameters.
-    ///
-    /// # Errors
-    /// [`ModelError::WrongModel`] for MCM parameters.
-    pub fn new(params: &PhysicalParams) -> Result<Self, ModelError> {
-        expect(params, ModelKind::Shccm)?;
+impl Coefficients {
+    fn new(params: &PhysicalParams, kind: ModelKind) -> Result<Self, ModelError> {
+        expect(params, kind)?;
         let l = params.law();
         Ok(Self {
             k: l.k,
@@ -58,18 +52,34 @@ impl Bwshccl {
             p: Pow::new(l.p),
         })
     }
+}
+
+/// The Bouc-Wen-Simon-Hunt-Crossley collision law: a nonlinear dashpot in parallel with a
+/// Bouc-Wen element, `ẋ = u`, `ż = A u - β|z|^(n-1) z |u| - γ|z|^n u`,
+/// `F = -α k |x|^(p-1) x - (1-α) k |z|^(p-1) z - c |x|^p u`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bwshccl(pub(crate) Coefficients);
+
+impl Bwshccl {
+    /// The law with validated SHCCM parameters.
+    ///
+    /// # Errors
+    /// [`ModelError::WrongModel`] for MCM parameters.
+    pub fn new(params: &PhysicalParams) -> Result<Self, ModelError> {
+        Coefficients::new(params, ModelKind::Shccm).map(Self)
+    }
 
     /// State derivative `(ẋ, ż)` and force `F` at state `(x, z)` with input `u`.
     #[inline]
     pub fn eval(&self, s: &State<2>, u: f64) -> (State<2>, f64) {
+        let c = &self.0;
         let (x, z) = (s[0], s[1]);
-        let xp = self.p.of_abs(x.abs());
-        let zn = self.n.of_abs(z.abs());
-        let f = -self.alpha * self.k * xp.copysign(x)
-            - (1.0 - self.alpha) * self.k * self.p.signed(z)
-            - self.c * xp * u;
+        let xp = c.p.of_abs(x.abs());
+        let zn = c.n.of_abs(z.abs());
+        let f =
+            -c.alpha * c.k * xp.copysign(x) - (1.0 - c.alpha) * c.k * c.p.signed(z) - c.c * xp * u;
         (
-            State::<2>::new(u, hysteresis(self.a, self.beta, self.gamma, z, zn, u)),
+            State::<2>::new(u, hysteresis(c.a, c.beta, c.gamma, z, zn, u)),
             f,
         )
     }
@@ -79,16 +89,7 @@ impl Bwshccl {
 /// `ṙ = (k/c)(α |y|^(p-1) y + (1-α) |z|^(p-1) z)`, `ẏ = u - ṙ`,
 /// `ż = A ẏ - β|z|^(n-1) z |ẏ| - γ|z|^n ẏ`, `F = -c ṙ`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Bwmcl {
-    pub(crate) k: f64,
-    pub(crate) c: f64,
-    pub(crate) alpha: f64,
-    pub(crate) beta: f64,
-    pub(crate) gamma: f64,
-    pub(crate) a: f64,
-    pub(crate) n: Pow,
-    pub(crate) p: Pow,
-}
+pub struct Bwmcl(pub(crate) Coefficients);
 
 impl Bwmcl {
     /// The law with validated MCM parameters.
@@ -96,34 +97,20 @@ impl Bwmcl {
     /// # Errors
     /// [`ModelError::WrongModel`] for SHCCM parameters.
     pub fn new(params: &PhysicalParams) -> Result<Self, ModelError> {
-        expect(params, ModelKind::Mcm)?;
-        let l = params.law();
-        Ok(Self {
-            k: l.k,
-            c: l.c,
-            alpha: l.alpha,
-            beta: l.beta,
-            gamma: l.gamma,
-            a: l.a,
-            n: Pow::new(l.n),
-            p: Pow::new(l.p),
-        })
+        Coefficients::new(params, ModelKind::Mcm).map(Self)
     }
 
     /// State derivative `(ṙ, ẏ, ż)` and force `F` at state `(r, y, z)` with input `u`.
     #[inline]
     pub fn eval(&self, s: &State<3>, u: f64) -> (State<3>, f64) {
+        let c = &self.0;
         let (y, z) = (s[1], s[2]);
-        let f = -self.k * (self.alpha * self.p.signed(y) + (1.0 - self.alpha) * self.p.signed(z));
-        let rdot = -f / self.c;
+        let f = -c.k * (c.alpha * c.p.signed(y) + (1.0 - c.alpha) * c.p.signed(z));
+        let rdot = -f / c.c;
         let ydot = u - rdot;
-        let zn = self.n.of_abs(z.abs());
+        let zn = c.n.of_abs(z.abs());
         (
-            State::<3>::new(
-                rdot,
-                ydot,
-                hysteresis(self.a, self.beta, self.gamma, z, zn, ydot),
-            ),
+            State::<3>::new(rdot, ydot, hysteresis(c.a, c.beta, c.gamma, z, zn, ydot)),
             f,
         )
     }

@@ -56,17 +56,38 @@ fn check_mass_speed(m: f64, v0: f64) -> Result<(), ModelError> {
 // ----------------------------------------------------------------------------------------------
 // Nondimensional models
 
-/// NDBWSHCCM (eq:EBWSHCCM_nd), states `(X, Z, V)`:
-/// `X' = V`, `Z' = V - B|Z|^(n-1) Z |V| - Γ|Z|^n V`,
-/// `V' = -κ|X|^(p-1) X - (1-κ)|Z|^(p-1) Z - σ|X|^p V + U(T)`.
+/// The nondimensional parameters both ND models use, with the exponents classified once.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Ndbwshccm<I> {
+struct NdCoefficients {
     b: f64,
     gamma: f64,
     kappa: f64,
     sigma: f64,
     n: Pow,
     p: Pow,
+}
+
+impl NdCoefficients {
+    fn new(params: &NondimParams, kind: ModelKind) -> Result<Self, ModelError> {
+        expect_nd(params, kind)?;
+        let p = params.get();
+        Ok(Self {
+            b: p.b,
+            gamma: p.gamma,
+            kappa: p.kappa,
+            sigma: p.sigma,
+            n: Pow::new(p.n),
+            p: Pow::new(p.p),
+        })
+    }
+}
+
+/// NDBWSHCCM (eq:EBWSHCCM_nd), states `(X, Z, V)`:
+/// `X' = V`, `Z' = V - B|Z|^(n-1) Z |V| - Γ|Z|^n V`,
+/// `V' = -κ|X|^(p-1) X - (1-κ)|Z|^(p-1) Z - σ|X|^p V + U(T)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ndbwshccm<I> {
+    k: NdCoefficients,
     input: I,
 }
 
@@ -76,15 +97,8 @@ impl<I: Input> Ndbwshccm<I> {
     /// # Errors
     /// [`ModelError::WrongModel`] for NDBWMCM parameters.
     pub fn new(params: &NondimParams, input: I) -> Result<Self, ModelError> {
-        expect_nd(params, ModelKind::Shccm)?;
-        let p = params.get();
         Ok(Self {
-            b: p.b,
-            gamma: p.gamma,
-            kappa: p.kappa,
-            sigma: p.sigma,
-            n: Pow::new(p.n),
-            p: Pow::new(p.p),
+            k: NdCoefficients::new(params, ModelKind::Shccm)?,
             input,
         })
     }
@@ -92,11 +106,11 @@ impl<I: Input> Ndbwshccm<I> {
     #[inline]
     fn parts(&self, y: &State<3>) -> (f64, f64) {
         let (x, z, v) = (y[0], y[1], y[2]);
-        let xp = self.p.of_abs(x.abs());
-        let f = -self.kappa * xp.copysign(x)
-            - (1.0 - self.kappa) * self.p.signed(z)
-            - self.sigma * xp * v;
-        (f, self.n.of_abs(z.abs()))
+        let xp = self.k.p.of_abs(x.abs());
+        let f = -self.k.kappa * xp.copysign(x)
+            - (1.0 - self.k.kappa) * self.k.p.signed(z)
+            - self.k.sigma * xp * v;
+        (f, self.k.n.of_abs(z.abs()))
     }
 }
 
@@ -107,7 +121,7 @@ impl<I: Input> System<3> for Ndbwshccm<I> {
         let v = y[2];
         State::<3>::new(
             v,
-            hysteresis(1.0, self.b, self.gamma, y[1], zn, v),
+            hysteresis(1.0, self.k.b, self.k.gamma, y[1], zn, v),
             f + self.input.at(t),
         )
     }
@@ -152,12 +166,7 @@ impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
 /// `X = R + Y`, `F = -κ|Y|^(p-1) Y - (1-κ)|Z|^(p-1) Z`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ndbwmcm<I> {
-    b: f64,
-    gamma: f64,
-    kappa: f64,
-    sigma: f64,
-    n: Pow,
-    p: Pow,
+    k: NdCoefficients,
     input: I,
 }
 
@@ -167,22 +176,15 @@ impl<I: Input> Ndbwmcm<I> {
     /// # Errors
     /// [`ModelError::WrongModel`] for NDBWSHCCM parameters.
     pub fn new(params: &NondimParams, input: I) -> Result<Self, ModelError> {
-        expect_nd(params, ModelKind::Mcm)?;
-        let p = params.get();
         Ok(Self {
-            b: p.b,
-            gamma: p.gamma,
-            kappa: p.kappa,
-            sigma: p.sigma,
-            n: Pow::new(p.n),
-            p: Pow::new(p.p),
+            k: NdCoefficients::new(params, ModelKind::Mcm)?,
             input,
         })
     }
 
     #[inline]
     fn force_of(&self, y: &State<4>) -> f64 {
-        -self.kappa * self.p.signed(y[1]) - (1.0 - self.kappa) * self.p.signed(y[2])
+        -self.k.kappa * self.k.p.signed(y[1]) - (1.0 - self.k.kappa) * self.k.p.signed(y[2])
     }
 }
 
@@ -190,13 +192,13 @@ impl<I: Input> System<4> for Ndbwmcm<I> {
     #[inline]
     fn rhs(&self, t: f64, y: &State<4>) -> State<4> {
         let f = self.force_of(y);
-        let rdot = -self.sigma * f;
+        let rdot = -self.k.sigma * f;
         let ydot = y[3] - rdot;
-        let zn = self.n.of_abs(y[2].abs());
+        let zn = self.k.n.of_abs(y[2].abs());
         State::<4>::new(
             rdot,
             ydot,
-            hysteresis(1.0, self.b, self.gamma, y[2], zn, ydot),
+            hysteresis(1.0, self.k.b, self.k.gamma, y[2], zn, ydot),
             f + self.input.at(t),
         )
     }
@@ -231,7 +233,7 @@ impl<I: Input> CollisionModel<4> for Ndbwmcm<I> {
         1.0
     }
     fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
-        [y[3] + self.sigma * self.force_of(y), y[2]]
+        [y[3] + self.k.sigma * self.force_of(y), y[2]]
     }
 }
 
@@ -260,13 +262,13 @@ impl NdbwmcmEarlier {
     }
 
     fn rdot(&self, y: &State<4>) -> f64 {
-        -self.inner.sigma * self.inner.force_of(y)
+        -self.inner.k.sigma * self.inner.force_of(y)
     }
 }
 
 impl System<4> for NdbwmcmEarlier {
     fn rhs(&self, _t: f64, y: &State<4>) -> State<4> {
-        let m = &self.inner;
+        let m = &self.inner.k;
         let (yy, z, w) = (y[1], y[2], y[3]);
         let rdot = self.rdot(y);
         let zdot = hysteresis(1.0, m.b, m.gamma, z, m.n.of_abs(z.abs()), w);
@@ -491,14 +493,14 @@ impl BwmcmEarlier {
     }
 
     fn rdot(&self, y: &State<4>) -> f64 {
-        let l = &self.law;
+        let l = &self.law.0;
         l.k / l.c * (l.alpha * l.p.signed(y[1]) + (1.0 - l.alpha) * l.p.signed(y[2]))
     }
 }
 
 impl System<4> for BwmcmEarlier {
     fn rhs(&self, _t: f64, y: &State<4>) -> State<4> {
-        let l = &self.law;
+        let l = &self.law.0;
         let (yy, z, w) = (y[1], y[2], y[3]);
         let rdot = self.rdot(y);
         let zdot = hysteresis(l.a, l.beta, l.gamma, z, l.n.of_abs(z.abs()), w);
@@ -515,7 +517,7 @@ impl CollisionModel<4> for BwmcmEarlier {
         State::<4>::new(0.0, 0.0, 0.0, -self.v0)
     }
     fn force(&self, y: &State<4>) -> f64 {
-        -self.law.c * self.rdot(y)
+        -self.law.0.c * self.rdot(y)
     }
     fn displacement(&self, y: &State<4>) -> f64 {
         y[0] + y[1]

@@ -84,8 +84,8 @@ struct RawFit {
     data: Option<Spanned<String>>,
     objectives: Option<Spanned<RawObjectives>>,
     log: Option<Spanned<Vec<Spanned<String>>>>,
-    bounds: Option<Spanned<RawBounds>>,
-    fixed: Option<Spanned<RawValues>>,
+    bounds: Option<Spanned<RawQuantities<Pair>>>,
+    fixed: Option<Spanned<RawQuantities<Num>>>,
     start: Option<Spanned<RawPoint>>,
     params: Option<Spanned<RawPoint>>,
     input: Option<Spanned<RawInput>>,
@@ -106,36 +106,21 @@ struct RawObjectives {
 
 type Pair = Spanned<Vec<Num>>;
 
+/// Searchable base quantities (`g = Gamma_b / B_b`): bounds (`T = Pair`) or fixed values.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawBounds {
+struct RawQuantities<T> {
     #[serde(rename = "B_b")]
-    b_b: Option<Pair>,
-    g: Option<Pair>,
-    kappa: Option<Pair>,
-    sigma_b: Option<Pair>,
-    n: Option<Pair>,
-    p: Option<Pair>,
+    b_b: Option<T>,
+    g: Option<T>,
+    kappa: Option<T>,
+    sigma_b: Option<T>,
+    n: Option<T>,
+    p: Option<T>,
     #[serde(rename = "U_b")]
-    u_b: Option<Pair>,
+    u_b: Option<T>,
     #[serde(rename = "T_b")]
-    t_b: Option<Pair>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawValues {
-    #[serde(rename = "B_b")]
-    b_b: Option<Num>,
-    g: Option<Num>,
-    kappa: Option<Num>,
-    sigma_b: Option<Num>,
-    n: Option<Num>,
-    p: Option<Num>,
-    #[serde(rename = "U_b")]
-    u_b: Option<Num>,
-    #[serde(rename = "T_b")]
-    t_b: Option<Num>,
+    t_b: Option<T>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -373,7 +358,7 @@ fn parse_fit(
     };
 
     // Bounds and fixed values.
-    let empty_b = RawBounds {
+    let empty_b = RawQuantities {
         b_b: None,
         g: None,
         kappa: None,
@@ -383,7 +368,7 @@ fn parse_fit(
         u_b: None,
         t_b: None,
     };
-    let empty_v = RawValues {
+    let empty_v = RawQuantities {
         b_b: None,
         g: None,
         kappa: None,

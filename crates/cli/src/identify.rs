@@ -541,29 +541,20 @@ pub fn render_loops(
     w.write_record(["v_0", "source", "x", "F"]).map_err(cerr)?;
     let mut series = Vec::new();
     for (l, c) in f.loops.iter().zip(&r.curves) {
-        for (x, force) in l.x.iter().zip(&l.f) {
-            w.write_record([
-                l.v0.to_string(),
-                "data".into(),
-                x.to_string(),
-                force.to_string(),
-            ])
-            .map_err(|source| CliError::Csv {
-                path: out.join(&csv_name),
-                source,
-            })?;
-        }
-        for (x, force) in c {
-            w.write_record([
-                l.v0.to_string(),
-                "model".into(),
-                x.to_string(),
-                force.to_string(),
-            ])
-            .map_err(|source| CliError::Csv {
-                path: out.join(&csv_name),
-                source,
-            })?;
+        let data: Vec<(f64, f64)> = l.x.iter().copied().zip(l.f.iter().copied()).collect();
+        for (source, points) in [("data", &data), ("model", c)] {
+            for (x, force) in points {
+                w.write_record([
+                    l.v0.to_string(),
+                    source.into(),
+                    x.to_string(),
+                    force.to_string(),
+                ])
+                .map_err(|source| CliError::Csv {
+                    path: out.join(&csv_name),
+                    source,
+                })?;
+            }
         }
         series.push(Series {
             label: format!("data, v0 = {} m/s", l.v0),
