@@ -425,44 +425,20 @@ fn parse_fit(
     let bounds_span = r.bounds.as_ref().map_or(t.clone(), |b| b.span());
     for i in 0..8 {
         let key = NAMES[i];
-        params[i] = match (bounds[i], fixed[i]) {
-            (Some(_), Some(x)) => {
-                return Err(ctx.invalid(
-                    &x.span(),
-                    format!("[fit.fixed].{key}"),
-                    "both bounded and fixed: give one",
-                ))
-            }
-            (Some(pair), None) => {
-                if pair.get_ref().len() != 2 {
-                    return Err(ctx.invalid(
-                        &pair.span(),
-                        format!("[fit.bounds].{key}"),
-                        "give [lower, upper]",
-                    ));
-                }
-                let lo = ctx.num(&pair.get_ref()[0], &format!("[fit.bounds].{key}"))?;
-                let hi = ctx.num(&pair.get_ref()[1], &format!("[fit.bounds].{key}"))?;
-                Param::Free {
-                    lo,
-                    hi,
-                    log: log[i],
-                }
-            }
-            (None, Some(x)) => Param::Fixed(ctx.num(x, &format!("[fit.fixed].{key}"))?),
-            (None, None) if i == 7 && known.is_some() => Param::Derived,
-            // U_b and T_b only matter with an input, a duration objective or a known mass.
-            (None, None) if i >= 6 && !uses_input_scales => Param::Fixed(1.0),
-            (None, None) => {
-                return Err(ctx.invalid(
+        params[i] =
+            match param_of(ctx, "fit", key, bounds[i], fixed[i], log[i])? {
+                Some(param) => param,
+                None if i == 7 && known.is_some() => Param::Derived,
+                // U_b and T_b only matter with an input, a duration objective or a known mass.
+                None if i >= 6 && !uses_input_scales => Param::Fixed(1.0),
+                None => return Err(ctx.invalid(
                     &bounds_span,
                     format!("[fit.bounds].{key}"),
                     format!(
                         "missing: give bounds for {key} in [fit.bounds] or a value in [fit.fixed]"
                     ),
-                ))
-            }
-        };
+                )),
+            };
     }
     let space = Space::new(kind, params, known).map_err(|e| match e {
         IdentifyError::Bounds {
@@ -796,21 +772,9 @@ fn parse_loop_fit(
     let mut params = [Param::Fixed(1.0); 8];
     for i in 0..8 {
         let key = LAW_NAMES[i];
-        params[i] = match (bounds[i], fixed[i]) {
-            (Some(_), Some(x)) => return Err(ctx.invalid(&x.span(), format!("[loop_fit.fixed].{key}"), "both bounded and fixed: give one")),
-            (Some(pair), None) => {
-                if pair.get_ref().len() != 2 {
-                    return Err(ctx.invalid(&pair.span(), format!("[loop_fit.bounds].{key}"), "give [lower, upper]"));
-                }
-                let lo = ctx.num(&pair.get_ref()[0], &format!("[loop_fit.bounds].{key}"))?;
-                let hi = ctx.num(&pair.get_ref()[1], &format!("[loop_fit.bounds].{key}"))?;
-                Param::Free { lo, hi, log: log[i] }
-            }
-            (None, Some(x)) => Param::Fixed(ctx.num(x, &format!("[loop_fit.fixed].{key}"))?),
-            (None, None) => {
-                return Err(ctx.invalid(&bounds_span, format!("[loop_fit.bounds].{key}"), format!("missing: give bounds for {key} in [loop_fit.bounds] or a value in [loop_fit.fixed]")))
-            }
-        };
+        params[i] = param_of(ctx, "loop_fit", key, bounds[i], fixed[i], log[i])?.ok_or_else(|| {
+            ctx.invalid(&bounds_span, format!("[loop_fit.bounds].{key}"), format!("missing: give bounds for {key} in [loop_fit.bounds] or a value in [loop_fit.fixed]"))
+        })?;
     }
     let space = LawSpace::new(kind, params).map_err(|e| match e {
         IdentifyError::Bounds {
@@ -877,4 +841,36 @@ fn parse_loop_fit(
         seed,
         params: params_eval,
     })
+}
+
+/// A searchable quantity from `[<table>.bounds].key = [lo, hi]` or `[<table>.fixed].key`
+/// (`None` when neither is given).
+fn param_of(
+    ctx: &Ctx,
+    table: &str,
+    key: &str,
+    bound: &Option<Pair>,
+    fixed: &Option<Num>,
+    log: bool,
+) -> Result<Option<Param>, CliError> {
+    match (bound, fixed) {
+        (Some(_), Some(x)) => Err(ctx.invalid(
+            &x.span(),
+            format!("[{table}.fixed].{key}"),
+            "both bounded and fixed: give one",
+        )),
+        (Some(pair), None) => {
+            let name = format!("[{table}.bounds].{key}");
+            if pair.get_ref().len() != 2 {
+                return Err(ctx.invalid(&pair.span(), name, "give [lower, upper]"));
+            }
+            let lo = ctx.num(&pair.get_ref()[0], &name)?;
+            let hi = ctx.num(&pair.get_ref()[1], &name)?;
+            Ok(Some(Param::Free { lo, hi, log }))
+        }
+        (None, Some(x)) => Ok(Some(Param::Fixed(
+            ctx.num(x, &format!("[{table}.fixed].{key}"))?,
+        ))),
+        (None, None) => Ok(None),
+    }
 }
