@@ -55,6 +55,14 @@ fn cor_evaluation(c: &mut Criterion) {
             Settings::default(),
         ),
         (
+            "bwc DOP853 rtol 1e-10, stops at kinks",
+            Settings {
+                rtol: 1e-10,
+                atol: 1e-12,
+                ..Settings::default()
+            },
+        ),
+        (
             "bwc DOP853 rtol 1e-11, stepping over kinks",
             Settings {
                 method: &DOP853,

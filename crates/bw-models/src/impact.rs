@@ -33,7 +33,7 @@ impl Default for Settings {
     /// DOP853 at rtol 1e-11, atol 1e-13, stopping at the non-smooth points, no step limit,
     /// horizon 1000: the cheapest setting of the work-precision benchmark (BENCHMARKS.md) whose
     /// error in e and T_s stays below 1e-10 on all its cases (both models at Table 3's DSS (1)
-    /// for v0 = 0.5, 2, 5 m/s, the elastic and the Hunt-Crossley limits; worst 1.9e-11).
+    /// for v0 = 0.5, 2, 5 m/s, the elastic and the Hunt-Crossley limits; worst 5.8e-11).
     fn default() -> Self {
         Self {
             method: &DOP853,

@@ -75,9 +75,9 @@ impl Bwshccl {
         let c = &self.0;
         let (x, z) = (s[0], s[1]);
         let xp = c.p.of_abs(x.abs());
-        let zn = c.n.of_abs(z.abs());
+        let (zp, zn) = Pow::pair(z.abs(), c.p, c.n);
         let f =
-            -c.alpha * c.k * xp.copysign(x) - (1.0 - c.alpha) * c.k * c.p.signed(z) - c.c * xp * u;
+            -c.alpha * c.k * xp.copysign(x) - (1.0 - c.alpha) * c.k * zp.copysign(z) - c.c * xp * u;
         (
             State::<2>::new(u, hysteresis(c.a, c.beta, c.gamma, z, zn, u)),
             f,
@@ -105,10 +105,10 @@ impl Bwmcl {
     pub fn eval(&self, s: &State<3>, u: f64) -> (State<3>, f64) {
         let c = &self.0;
         let (y, z) = (s[1], s[2]);
-        let f = -c.k * (c.alpha * c.p.signed(y) + (1.0 - c.alpha) * c.p.signed(z));
+        let (zp, zn) = Pow::pair(z.abs(), c.p, c.n);
+        let f = -c.k * (c.alpha * c.p.signed(y) + (1.0 - c.alpha) * zp.copysign(z));
         let rdot = -f / c.c;
         let ydot = u - rdot;
-        let zn = c.n.of_abs(z.abs());
         (
             State::<3>::new(rdot, ydot, hysteresis(c.a, c.beta, c.gamma, z, zn, ydot)),
             f,

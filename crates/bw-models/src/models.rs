@@ -107,10 +107,11 @@ impl<I: Input> Ndbwshccm<I> {
     fn parts(&self, y: &State<3>) -> (f64, f64) {
         let (x, z, v) = (y[0], y[1], y[2]);
         let xp = self.k.p.of_abs(x.abs());
+        let (zp, zn) = Pow::pair(z.abs(), self.k.p, self.k.n);
         let f = -self.k.kappa * xp.copysign(x)
-            - (1.0 - self.k.kappa) * self.k.p.signed(z)
+            - (1.0 - self.k.kappa) * zp.copysign(z)
             - self.k.sigma * xp * v;
-        (f, self.k.n.of_abs(z.abs()))
+        (f, zn)
     }
 }
 
@@ -182,6 +183,14 @@ impl<I: Input> Ndbwmcm<I> {
         })
     }
 
+    /// Force and `|Z|^n`.
+    #[inline]
+    fn parts(&self, y: &State<4>) -> (f64, f64) {
+        let (zp, zn) = Pow::pair(y[2].abs(), self.k.p, self.k.n);
+        let f = -self.k.kappa * self.k.p.signed(y[1]) - (1.0 - self.k.kappa) * zp.copysign(y[2]);
+        (f, zn)
+    }
+
     #[inline]
     fn force_of(&self, y: &State<4>) -> f64 {
         -self.k.kappa * self.k.p.signed(y[1]) - (1.0 - self.k.kappa) * self.k.p.signed(y[2])
@@ -191,10 +200,9 @@ impl<I: Input> Ndbwmcm<I> {
 impl<I: Input> System<4> for Ndbwmcm<I> {
     #[inline]
     fn rhs(&self, t: f64, y: &State<4>) -> State<4> {
-        let f = self.force_of(y);
+        let (f, zn) = self.parts(y);
         let rdot = -self.k.sigma * f;
         let ydot = y[3] - rdot;
-        let zn = self.k.n.of_abs(y[2].abs());
         State::<4>::new(
             rdot,
             ydot,

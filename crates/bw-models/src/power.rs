@@ -1,4 +1,9 @@
 //! Powers `|x|^p` with cheap paths for the exponents that occur in practice.
+//!
+//! The general path is `2^(p log2 a)` rather than `powf`: about half the cost, and two powers
+//! of the same base share the logarithm ([`Pow::pair`]). The relative error is at most a few
+//! `ε (1 + p |log2 a|)` (the rounding of `log2 a` scaled by the exponent), i.e. `1e-14` for
+//! `a` in `[1e-3, 1e3]` and `p <= 10`, far below any solver tolerance.
 
 /// A fixed exponent `p >= 0`, classified once so that `|x|^p` avoids `powf` where it can
 /// (integers up to 4 by multiplication, half-integers by one `sqrt`).
@@ -56,7 +61,27 @@ impl Pow {
             Kind::Three => a * a * a,
             Kind::Four => (a * a) * (a * a),
             Kind::Half(k) => a.powi(k) * a.sqrt(),
-            Kind::General => a.powf(self.p),
+            Kind::General => (self.p * a.log2()).exp2(),
+        }
+    }
+
+    /// `a^p` given `l = log2 a` (used only on the general path).
+    #[inline]
+    fn of_abs_log2(self, a: f64, l: f64) -> f64 {
+        match self.kind {
+            Kind::General => (self.p * l).exp2(),
+            _ => self.of_abs(a),
+        }
+    }
+
+    /// `(a^p, a^q)` for `a >= 0`, sharing `log2 a` between the general paths.
+    #[inline]
+    pub fn pair(a: f64, p: Self, q: Self) -> (f64, f64) {
+        if p.kind == Kind::General && q.kind == Kind::General {
+            let l = a.log2();
+            (p.of_abs_log2(a, l), q.of_abs_log2(a, l))
+        } else {
+            (p.of_abs(a), q.of_abs(a))
         }
     }
 
@@ -83,18 +108,19 @@ mod tests {
             let e = Pow::new(p);
             for x in [0.0, 1e-300, 1e-8, 0.3, 1.0, 2.7, 1e5] {
                 let want = if p == 0.0 { 1.0 } else { f64::powf(x, p) };
+                // The error bound of the module docs (exact paths: 4 ε).
+                let tol = 4.0 * f64::EPSILON * want * (1.0 + p * x.log2().abs().min(1e3));
                 let got = e.of_abs(x);
-                assert!(
-                    (got - want).abs() <= 4.0 * f64::EPSILON * want,
-                    "p {p} x {x}: {got} vs {want}"
-                );
+                assert!((got - want).abs() <= tol, "p {p} x {x}: {got} vs {want}");
                 if p > 0.0 {
                     let s = e.signed(-x);
-                    assert!(
-                        (s + want).abs() <= 4.0 * f64::EPSILON * want,
-                        "p {p} x {x}: {s}"
-                    );
+                    assert!((s + want).abs() <= tol, "p {p} x {x}: {s}");
                 }
+                let (a, b) = Pow::pair(x, e, Pow::new(2.93));
+                assert!((a - got).abs() <= tol, "pair p {p} x {x}: {a} vs {got}");
+                let want_b = f64::powf(x, 2.93);
+                let tol_b = 4.0 * f64::EPSILON * want_b * (1.0 + 2.93 * x.log2().abs().min(1e3));
+                assert!((b - want_b).abs() <= tol_b, "pair 2.93 x {x}: {b}");
             }
         }
     }

@@ -425,20 +425,21 @@ fn parse_fit(
     let bounds_span = r.bounds.as_ref().map_or(t.clone(), |b| b.span());
     for i in 0..8 {
         let key = NAMES[i];
-        params[i] =
-            match param_of(ctx, "fit", key, bounds[i], fixed[i], log[i])? {
-                Some(param) => param,
-                None if i == 7 && known.is_some() => Param::Derived,
-                // U_b and T_b only matter with an input, a duration objective or a known mass.
-                None if i >= 6 && !uses_input_scales => Param::Fixed(1.0),
-                None => return Err(ctx.invalid(
+        params[i] = match param_of(ctx, "fit", key, bounds[i], fixed[i], log[i])? {
+            Some(param) => param,
+            None if i == 7 && known.is_some() => Param::Derived,
+            // U_b and T_b only matter with an input, a duration objective or a known mass.
+            None if i >= 6 && !uses_input_scales => Param::Fixed(1.0),
+            None => {
+                return Err(ctx.invalid(
                     &bounds_span,
                     format!("[fit.bounds].{key}"),
                     format!(
                         "missing: give bounds for {key} in [fit.bounds] or a value in [fit.fixed]"
                     ),
-                )),
-            };
+                ))
+            }
+        };
     }
     let space = Space::new(kind, params, known).map_err(|e| match e {
         IdentifyError::Bounds {

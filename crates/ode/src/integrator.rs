@@ -30,6 +30,21 @@ impl std::ops::AddAssign for Stats {
     }
 }
 
+/// A rejected trial step, shown to the `aim` hook of [`Integrator::step_aiming`].
+#[derive(Debug, Clone, Copy)]
+pub struct Trial<'a, const N: usize> {
+    /// Start of the trial (the current point).
+    pub t0: f64,
+    /// State at the start.
+    pub y0: &'a State<N>,
+    /// `f(t0, y0)`.
+    pub f0: &'a State<N>,
+    /// End of the trial.
+    pub t1: f64,
+    /// The rejected (inaccurate) solution at the end.
+    pub y1: &'a State<N>,
+}
+
 /// The continuous extension of one accepted step, `y(t)` for `t` in `[t0, t0 + h]`.
 ///
 /// A small `Copy` value (no heap): the event locator evaluates it many times.
@@ -224,6 +239,14 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         self.h
     }
 
+    /// Proposes the size of the next step (e.g. to resume after a stop at a non-smooth point
+    /// with the step size that fitted before it); clipped to the largest step.
+    pub fn propose_step_size(&mut self, h: f64) {
+        if h.is_finite() && h > 0.0 {
+            self.h = h.min(self.max_step);
+        }
+    }
+
     fn eval(&mut self, t: f64, y: &State<N>) -> State<N> {
         self.stats.rhs_evals += 1;
         self.f.rhs(t, y)
@@ -351,6 +374,21 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
     /// [`Error::StepSizeTooSmall`], [`Error::TooManySteps`] or [`Error::NonFiniteState`]; the
     /// integrator stays at the last accepted point.
     pub fn step(&mut self, t_end: f64) -> Result<(), Error> {
+        self.step_aiming(t_end, |_| None)
+    }
+
+    /// As [`Integrator::step`], but after each rejected trial step `aim` may name an instant
+    /// inside the trial (e.g. a predicted non-smooth point that the trial straddled); the next
+    /// trial then ends there instead of where the step-size controller would put it. An aim
+    /// outside the trial, or closer to its start than `1e-6 h`, is ignored.
+    ///
+    /// # Errors
+    /// As [`Integrator::step`].
+    pub fn step_aiming(
+        &mut self,
+        t_end: f64,
+        mut aim: impl FnMut(&Trial<'_, N>) -> Option<f64>,
+    ) -> Result<(), Error> {
         loop {
             if self.stats.accepted + self.stats.rejected >= self.max_steps {
                 return Err(Error::TooManySteps {
@@ -395,10 +433,19 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
             }
             self.stats.rejected += 1;
             self.last_rejected = true;
-            self.h = if err.is_finite() {
-                h / (1.0 / self.ctrl.min_ratio).min(err.powf(self.expo) / self.ctrl.safety)
-            } else {
-                h * 0.1
+            let trial = Trial {
+                t0: self.t,
+                y0: &self.y,
+                f0: &self.f_now,
+                t1: self.t + h,
+                y1: &y1,
+            };
+            self.h = match aim(&trial) {
+                Some(t) if t > self.t + 1e-6 * h && t < self.t + h => t - self.t,
+                _ if err.is_finite() => {
+                    h / (1.0 / self.ctrl.min_ratio).min(err.powf(self.expo) / self.ctrl.safety)
+                }
+                _ => h * 0.1,
             };
         }
     }
@@ -477,8 +524,13 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         self.f_now = self.k[0];
         self.stats.accepted -= 1;
         self.stats.rejected += 1;
+        // Resume after the stop with the controller's proposal for the step after the
+        // original one, not with the (possibly tiny) retaken piece.
+        let proposal = self.h;
         self.h = t_stop - self.t;
-        self.integrate_to(t_stop)
+        self.integrate_to(t_stop)?;
+        self.h = self.h.max(proposal);
+        Ok(())
     }
 
     /// Restarts the integration from `(t, y)` (e.g. after an event changed the state): one RHS

@@ -33,7 +33,7 @@ mod options;
 pub mod tableau;
 
 pub use error::Error;
-pub use integrator::{Dense, Integrator, Stats, MAX_STAGES};
+pub use integrator::{Dense, Integrator, Stats, Trial, MAX_STAGES};
 pub use methods::{DOP853, DOPRI5, VERN7};
 pub use options::{Controller, Options};
 pub use tableau::Tableau;
