@@ -5,7 +5,7 @@ use crate::models::CollisionModel;
 use crate::params::check;
 use crate::{ModelError, State};
 use bwc_events::{Condition, Locator, Step, Switches, Values, MAX_FUNCTIONS};
-use bwc_ode::{Integrator, Options, Stats, Tableau, DOP853};
+use bwc_ode::{Jacobian, Matrix, Method, Options, Solver, Stats, Stepper, System, Tableau, DOP853};
 
 /// Solver settings of an impact. Tolerances, steps and the horizon are in the model's natural
 /// units: nondimensional for the ND models; for SI models they are multiplied by the scales of
@@ -27,6 +27,21 @@ pub struct Settings {
     pub max_steps: u64,
     /// Stop exactly at the non-smooth points of the right-hand side and restart there.
     pub stop_at_kinks: bool,
+    /// What to do about stiffness (a nearly rigid dashpot in the MCM, large `B` and `n`).
+    pub stiffness: Stiffness,
+}
+
+/// How a run treats stiff dynamics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stiffness {
+    /// The explicit `method` throughout (the paper's setup; a stiff run crawls until
+    /// `max_steps`).
+    Ignore,
+    /// The explicit `method` until Hairer's stiffness test fires, then RODAS4 (L-stable
+    /// Rosenbrock, order 4) with the model's Jacobian from that point on (the default).
+    Switch,
+    /// RODAS4 throughout (`method` is not used).
+    Rosenbrock,
 }
 
 impl Default for Settings {
@@ -43,6 +58,7 @@ impl Default for Settings {
             t_max: 1e3,
             max_steps: 1_000_000,
             stop_at_kinks: true,
+            stiffness: Stiffness::Switch,
         }
     }
 }
@@ -57,6 +73,7 @@ impl Settings {
             atol: 1e-12,
             max_step: 1e-2,
             stop_at_kinks: false,
+            stiffness: Stiffness::Ignore,
             ..Self::default()
         }
     }
@@ -105,6 +122,8 @@ pub struct Impact {
     /// Without separation: the time at which the contact had settled (at rest with the force
     /// balancing a constant input, an equilibrium), if the simulation stopped there early.
     pub settled_at: Option<f64>,
+    /// When the run switched to RODAS4 because it had become stiff ([`Stiffness::Switch`]).
+    pub stiff_from: Option<f64>,
     /// Solver statistics.
     pub stats: Stats,
 }
@@ -218,9 +237,13 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
         .with_max_step(settings.max_step * ts)
         .with_max_steps(settings.max_steps);
     let y0 = model.initial_state();
-    let rhs = |t: f64, y: &State<N>| model.rhs(t, y);
+    let method = match settings.stiffness {
+        Stiffness::Ignore => Method::Explicit(settings.method),
+        Stiffness::Switch => Method::SwitchWhenStiff(settings.method),
+        Stiffness::Rosenbrock => Method::Rosenbrock,
+    };
     let mut it =
-        Integrator::new(rhs, settings.method, 0.0, y0, options).map_err(bwc_events::Error::from)?;
+        Solver::new(Rhs(model), method, 0.0, y0, options).map_err(bwc_events::Error::from)?;
     let mut locator = Locator::new(
         Separation(model),
         Kinks {
@@ -250,6 +273,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
                     state: pad(&y),
                     stats: it.stats(),
                     settled_at: None,
+                    stiff_from: it.switched_at(),
                 });
             }
             Step::Continued | Step::Switched { .. } => {
@@ -266,6 +290,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
                         state: pad(it.y()),
                         stats,
                         settled_at: Some(it.t()),
+                        stiff_from: it.switched_at(),
                     });
                 }
             }
@@ -277,7 +302,36 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
         state: pad(it.y()),
         stats: it.stats(),
         settled_at: None,
+        stiff_from: it.switched_at(),
     })
+}
+
+/// A model as the solvers see it: its right-hand side, its Jacobian, autonomous when its input
+/// is constant.
+struct Rhs<'a, M>(&'a M);
+
+impl<M> Clone for Rhs<'_, M> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<M> Copy for Rhs<'_, M> {}
+
+impl<const N: usize, M: CollisionModel<N>> System<N> for Rhs<'_, M> {
+    #[inline]
+    fn rhs(&self, t: f64, y: &State<N>) -> State<N> {
+        self.0.rhs(t, y)
+    }
+}
+
+impl<const N: usize, M: CollisionModel<N>> Jacobian<N> for Rhs<'_, M> {
+    fn jacobian(&self, t: f64, y: &State<N>) -> Matrix<N> {
+        self.0.jacobian(t, y)
+    }
+    fn is_autonomous(&self) -> bool {
+        self.0.input_is_constant()
+    }
 }
 
 /// Most grid samples one impact may produce (a tiny `dt` must not exhaust memory).
@@ -302,9 +356,9 @@ impl GridSampler {
     /// Emits the grid points up to `upto` through the dense output of the last step. (After a
     /// stop at a kink that needed several retaken steps, earlier points of the original step are
     /// evaluated on the last retaken step's polynomial, slightly outside its interval.)
-    fn emit<F: bwc_ode::System<N>, const N: usize>(
+    fn emit<T: Stepper<N>, const N: usize>(
         &mut self,
-        it: &mut Integrator<F, N>,
+        it: &mut T,
         upto: f64,
         sink: &mut impl FnMut(f64, &State<N>),
     ) -> Result<(), ModelError> {

@@ -39,7 +39,7 @@ mod power;
 mod scaling;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
-pub use impact::{impact, simulate, Impact, Sampling, Settings, MAX_SAMPLES};
+pub use impact::{impact, simulate, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES};
 pub use laws::{Bwmcl, Bwshccl};
 pub use models::{
     Bwmcm, BwmcmEarlier, Bwshccm, CollisionModel, Ndbwmcm, NdbwmcmEarlier, Ndbwshccm,

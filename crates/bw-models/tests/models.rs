@@ -6,6 +6,8 @@
 mod alloc_counter;
 #[path = "support/lyapunov.rs"]
 mod lyapunov;
+#[path = "support/stiff.rs"]
+mod stiff;
 
 use bw_models::input::{Arctan, Constant, Zero};
 use bw_models::*;

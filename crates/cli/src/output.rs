@@ -31,6 +31,10 @@ pub struct RunSummary {
     pub rejected: u64,
     /// Located events.
     pub events: u64,
+    /// Jacobian evaluations (RODAS4 steps).
+    pub jacobians: u64,
+    /// When the run switched to RODAS4 because it had become stiff (unit of `t_s`), or null.
+    pub stiff_from: Option<f64>,
     /// `"shccm"` or `"mcm"`.
     pub model: &'static str,
     /// System name, if any.
@@ -62,6 +66,8 @@ impl Summary {
                     accepted: r.stats.accepted,
                     rejected: r.stats.rejected,
                     events: r.stats.events,
+                    jacobians: r.stats.jacobians,
+                    stiff_from: r.stiff_from,
                     model: r.model.name(),
                     name: r.name.clone(),
                     time_unit: r.time_unit,

@@ -30,6 +30,8 @@ pub struct Run {
     pub time_unit: &'static str,
     /// Solver statistics.
     pub stats: Stats,
+    /// When the run switched to RODAS4 because it had become stiff (in the unit of `t_s`).
+    pub stiff_from: Option<f64>,
     /// Sampled trajectory (only when an output asks for it).
     pub trajectory: Vec<Sample>,
 }
@@ -127,6 +129,7 @@ fn run_one(
             t_d: if t_scale.is_some() { t_s } else { None },
             time_unit,
             stats: impact.stats,
+            stiff_from: impact.stiff_from.map(|t| t * t_scale.unwrap_or(1.0)),
             trajectory,
         }
     };

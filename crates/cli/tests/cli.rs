@@ -157,6 +157,36 @@ fn nondimensional_scene_reports_null_speed_and_duration() {
     assert!((run["e"].as_f64().unwrap() - 0.748434931597434).abs() < 1e-9);
 }
 
+/// `method = "rosenbrock"` runs RODAS4 (Jacobian evaluations reported, the Hunt-Crossley answer
+/// kept); a nearly rigid dashpot in the MCM makes the default explicit method switch, reported
+/// as `stiff_from`; `switch_when_stiff = false` keeps the explicit method.
+#[test]
+fn rosenbrock_method_and_the_stiffness_switch() {
+    let dir = scratch("rosenbrock");
+    let hc = dir.join("hc.toml");
+    std::fs::write(&hc, "model = \"shccm\"\n[nondimensional]\nB = 0\nGamma = 0\nkappa = 0.5\nsigma = 0.5\nn = 1\np = 1.5\n[solver]\nmethod = \"rosenbrock\"\n").unwrap();
+    let v = json(&simulate(&["run", hc.to_str().unwrap(), "--json"]));
+    let run = &v["runs"][0];
+    assert!((run["e"].as_f64().unwrap() - 0.748434931597434).abs() < 1e-9);
+    assert!(run["jacobians"].as_u64().unwrap() > 0 && run["stiff_from"].is_null());
+    let stiff = "model = \"mcm\"\n[nondimensional]\nB = 1\nGamma = -0.5\nkappa = 0.5\nsigma = 1e5\nn = 2\np = 1.5\n";
+    let scene = dir.join("stiff.toml");
+    std::fs::write(&scene, stiff).unwrap();
+    let v = json(&simulate(&["run", scene.to_str().unwrap(), "--json"]));
+    let run = &v["runs"][0];
+    assert!(run["stiff_from"].as_f64().unwrap() > 0.0, "{run}");
+    assert!(run["rhs_evals"].as_u64().unwrap() < 20_000, "{run}");
+    std::fs::write(
+        &scene,
+        format!("{stiff}[solver]\nswitch_when_stiff = false\nmax_steps = 20000\n"),
+    )
+    .unwrap();
+    let out = simulate(&["run", scene.to_str().unwrap(), "--json"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("20000 steps"), "{err}");
+}
+
 /// Runs a bad scene: non-zero exit (not a panic), a message naming the file, line and key, and
 /// nothing written to --out.
 fn rejects(name: &str, text: &str, line: Option<usize>, needles: &[&str]) {
@@ -269,7 +299,7 @@ fn bad_scenes_are_clear_errors() {
         "bad-method",
         &format!("{GOOD_PHYSICAL}[solver]\nmethod = \"euler\"\n"),
         Some(14),
-        &["[solver].method", "euler"],
+        &["[solver].method", "euler", "rosenbrock"],
     );
     rejects(
         "bad-rtol",

@@ -1,7 +1,8 @@
 //! # bwc-events: event location on Runge-Kutta dense output
 //!
-//! Drives a [`bwc_ode::Integrator`] step by step and, inside each accepted step, locates on the
-//! step's dense output:
+//! Drives an integrator ([`bwc_ode::Stepper`]: explicit, Rosenbrock, or a solver switching
+//! between them) step by step and, inside each accepted step, locates on the step's dense
+//! output:
 //!
 //! * **terminal conditions** ([`Condition`]): a set of states described by signs of up to
 //!   [`MAX_FUNCTIONS`] boundary functions; the event is the *infimum* of the instants where the
@@ -39,7 +40,7 @@ mod root;
 
 pub use root::{class, find_crossing, Bracket};
 
-use bwc_ode::{Integrator, State, System};
+use bwc_ode::{State, Stepper};
 
 /// A step ending within this many noise floors of a switching point stops there (no retake).
 const LANDING: f64 = 100.0;
@@ -260,9 +261,9 @@ impl<C, S> Locator<C, S> {
     /// # Errors
     /// [`Error::Solver`] when the integration fails, [`Error::TooManyFunctions`] for a condition
     /// or switch set with more than [`MAX_FUNCTIONS`] functions.
-    pub fn step<F: System<N>, const N: usize>(
+    pub fn step<T: Stepper<N>, const N: usize>(
         &mut self,
-        it: &mut Integrator<F, N>,
+        it: &mut T,
         t_end: f64,
     ) -> Result<Step<N>, Error>
     where
@@ -305,7 +306,7 @@ impl<C, S> Locator<C, S> {
         // Stop at a switching point predicted just ahead (if the step would reach it).
         let pending = self.pending.take().filter(|(_, t)| *t > t0 && *t < t_end);
         let t_stop = pending.map_or(t_end, |(_, t)| t);
-        it.step_aiming(t_stop, |trial| aim.after_rejection(switches, trial))?;
+        it.step_aiming(t_stop, &mut |trial| aim.after_rejection(switches, trial))?;
         let (t1, y1) = (it.t(), *it.y());
         let g_end = self.condition.values(t1, &y1);
         let s_end = self.switches.values(t1, &y1);
@@ -425,7 +426,7 @@ impl<C, S> Locator<C, S> {
 
     /// After a stop at a switching point: resume with the step size that fitted before it
     /// (the controller's proposal after the short steps that closed in on the point is tiny).
-    fn resume<F: System<N>, const N: usize>(&mut self, it: &mut Integrator<F, N>) {
+    fn resume<T: Stepper<N>, const N: usize>(&mut self, it: &mut T) {
         it.propose_step_size(it.next_step_size().max(self.resume_h));
         self.resume_h = 0.0;
     }
@@ -434,9 +435,9 @@ impl<C, S> Locator<C, S> {
     ///
     /// # Errors
     /// As [`Locator::step`].
-    pub fn run<F: System<N>, const N: usize>(
+    pub fn run<T: Stepper<N>, const N: usize>(
         &mut self,
-        it: &mut Integrator<F, N>,
+        it: &mut T,
         t_end: f64,
     ) -> Result<Outcome<N>, Error>
     where

@@ -19,6 +19,8 @@ pub struct Stats {
     pub rejected: u64,
     /// Events located (switching points and terminal events).
     pub events: u64,
+    /// Jacobian evaluations (implicit methods only).
+    pub jacobians: u64,
 }
 
 impl std::ops::AddAssign for Stats {
@@ -27,6 +29,7 @@ impl std::ops::AddAssign for Stats {
         self.accepted += o.accepted;
         self.rejected += o.rejected;
         self.events += o.events;
+        self.jacobians += o.jacobians;
     }
 }
 
@@ -58,6 +61,20 @@ pub struct Dense<const N: usize> {
 }
 
 impl<const N: usize> Dense<N> {
+    /// The interpolant `y0 + θ (F_0 + (1-θ)(F_1 + θ (F_2 + ...)))` of a step `[t0, t0 + h]` from
+    /// its rows `F_r` (at most 8).
+    pub(crate) fn from_rows(t0: f64, h: f64, y0: State<N>, rows: &[State<N>]) -> Self {
+        let mut all = [State::zeros(); MAX_ROWS];
+        all[..rows.len()].copy_from_slice(rows);
+        Self {
+            t0,
+            h,
+            y0,
+            rows: all,
+            len: rows.len(),
+        }
+    }
+
     /// Start of the step.
     pub fn t0(&self) -> f64 {
         self.t0
@@ -125,6 +142,12 @@ pub struct Integrator<F, const N: usize> {
     fac_old: f64,
     last_rejected: bool,
     stats: Stats,
+    // Hairer's stiffness test: stability-limited steps so far, and non-limited ones in a row.
+    stiff_steps: u32,
+    nonstiff_steps: u32,
+    h_lambda: f64,
+    /// The point at which the stiffness test's stage was evaluated in the last step.
+    y_stiff: State<N>,
 }
 
 impl<F: System<N>, const N: usize> Integrator<F, N> {
@@ -174,6 +197,10 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
             fac_old: 1e-4,
             last_rejected: false,
             stats: Stats::default(),
+            stiff_steps: 0,
+            nonstiff_steps: 0,
+            h_lambda: 0.0,
+            y_stiff: State::zeros(),
         };
         it.f_now = it.eval(t0, &y0);
         if !it.f_now.iter().all(|v| v.is_finite()) {
@@ -292,6 +319,9 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         self.k[0] = self.f_now;
         for i in 1..tab.stages {
             let yi = self.combine(&self.y, tab.a[i], h);
+            if i == tab.stiffness.stage {
+                self.y_stiff = yi;
+            }
             self.k[i] = self.eval(self.t + tab.c[i] * h, &yi);
         }
         if tab.fsal < tab.stages {
@@ -357,6 +387,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
                 state: self.snapshot(),
             });
         }
+        self.stiffness_test(h, &y1, &f1);
         self.t_prev = self.t;
         self.y_prev = self.y;
         self.h_prev = h;
@@ -366,6 +397,38 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         self.dense_ready = false;
         self.stats.accepted += 1;
         Ok(())
+    }
+
+    /// Hairer's stiffness test on the step just accepted (see [`crate::tableau::StiffnessTest`]).
+    fn stiffness_test(&mut self, h: f64, y1: &State<N>, f1: &State<N>) {
+        let test = self.tab.stiffness;
+        let den = (y1 - self.y_stiff).norm_squared();
+        if den <= 0.0 {
+            return;
+        }
+        let h_lambda = h.abs() * ((f1 - self.k[test.stage]).norm_squared() / den).sqrt();
+        self.h_lambda = h_lambda;
+        if h_lambda > test.bound {
+            self.stiff_steps += 1;
+            self.nonstiff_steps = 0;
+        } else {
+            self.nonstiff_steps += 1;
+            if self.nonstiff_steps == 6 {
+                self.stiff_steps = 0;
+            }
+        }
+    }
+
+    /// Whether Hairer's stiffness test has fired: 15 accepted steps limited by stability (`h |λ|`
+    /// beyond the method's real stability boundary) without 6 in a row that were not.
+    pub fn is_stiff(&self) -> bool {
+        self.stiff_steps >= 15
+    }
+
+    /// The estimate `h |λ|` of the stiffness test on the last accepted step (0 before the
+    /// first step).
+    pub fn h_lambda(&self) -> f64 {
+        self.h_lambda
     }
 
     /// Takes one accepted adaptive step, ending at `t_end` at the latest.

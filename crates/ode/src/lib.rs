@@ -1,4 +1,4 @@
-//! # bwc-ode: embedded Runge-Kutta solvers for small fixed-size systems
+//! # bwc-ode: embedded Runge-Kutta and Rosenbrock solvers for small fixed-size systems
 //!
 //! Explicit embedded Runge-Kutta pairs as data ([`Tableau`]) driven by one stepping engine
 //! ([`Integrator`]), on stack-allocated states `State<N> = nalgebra::SVector<f64, N>`:
@@ -8,7 +8,13 @@
 //! * [`VERN7`]: Verner's efficient 7(6) with its 7th-order interpolant (6 extra stages, lazily).
 //!
 //! Step control follows Hairer (scaled RMS error norm with `sc_i = atol_i + rtol_i max(|y_i|,
-//! |y1_i|)`, DOP853's combined 5th/3rd-order norm, Hairer's initial step, I or PI controller).
+//! |y1_i|)`, DOP853's combined 5th/3rd-order norm, Hairer's initial step, I or PI controller),
+//! and so does the stiffness test ([`Integrator::is_stiff`]).
+//!
+//! For stiff problems, [`Rosenbrock`] is RODAS4 (L-stable, order 4(3), 3rd-order dense output)
+//! with the system's [`Jacobian`]; [`Solver`] starts with an explicit method and switches to it
+//! when the stiffness test fires ([`Method`]). All three implement [`Stepper`], the interface
+//! event location works on.
 //! Nothing is allocated per step or per solve; failures are values ([`Error`]) carrying the time
 //! and state where they happened. Integration can stop at any instant inside a step
 //! ([`Integrator::retake_to`]) and restart ([`Integrator::restart`]): the `bwc-events` crate
@@ -30,12 +36,16 @@ mod error;
 mod integrator;
 mod methods;
 mod options;
+mod rosenbrock;
+mod stepper;
 pub mod tableau;
 
 pub use error::Error;
 pub use integrator::{Dense, Integrator, Stats, Trial, MAX_STAGES};
 pub use methods::{DOP853, DOPRI5, VERN7};
 pub use options::{Controller, Options};
+pub use rosenbrock::{Jacobian, Matrix, Rosenbrock};
+pub use stepper::{Method, Solver, Stepper};
 pub use tableau::Tableau;
 
 /// A state of `N` components on the stack.

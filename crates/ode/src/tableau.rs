@@ -65,6 +65,21 @@ pub struct Tableau {
     pub interpolant: Interpolant,
     /// Default `β` of the PI step-size controller (Hairer's stabilisation; 0 for plain I control).
     pub default_beta: f64,
+    /// Hairer's stiffness test for this method.
+    pub stiffness: StiffnessTest,
+}
+
+/// Hairer's stiffness test (dopri5.f, dop853.f): after an accepted step, `h |λ|` is estimated
+/// as `h ‖f(t + h, y_1) - k_s‖ / ‖y_1 - Y_s‖` from a stage `s` with `c_s = 1` evaluated at a
+/// point `Y_s` other than `y_1`. Above `bound` (where the real axis leaves the method's stability
+/// region) the step size is limited by stability rather than accuracy; 15 such steps without 6
+/// in a row below it make the problem stiff.
+#[derive(Debug, Clone, Copy)]
+pub struct StiffnessTest {
+    /// The stage `s` (with `c_s = 1`, not the fsal stage).
+    pub stage: usize,
+    /// Where the method's stability region ends on the negative real axis (`|h λ|`).
+    pub bound: f64,
 }
 
 impl Tableau {
@@ -118,6 +133,8 @@ mod tests {
                     assert!(e3.iter().sum::<f64>().abs() < 1e-14);
                 }
             }
+            assert_eq!(t.c[t.stiffness.stage], 1.0, "{}", t.name);
+            assert!(t.stiffness.stage < t.stages && t.stiffness.stage != t.fsal);
             // Dense output at θ = 1 equals y_1: w_0(1) = 1 and w_r(1) = 0 otherwise, so D_0 = b.
             for j in 0..s {
                 let w1 = t.interpolant.rows[0][j];
@@ -128,6 +145,33 @@ mod tests {
                     t.name
                 );
             }
+        }
+    }
+
+    /// The stiffness bounds are where |R(z)| first exceeds 1 on the negative real axis, R the
+    /// stability polynomial `1 + z b^T (I - z A)^-1 1`, or just inside (Hairer's 3.25 for
+    /// DOPRI5, whose boundary is 3.307; 6.1 for DOP853).
+    #[test]
+    fn stiffness_bounds_are_the_real_stability_boundaries() {
+        for t in all() {
+            let r = |z: f64| {
+                let mut y = vec![0.0; t.stages];
+                for i in 0..t.stages {
+                    y[i] = 1.0 + z * t.a[i].iter().zip(&y).map(|(a, y)| a * y).sum::<f64>();
+                }
+                1.0 + z * t.b.iter().zip(&y).map(|(b, y)| b * y).sum::<f64>()
+            };
+            let boundary = (1..200_000)
+                .map(|i| i as f64 * 1e-4)
+                .find(|s| r(-s).abs() > 1.0 + 1e-12)
+                .unwrap();
+            // Hairer's constants sit just inside the boundary.
+            assert!(
+                t.stiffness.bound <= boundary && t.stiffness.bound > 0.95 * boundary,
+                "{}: boundary {boundary} vs {}",
+                t.name,
+                t.stiffness.bound
+            );
         }
     }
 }

@@ -9,7 +9,8 @@
 //! # ...
 //! [input]                    # optional: constant | gravity | arctan | table | sum
 //! kind = "gravity"
-//! [solver]                   # optional: method, rtol, atol, max_step, t_max, max_steps, stop_at_kinks
+//! [solver]                   # optional: method, rtol, atol, max_step, t_max, max_steps, stop_at_kinks,
+//!                            #   switch_when_stiff
 //! [output]                   # optional: trajectory, dt, loops, sweep, plots
 //! ```
 
@@ -20,7 +21,7 @@ use crate::CliError;
 use bw_models::input::{Arctan, Table};
 use bw_models::{
     BaseMap, BaseParams, Bodies, ModelError, ModelKind, Nondim, NondimParams, Physical,
-    PhysicalParams, Settings,
+    PhysicalParams, Settings, Stiffness,
 };
 use bwc_ode::{DOP853, DOPRI5, VERN7};
 use raw::{Num, RawBase, RawInput, RawScene, RawSolver, SeqOrMap};
@@ -746,7 +747,7 @@ pub(crate) fn signal(
 }
 
 /// Parses a `[solver]`-like table (`method`, `rtol`, `atol`, `max_step`, `t_max`, `max_steps`,
-/// `stop_at_kinks`) over `defaults`.
+/// `stop_at_kinks`, `switch_when_stiff`) over `defaults`.
 pub(crate) fn solver_settings(
     ctx: &Ctx,
     table: &Option<Spanned<RawSolver>>,
@@ -758,18 +759,28 @@ pub(crate) fn solver_settings(
     let r = sv.get_ref();
     let key = |k: &str| format!("{name}.{k}");
     if let Some(m) = &r.method {
-        s.method = match m.get_ref().as_str() {
-            "dopri5" => &DOPRI5,
-            "dop853" => &DOP853,
-            "vern7" => &VERN7,
+        match m.get_ref().as_str() {
+            "dopri5" => s.method = &DOPRI5,
+            "dop853" => s.method = &DOP853,
+            "vern7" => s.method = &VERN7,
+            "rosenbrock" => s.stiffness = Stiffness::Rosenbrock,
             other => {
                 return Err(ctx.invalid(
                     &m.span(),
                     key("method"),
-                    format!("\"{other}\": use \"dopri5\", \"dop853\" or \"vern7\""),
+                    format!("\"{other}\": use \"dopri5\", \"dop853\", \"vern7\" or \"rosenbrock\""),
                 ))
             }
         };
+    }
+    if let Some(v) = &r.switch_when_stiff {
+        if s.stiffness != Stiffness::Rosenbrock {
+            s.stiffness = if *v.get_ref() {
+                Stiffness::Switch
+            } else {
+                Stiffness::Ignore
+            };
+        }
     }
     if let Some(v) = ctx.opt(&r.rtol, &key("rtol"))? {
         s.rtol = v;

@@ -185,6 +185,7 @@ pub struct RawSolver {
     pub t_max: Option<Num>,
     pub max_steps: Option<Spanned<i64>>,
     pub stop_at_kinks: Option<Spanned<bool>>,
+    pub switch_when_stiff: Option<Spanned<bool>>,
 }
 
 #[derive(Debug, Deserialize)]

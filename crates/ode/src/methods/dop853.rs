@@ -3,7 +3,7 @@
 //! Coefficients as published with Hairer's `dop853.f` (Hairer, Nørsett & Wanner, *Solving
 //! Ordinary Differential Equations I*, 2nd ed., Springer 1993, Sec. II.10), to 30 digits.
 
-use crate::tableau::{ErrorEstimate, Interpolant, Tableau};
+use crate::tableau::{ErrorEstimate, Interpolant, StiffnessTest, Tableau};
 
 /// Weights of the 8th-order solution.
 const B: [f64; 12] = [
@@ -351,4 +351,8 @@ pub static DOP853: Tableau = Tableau {
         ],
     },
     default_beta: 0.0,
+    stiffness: StiffnessTest {
+        stage: 11,
+        bound: 6.1,
+    },
 };

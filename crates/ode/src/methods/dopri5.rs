@@ -4,7 +4,7 @@
 //! Math. 6 (1980) 19-26; dense output as in Hairer's `dopri5.f` (Hairer, Nørsett & Wanner,
 //! *Solving ODEs I*, Sec. II.6).
 
-use crate::tableau::{ErrorEstimate, Interpolant, Tableau};
+use crate::tableau::{ErrorEstimate, Interpolant, StiffnessTest, Tableau};
 
 const B: [f64; 7] = [
     35.0 / 384.0,
@@ -85,4 +85,8 @@ pub static DOPRI5: Tableau = Tableau {
         ],
     },
     default_beta: 0.04,
+    stiffness: StiffnessTest {
+        stage: 5,
+        bound: 3.25,
+    },
 };

@@ -4,7 +4,7 @@
 //! Numer. Algorithms 53 (2010) 383-396, file RKV76.IIa.Efficient.00001675585.081206 of his
 //! collection, to 40 digits.
 
-use crate::tableau::{ErrorEstimate, Interpolant, Tableau};
+use crate::tableau::{ErrorEstimate, Interpolant, StiffnessTest, Tableau};
 
 /// Verner 7(6): 10 stages per step, 6 more for the 7th-order interpolant (the first of them,
 /// stage 10, is `f(t + h, y_1)` and is reused by the next step).
@@ -342,4 +342,8 @@ pub static VERN7: Tableau = Tableau {
         ],
     },
     default_beta: 0.0,
+    stiffness: StiffnessTest {
+        stage: 9,
+        bound: 4.5,
+    },
 };
