@@ -68,6 +68,10 @@ pub struct Outcome {
     pub seconds: f64,
     /// RHS evaluations (0 when not simulated).
     pub rhs_evals: u64,
+    /// Whether the run switched to RODAS4 (stiffness detected).
+    pub switched: bool,
+    /// Coefficient of restitution and separation time of a run that ended without a failure.
+    pub result: Option<(f64, Option<f64>)>,
 }
 
 fn log_uniform(rng: &mut impl Rng, lo: f64, hi: f64) -> f64 {
@@ -135,31 +139,48 @@ pub fn sample(seed: u64, i: u64) -> Case {
     }
 }
 
-/// Runs one case: horizon 100 (nondimensional), at most 200,000 steps.
-pub fn run(case: &Case) -> Outcome {
-    let clock = Instant::now();
-    let settings = Settings {
+/// The sweep's settings: the defaults with horizon 100 (nondimensional) and at most 200,000
+/// steps.
+pub fn settings() -> Settings {
+    Settings {
         t_max: 100.0,
         max_steps: 200_000,
         ..Settings::default()
-    };
+    }
+}
+
+/// Runs one case with the sweep's [`settings`].
+pub fn run(case: &Case) -> Outcome {
+    run_with(case, &settings())
+}
+
+/// Runs one case with `settings`.
+pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
+    let clock = Instant::now();
     let (a, b, w) = case.input;
     let u = FromFn(move |t: f64| a + b * (w * t).sin());
     let unforced = a == 0.0 && b == 0.0;
-    let (class, evals) = match BaseMap::new(case.kind, case.base).and_then(|map| {
-        // Nondimensional input of magnitude |U| <= 10 at every speed: scale u by 1 / U_factor.
-        let (_, s) = map.at(case.v0)?;
-        if b == 0.0 {
-            impact_at(&map, Constant(a / s.factor), case.v0, &settings)
-        } else {
-            impact_at(
-                &map,
-                FromFn(move |t: f64| u.at(t) / s.factor),
-                case.v0,
-                &settings,
-            )
-        }
-    }) {
+    let mut switched = false;
+    let mut result = None;
+    let (class, evals) = match BaseMap::new(case.kind, case.base)
+        .and_then(|map| {
+            // Nondimensional input of magnitude |U| <= 10 at every speed: scale u by 1 / U_factor.
+            let (_, s) = map.at(case.v0)?;
+            if b == 0.0 {
+                impact_at(&map, Constant(a / s.factor), case.v0, settings)
+            } else {
+                impact_at(
+                    &map,
+                    FromFn(move |t: f64| u.at(t) / s.factor),
+                    case.v0,
+                    settings,
+                )
+            }
+        })
+        .inspect(|out| {
+            switched = out.stiff_from.is_some();
+            result = Some((out.e, out.t_s));
+        }) {
         Ok(out) if out.separated() && out.e.is_finite() && out.e >= 0.0 => {
             if unforced && out.e > 1.0 + 1e-9 {
                 (Class::EnergyCreated(out.e), out.stats.rhs_evals)
@@ -190,6 +211,8 @@ pub fn run(case: &Case) -> Outcome {
         class,
         seconds: clock.elapsed().as_secs_f64(),
         rhs_evals: evals,
+        switched,
+        result,
     }
 }
 

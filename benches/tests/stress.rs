@@ -1,10 +1,12 @@
 //! A small sample of the stress sweep (the full one runs by hand: see STABILITY.md).
 
-use bwc_benches::stress::{sample, sweep, Class};
+use bw_models::{Settings, Stiffness};
+use bwc_benches::stress::{run_with, sample, settings, sweep, Class};
 
 /// Every case ends in a known class: separated with finite T_s and 0 <= e (<= 1 + 1e-9 without
 /// input), no separation, or a classified solver failure; never energy created, never an
-/// unclassified error; sampling is deterministic.
+/// unclassified error; sampling is deterministic. Runs that turned stiff and switched to RODAS4
+/// agree with RODAS4 throughout.
 #[test]
 fn stress_sample_is_classified() {
     let outcomes = sweep(7, 300);
@@ -19,6 +21,30 @@ fn stress_sample_is_classified() {
         }
     }
     assert!(separated > 200, "{separated} of 300 separated");
+    // Runs that switched to RODAS4 and separated agree with RODAS4 throughout (an independent
+    // path for the whole contact): e to 1e-8, T_s to 1e-5 relative (long stiff contacts).
+    let mut compared = 0;
+    for (i, o) in outcomes.iter().enumerate() {
+        let (true, Some((e, Some(ts)))) = (o.switched, o.result) else {
+            continue;
+        };
+        let rodas = Settings {
+            stiffness: Stiffness::Rosenbrock,
+            ..settings()
+        };
+        let r = run_with(&sample(7, i as u64), &rodas);
+        let Some((e2, Some(ts2))) = r.result else {
+            panic!("RODAS4 throughout: {:?} for {:?}", r.class, o.case);
+        };
+        assert!((e - e2).abs() < 1e-8, "e {e} vs {e2} for {:?}", o.case);
+        assert!(
+            (ts - ts2).abs() < 1e-5 * ts,
+            "T_s {ts} vs {ts2} for {:?}",
+            o.case
+        );
+        compared += 1;
+    }
+    assert!(compared > 0, "no run of the sample switched to RODAS4");
     assert_eq!(sample(7, 42), sample(7, 42));
     assert_ne!(sample(7, 42), sample(7, 43));
 }

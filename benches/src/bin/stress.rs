@@ -19,28 +19,30 @@ fn main() {
     let clock = Instant::now();
     let outcomes = sweep(seed, count);
     let wall = clock.elapsed().as_secs_f64();
-    let mut classes: BTreeMap<&str, (usize, f64, f64)> = BTreeMap::new();
+    let mut classes: BTreeMap<&str, (usize, f64, f64, usize)> = BTreeMap::new();
     for o in &outcomes {
         let e = classes.entry(o.class.name()).or_default();
         e.0 += 1;
         e.1 += o.seconds;
         e.2 = e.2.max(o.seconds);
+        e.3 += usize::from(o.switched);
     }
     bwc_cli::out!(
         "# {count} cases, seed {seed}, {wall:.1} s wall ({} threads)",
         rayon::current_num_threads()
     );
     bwc_cli::out!(
-        "{:<32} {:>8} {:>8} {:>12} {:>10}",
+        "{:<32} {:>8} {:>8} {:>12} {:>10} {:>10}",
         "class",
         "count",
         "share",
         "mean_ms",
-        "max_ms"
+        "max_ms",
+        "to_RODAS4"
     );
-    for (name, (n, total, max)) in &classes {
+    for (name, (n, total, max, switched)) in &classes {
         bwc_cli::out!(
-            "{name:<32} {n:>8} {:>7.3}% {:>12.3} {:>10.1}",
+            "{name:<32} {n:>8} {:>7.3}% {:>12.3} {:>10.1} {switched:>10}",
             100.0 * *n as f64 / count as f64,
             1e3 * total / *n as f64,
             1e3 * max

@@ -5,7 +5,11 @@
 //! * NDBWSHCCM and NDBWMCM at Table 3's DSS (1), v0 in {0.5, 2, 5} m/s (errors against a
 //!   reference at rtol 1e-14; evaluations and time summed over the speeds);
 //! * the elastic limit (p = 2.5: T_s = 3.16983185381971, e = 1) and the Hunt-Crossley limit
-//!   (sigma = 0.5: e = 0.748434931597434), where the answer is known exactly.
+//!   (sigma = 0.5: e = 0.748434931597434), where the answer is known exactly;
+//! * a stiff MCM case from the stress sweep, where the explicit methods run with the switch to
+//!   RODAS4 (method names `...>R`).
+//!
+//! Methods: DOPRI5, DOP853, Vern7 and RODAS4 (Rosenbrock, `Stiffness::Rosenbrock`).
 //!
 //! Side by side in the same run: the paper's setup in SciPy (benches/scipy_cor.py, skipped with a
 //! message when python3 is absent). Writes `cor.csv` and SVG plots into the directory given as
@@ -14,10 +18,13 @@
 //! `cargo run --release -p bwc-benches --bin work-precision-cor [-- OUT_DIR]`
 
 use bw_models::input::Zero;
-use bw_models::{impact, BaseMap, Impact, ModelKind, Ndbwshccm, Nondim, NondimParams, Settings};
+use bw_models::{
+    impact, impact_at, BaseMap, BaseParams, Impact, ModelKind, Ndbwshccm, Nondim, NondimParams,
+    Settings, Stiffness,
+};
 use bwc_benches::{cor, median_seconds};
 use bwc_cli::plot::{chart, Series, SeriesLabelPosition};
-use bwc_ode::{tableau, VERN7};
+use bwc_ode::{tableau, DOP853, VERN7};
 use std::fmt::Write as _;
 
 type Case = (
@@ -89,15 +96,71 @@ fn main() {
         vec![(Some(0.748434931597434158), None)],
     ));
 
+    // A stiff case from the stress sweep (MCM, n = 8.7, kappa = 9e-4, v0 = 124 m/s): explicit
+    // methods alone exhaust 10^6 steps; they run here with the switch to RODAS4. Reference:
+    // RODAS4 at rtol 1e-13 (checked against DOP853 switching at rtol 1e-13).
+    let stiff_map = BaseMap::new(
+        ModelKind::Mcm,
+        BaseParams {
+            b_b: 0.7701717736752235,
+            gamma_b: -0.7701717736752235,
+            kappa: 0.0009339372916279058,
+            sigma_b: 2.468383259716545,
+            n: 8.731291903102164,
+            p: 1.5573680392509233,
+            u_b: 1.0,
+            t_b: 1.0,
+        },
+    )
+    .unwrap();
+    let stiff_v0 = 123.65181439237939;
+    let stiff_run = move |s: &Settings| vec![impact_at(&stiff_map, Zero, stiff_v0, s).unwrap()];
+    let tight_with = |stiffness| Settings {
+        rtol: 1e-13,
+        atol: 1e-15,
+        stiffness,
+        ..Settings::default()
+    };
+    let stiff_ref = stiff_run(&tight_with(Stiffness::Rosenbrock))[0];
+    let stiff_check = stiff_run(&tight_with(Stiffness::Switch))[0];
+    println!(
+        "# stiff case reference: e = {:.15}, T_s = {:.15}; DOP853 switching at rtol 1e-13 \
+         differs by {:.1e} in e and {:.1e} in T_s",
+        stiff_ref.e,
+        stiff_ref.t_s.unwrap(),
+        (stiff_check.e - stiff_ref.e).abs(),
+        (stiff_check.t_s.unwrap() - stiff_ref.t_s.unwrap()).abs()
+    );
+    cases.push((
+        "mcm_stiff",
+        Box::new(stiff_run),
+        vec![(Some(stiff_ref.e), stiff_ref.t_s)],
+    ));
+
     let mut csv = String::from("case,method,kinks,rtol,err_e,err_Ts,rhs_evals,time_us\n");
     println!(
-        "{:<18} {:<7} {:<6} {:>7} {:>10} {:>10} {:>8} {:>9}",
+        "{:<18} {:<9} {:<6} {:>7} {:>10} {:>10} {:>8} {:>9}",
         "case", "method", "kinks", "rtol", "err_e", "err_Ts", "evals", "time_us"
     );
     for (name, run, refs) in &cases {
         let mut by_evals = Vec::new();
         let mut by_time = Vec::new();
-        for tab in tableau::all() {
+        // Explicit methods alone, or (on the stiff case) switching to RODAS4; RODAS4 throughout.
+        let explicit = if *name == "mcm_stiff" {
+            Stiffness::Switch
+        } else {
+            Stiffness::Ignore
+        };
+        let methods = tableau::all()
+            .map(|tab| (tab.name, tab, explicit))
+            .into_iter()
+            .chain([("RODAS4", &DOP853, Stiffness::Rosenbrock)]);
+        for (method, tab, stiffness) in methods {
+            let method = if stiffness == Stiffness::Switch {
+                format!("{method}>R")
+            } else {
+                method.to_string()
+            };
             for kinks in [false, true] {
                 let mut pe = Vec::new();
                 let mut pt = Vec::new();
@@ -108,6 +171,7 @@ fn main() {
                         rtol,
                         atol: rtol * 1e-2,
                         stop_at_kinks: kinks,
+                        stiffness,
                         ..Settings::default()
                     };
                     let outs = run(&s);
@@ -126,8 +190,7 @@ fn main() {
                     });
                     let err = ee.max(et).max(1e-17);
                     println!(
-                        "{name:<18} {:<7} {:<6} {:>7.0e} {:>10.2e} {:>10.2e} {:>8} {:>9.1}",
-                        tab.name,
+                        "{name:<18} {method:<9} {:<6} {:>7.0e} {:>10.2e} {:>10.2e} {:>8} {:>9.1}",
                         kinks,
                         rtol,
                         ee,
@@ -137,18 +200,13 @@ fn main() {
                     );
                     let _ = writeln!(
                         csv,
-                        "{name},{},{kinks},{rtol:e},{ee:e},{et:e},{evals},{:.3}",
-                        tab.name,
+                        "{name},{method},{kinks},{rtol:e},{ee:e},{et:e},{evals},{:.3}",
                         secs * 1e6
                     );
                     pe.push((evals as f64, err.log10()));
                     pt.push(((secs * 1e6).log10(), err.log10()));
                 }
-                let label = format!(
-                    "{}{}",
-                    tab.name,
-                    if kinks { " + stops at kinks" } else { "" }
-                );
+                let label = format!("{method}{}", if kinks { " + stops at kinks" } else { "" });
                 by_evals.push(Series {
                     label: label.clone(),
                     points: pe,

@@ -5,6 +5,9 @@ use crate::{Controller, Error, Options, State, System};
 
 /// Most stages any built-in method needs (DOP853 and Verner 7 with their dense stages).
 pub const MAX_STAGES: usize = 16;
+/// A step counts as limited by stability when `h |λ|` exceeds this fraction of the method's
+/// real stability boundary (see [`crate::tableau::StiffnessTest`]).
+const STIFF_FRACTION: f64 = 0.6;
 /// Most rows of any built-in interpolant.
 const MAX_ROWS: usize = 8;
 
@@ -408,7 +411,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         }
         let h_lambda = h.abs() * ((f1 - self.k[test.stage]).norm_squared() / den).sqrt();
         self.h_lambda = h_lambda;
-        if h_lambda > test.bound {
+        if h_lambda > STIFF_FRACTION * test.bound {
             self.stiff_steps += 1;
             self.nonstiff_steps = 0;
         } else {
@@ -420,7 +423,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
     }
 
     /// Whether Hairer's stiffness test has fired: 15 accepted steps limited by stability (`h |λ|`
-    /// beyond the method's real stability boundary) without 6 in a row that were not.
+    /// beyond 0.6 times the method's real stability boundary) without 6 in a row that were not.
     pub fn is_stiff(&self) -> bool {
         self.stiff_steps >= 15
     }

@@ -71,9 +71,12 @@ pub struct Tableau {
 
 /// Hairer's stiffness test (dopri5.f, dop853.f): after an accepted step, `h |λ|` is estimated
 /// as `h ‖f(t + h, y_1) - k_s‖ / ‖y_1 - Y_s‖` from a stage `s` with `c_s = 1` evaluated at a
-/// point `Y_s` other than `y_1`. Above `bound` (where the real axis leaves the method's stability
-/// region) the step size is limited by stability rather than accuracy; 15 such steps without 6
-/// in a row below it make the problem stiff.
+/// point `Y_s` other than `y_1`. Where the step size is limited by stability rather than
+/// accuracy, `h |λ|` settles near the end of the stability region on the negative real axis,
+/// `bound`: at 0.69-0.82 of it with the PI controller and tight tolerances (measured on
+/// Prothero-Robinson problems), so a step counts as stiff beyond 0.6 `bound` (Hairer's codes use
+/// 0.95-0.98 of it and miss these). 15 such steps without 6 in a row below make the problem
+/// stiff ([`crate::Integrator::is_stiff`]).
 #[derive(Debug, Clone, Copy)]
 pub struct StiffnessTest {
     /// The stage `s` (with `c_s = 1`, not the fsal stage).
@@ -149,8 +152,7 @@ mod tests {
     }
 
     /// The stiffness bounds are where |R(z)| first exceeds 1 on the negative real axis, R the
-    /// stability polynomial `1 + z b^T (I - z A)^-1 1`, or just inside (Hairer's 3.25 for
-    /// DOPRI5, whose boundary is 3.307; 6.1 for DOP853).
+    /// stability polynomial `1 + z b^T (I - z A)^-1 1` (to 0.1 %).
     #[test]
     fn stiffness_bounds_are_the_real_stability_boundaries() {
         for t in all() {
@@ -165,9 +167,8 @@ mod tests {
                 .map(|i| i as f64 * 1e-4)
                 .find(|s| r(-s).abs() > 1.0 + 1e-12)
                 .unwrap();
-            // Hairer's constants sit just inside the boundary.
             assert!(
-                t.stiffness.bound <= boundary && t.stiffness.bound > 0.95 * boundary,
+                (t.stiffness.bound - boundary).abs() < 1e-3 * boundary,
                 "{}: boundary {boundary} vs {}",
                 t.name,
                 t.stiffness.bound

@@ -189,3 +189,34 @@ fn stiff_impact_switches_to_rosenbrock_and_finishes() {
     );
     assert!(switched.stats.accepted + switched.stats.rejected < 20_000);
 }
+
+/// The test does not fire on the non-stiff published cases: Table 3's DSS (1), both models, at
+/// every tolerance from 1e-4 to 1e-13 and three speeds (the default would switch otherwise).
+#[test]
+fn published_cases_are_not_called_stiff() {
+    let dss1 = [
+        (
+            ModelKind::Shccm,
+            base(2.38, -2.38, 0.677, 0.0348, 2.93, 2.62),
+        ),
+        (
+            ModelKind::Mcm,
+            base(0.966, -0.966, 0.531, 2.22e-16, 1.57, 1.75),
+        ),
+    ];
+    for (kind, b) in dss1 {
+        let map = BaseMap::new(kind, b).unwrap();
+        for k in 4..=13 {
+            let rtol = 10f64.powi(-k);
+            let s = Settings {
+                rtol,
+                atol: rtol / 100.0,
+                ..Settings::default()
+            };
+            for v0 in [0.5, 2.0, 5.0] {
+                let out = impact_at(&map, Zero, v0, &s).unwrap();
+                assert!(out.stiff_from.is_none(), "{kind:?} rtol {rtol:e} v0 {v0}");
+            }
+        }
+    }
+}

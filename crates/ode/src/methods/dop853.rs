@@ -353,6 +353,6 @@ pub static DOP853: Tableau = Tableau {
     default_beta: 0.0,
     stiffness: StiffnessTest {
         stage: 11,
-        bound: 6.1,
+        bound: 6.393,
     },
 };

@@ -87,6 +87,6 @@ pub static DOPRI5: Tableau = Tableau {
     default_beta: 0.04,
     stiffness: StiffnessTest {
         stage: 5,
-        bound: 3.25,
+        bound: 3.306,
     },
 };

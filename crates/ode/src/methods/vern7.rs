@@ -344,6 +344,6 @@ pub static VERN7: Tableau = Tableau {
     default_beta: 0.0,
     stiffness: StiffnessTest {
         stage: 9,
-        bound: 4.5,
+        bound: 4.640,
     },
 };
