@@ -255,9 +255,9 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
     let t_end = settings.t_max * ts;
     sink(0.0, &y0);
     let mut grid = GridSampler { sampling, next: 1 };
-    // With a constant input, a state where the right-hand side vanishes is an equilibrium: the
-    // contact has settled and will never end.
-    let settles = model.input_is_constant();
+    // Once the input is constant, a state where the right-hand side vanishes is an equilibrium:
+    // the contact has settled and will never end.
+    let constant_from = model.input_constant_after();
     while it.t() < t_end {
         match locator.step(&mut it, t_end)? {
             Step::Event { t, y } => {
@@ -282,7 +282,8 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
                 if sampling == Sampling::Steps {
                     sink(it.t(), it.y());
                 }
-                if settles && at_rest(model, it.derivative(), settings.atol) {
+                let constant_input = constant_from.is_some_and(|t0| it.t() >= t0);
+                if constant_input && at_rest(model, it.derivative(), settings.atol) {
                     let stats = it.stats();
                     return Ok(Impact {
                         t_s: None,

@@ -15,6 +15,13 @@ pub trait Input {
     fn is_constant(&self) -> bool {
         self.is_zero()
     }
+
+    /// A time from which the input is constant, if there is one (`-inf` for a constant input;
+    /// the last time of a table). Inputs that only approach a constant, like [`Arctan`], have
+    /// none.
+    fn constant_after(&self) -> Option<f64> {
+        self.is_constant().then_some(f64::NEG_INFINITY)
+    }
 }
 
 /// No input: `u = 0`.
@@ -86,6 +93,9 @@ impl<A: Input, B: Input> Input for Sum<A, B> {
     fn is_constant(&self) -> bool {
         self.0.is_constant() && self.1.is_constant()
     }
+    fn constant_after(&self) -> Option<f64> {
+        Some(self.0.constant_after()?.max(self.1.constant_after()?))
+    }
 }
 
 /// `factor * inner(time_scale * t)`: an input seen on another time and force scale (used for
@@ -110,6 +120,14 @@ impl<I: Input> Input for Scaled<I> {
     }
     fn is_constant(&self) -> bool {
         self.factor == 0.0 || self.inner.is_constant()
+    }
+    fn constant_after(&self) -> Option<f64> {
+        if self.factor == 0.0 {
+            return Some(f64::NEG_INFINITY);
+        }
+        let t = self.inner.constant_after()?;
+        // inner(time_scale * t) is constant for time_scale * t >= t_inner.
+        (self.time_scale > 0.0).then(|| t / self.time_scale)
     }
 }
 
@@ -167,6 +185,16 @@ impl Input for Table {
         let (t0, t1, u0, u1) = (self.t[i - 1], self.t[i], self.u[i - 1], self.u[i]);
         u0 + (u1 - u0) * (t - t0) / (t1 - t0)
     }
+    fn is_constant(&self) -> bool {
+        self.u.iter().all(|u| *u == self.u[0])
+    }
+    fn constant_after(&self) -> Option<f64> {
+        Some(if self.is_constant() {
+            f64::NEG_INFINITY
+        } else {
+            self.t[self.t.len() - 1]
+        })
+    }
 }
 
 /// Any closure `Fn(f64) -> f64` is an input.
@@ -190,6 +218,9 @@ impl<I: Input + ?Sized> Input for &I {
     }
     fn is_constant(&self) -> bool {
         (**self).is_constant()
+    }
+    fn constant_after(&self) -> Option<f64> {
+        (**self).constant_after()
     }
 }
 
@@ -221,5 +252,28 @@ mod tests {
         assert_eq!(s.at(1.0), 1.0);
         assert_eq!(Sum(Constant(1.0), FromFn(|t: f64| t)).at(2.0), 3.0);
         assert!(Sum(Zero, Constant(0.0)).is_zero());
+    }
+
+    #[test]
+    fn constant_from_some_time() {
+        let tab = Table::new(&[(0.0, 1.0), (2.0, 3.0)]).unwrap();
+        assert_eq!(tab.constant_after(), Some(2.0));
+        let flat = Table::new(&[(0.0, 1.0), (2.0, 1.0)]).unwrap();
+        assert_eq!(flat.constant_after(), Some(f64::NEG_INFINITY));
+        assert_eq!(Sum(&tab, Constant(1.0)).constant_after(), Some(2.0));
+        assert_eq!(Sum(&tab, FromFn(|t: f64| t)).constant_after(), None);
+        let s = Scaled {
+            inner: &tab,
+            factor: 2.0,
+            time_scale: 0.5,
+        };
+        assert_eq!(s.constant_after(), Some(4.0));
+        let r = Arctan {
+            m: 1.0,
+            d: 1.0,
+            omega: 1.0,
+        };
+        assert_eq!(r.constant_after(), None);
+        assert_eq!(Zero.constant_after(), Some(f64::NEG_INFINITY));
     }
 }

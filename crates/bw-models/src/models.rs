@@ -23,6 +23,11 @@ pub trait CollisionModel<const N: usize>: System<N> {
     fn input(&self, t: f64) -> f64;
     /// Whether the input is constant in time.
     fn input_is_constant(&self) -> bool;
+    /// A time from which the input is constant (model time units), if any (see
+    /// [`Input::constant_after`]).
+    fn input_constant_after(&self) -> Option<f64> {
+        self.input_is_constant().then_some(f64::NEG_INFINITY)
+    }
     /// Impact speed `v0` (1 for nondimensional models), so that `e = v(t_s) / v0`.
     fn impact_speed(&self) -> f64;
     /// Natural magnitude of each state component (ones for nondimensional models; the scales
@@ -187,6 +192,9 @@ impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
     fn input_is_constant(&self) -> bool {
         self.input.is_constant()
     }
+    fn input_constant_after(&self) -> Option<f64> {
+        self.input.constant_after()
+    }
     fn impact_speed(&self) -> f64 {
         1.0
     }
@@ -288,6 +296,9 @@ impl<I: Input> CollisionModel<4> for Ndbwmcm<I> {
     }
     fn input_is_constant(&self) -> bool {
         self.input.is_constant()
+    }
+    fn input_constant_after(&self) -> Option<f64> {
+        self.input.constant_after()
     }
     fn impact_speed(&self) -> f64 {
         1.0
@@ -465,6 +476,9 @@ impl<I: Input> CollisionModel<3> for Bwshccm<I> {
     fn input_is_constant(&self) -> bool {
         self.input.is_constant()
     }
+    fn input_constant_after(&self) -> Option<f64> {
+        self.input.constant_after()
+    }
     fn impact_speed(&self) -> f64 {
         self.v0
     }
@@ -536,6 +550,9 @@ impl<I: Input> CollisionModel<4> for Bwmcm<I> {
     }
     fn input_is_constant(&self) -> bool {
         self.input.is_constant()
+    }
+    fn input_constant_after(&self) -> Option<f64> {
+        self.input.constant_after()
     }
     fn impact_speed(&self) -> f64 {
         self.v0

@@ -6,6 +6,8 @@
 mod alloc_counter;
 #[path = "support/lyapunov.rs"]
 mod lyapunov;
+#[path = "support/settling.rs"]
+mod settling;
 #[path = "support/stiff.rs"]
 mod stiff;
 
