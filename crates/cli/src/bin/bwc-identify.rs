@@ -8,6 +8,7 @@ use bwc_cli::identify::{
 use bwc_cli::{output, CliError};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -129,17 +130,24 @@ fn run(
                     .expect("valid template"),
                 );
                 let tick = || bar.inc(1);
-                let mut reports = Vec::new();
-                for f in &config.fits {
-                    bar.set_message(f.name.clone());
-                    reports.push(run_fit(path, f, seed, &tick)?);
-                }
-                let mut loop_reports = Vec::new();
-                for f in &config.loop_fits {
-                    bar.set_message(f.name.clone());
-                    loop_reports.push(run_loop_fit(path, f, seed, &tick)?);
-                }
+                // The fits are independent: run them side by side (each is deterministic, so
+                // the results do not depend on the thread count); the first failure in config
+                // order is reported.
+                let count = config.fits.len() + config.loop_fits.len();
+                bar.set_message(format!("{count} fit{}", if count == 1 { "" } else { "s" }));
+                let reports: Vec<_> = config
+                    .fits
+                    .par_iter()
+                    .map(|f| run_fit(path, f, seed, &tick))
+                    .collect();
+                let loop_reports: Vec<_> = config
+                    .loop_fits
+                    .par_iter()
+                    .map(|f| run_loop_fit(path, f, seed, &tick))
+                    .collect();
                 bar.finish_and_clear();
+                let reports = reports.into_iter().collect::<Result<Vec<_>, _>>()?;
+                let loop_reports = loop_reports.into_iter().collect::<Result<Vec<_>, _>>()?;
                 Ok((reports, loop_reports))
             }
         }
