@@ -24,6 +24,9 @@ pub(crate) struct Aim {
     previous: Option<(f64, Values)>,
     /// The function the last aim was at.
     target: Option<usize>,
+    /// A rejected trial that ended on a switching point (within the landing tolerance) but was
+    /// rejected for the smooth part of the solution: the function and the instant.
+    landed: Option<(usize, f64)>,
     /// Start of the step.
     t0: f64,
     /// Aims taken in this step.
@@ -49,15 +52,23 @@ impl Aim {
             floor,
             previous: None,
             target: None,
+            landed: None,
             t0: f64::NAN,
             aims: 0,
         }
     }
 
-    /// After the accepted step `[t0, t1]` (switching values `end`): if it was aimed at a
-    /// switching point and stopped short of it, the function and the predicted instant of the
-    /// point (between `t1` and the end of the last rejected trial, which had crossed).
+    /// After the accepted step `[t0, t1]` (switching values `end`): if a rejected trial had
+    /// landed on a switching point beyond `t1`, that point; if the step was aimed at a switching
+    /// point and stopped short of it, the function and the predicted instant of the point
+    /// (between `t1` and the end of the last rejected trial, which had crossed).
     pub(crate) fn after_acceptance(&self, t1: f64, end: &Values) -> Option<(usize, f64)> {
+        if let Some((i, t)) = self.landed {
+            // The step the controller shortened ends before a point a trial had landed on.
+            if t > t1 && class(end[i]) == self.class_start[i] {
+                return Some((i, t));
+            }
+        }
         let i = self.target?;
         let (tp, gp) = self.previous?;
         let (t0, g0, g1) = (self.t0, self.start[i], end[i]);
@@ -94,6 +105,9 @@ impl Aim {
             let crossed = self.class_start[i] != 0 && class(g1) != self.class_start[i];
             let visible = g0.abs() > self.floor[i] || g1.abs() > self.floor[i];
             let landed = g1.abs() <= LANDING * self.floor[i];
+            if landed && visible && self.class_start[i] != 0 {
+                self.landed = Some((i, trial.t1));
+            }
             if !crossed || !visible || landed || !g1.is_finite() {
                 continue;
             }
