@@ -13,7 +13,10 @@
 //!   `P(P*, u, v0)` ([`BaseParams`], [`base_params`], [`BaseMap`]);
 //! * inputs ([`input`]) and the two-body system of Section 3 ([`Bodies`]);
 //! * one impact ([`impact`], [`simulate`]): separation `t_s = inf{t > 0 : F <= 0 <= v}`,
-//!   `e = v(t_s)/v0` (0 without separation) and `t_d = t_s`.
+//!   `e = v(t_s)/v0` (0 without separation) and `t_d = t_s`; DOP853 with stops at the kinks by
+//!   default, switching to RODAS4 with the model's Jacobian ([`CollisionModel::jacobian`]) when
+//!   the run turns stiff ([`Stiffness`]), and stopping early once a contact under a constant
+//!   input has settled ([`Impact::settled_at`]).
 //!
 //! Conventions: `x < 0` is compression, `F > 0` pushes the bodies apart, `v(0) = -v0`.
 //!

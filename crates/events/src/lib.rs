@@ -10,7 +10,10 @@
 //!   predicate). A single crossing with a direction is the special case [`Crossing`].
 //! * **switching points** ([`Switches`]): zeros of functions where the right-hand side is not
 //!   smooth (`v = 0`, `z = 0` in the Bouc-Wen models). The integrator stops exactly there and
-//!   restarts, so no step straddles a kink.
+//!   restarts, so no step straddles a kink. A trial step that straddles one is rejected by the
+//!   error control; the next trial is then *aimed* at the predicted zero (see the `aim`
+//!   module), and a step that ends within `LANDING` noise floors of it stops there without a
+//!   retake, so a kink costs a few trials instead of a collapse of the step size.
 //!
 //! Crossings are bracketed with an Illinois root finder and a bisection safeguard down to
 //! adjacent floating-point numbers, so zeros of high multiplicity (a force vanishing like
