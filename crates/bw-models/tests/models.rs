@@ -593,6 +593,22 @@ fn cor_evaluation_does_not_allocate() {
     });
     assert!(a.separated() && b.separated() && c.separated());
     assert_eq!(allocations, 0, "heap allocations in three CoR evaluations");
+    // Nor does RODAS4 (the Jacobian and M^-1 live on the stack).
+    let rodas = Settings {
+        stiffness: Stiffness::Rosenbrock,
+        ..Settings::default()
+    };
+    let ((d, e), allocations) = alloc_counter::count(|| {
+        (
+            impact(&shccm, &rodas).unwrap(),
+            impact(&mcm, &rodas).unwrap(),
+        )
+    });
+    assert!(d.separated() && e.separated() && d.stats.jacobians > 0);
+    assert_eq!(
+        allocations, 0,
+        "heap allocations in two RODAS4 CoR evaluations"
+    );
     // The counter does count: a Vec allocates.
     assert!(alloc_counter::count(|| vec![1u8; 16]).1 >= 1);
 }
