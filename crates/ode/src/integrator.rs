@@ -1,5 +1,6 @@
 //! The stepping engine shared by every tableau.
 
+use crate::control::{aimed, inside_last_step, Limits};
 use crate::tableau::{ErrorEstimate, Tableau};
 use crate::{Controller, Error, Options, State, System};
 
@@ -124,9 +125,7 @@ pub struct Integrator<F, const N: usize> {
     tab: &'static Tableau,
     rtol: State<N>,
     atol: State<N>,
-    max_step: f64,
-    min_step: f64,
-    max_steps: u64,
+    limits: Limits,
     ctrl: Controller,
     expo: f64,
     // Current point and f(t, y).
@@ -182,9 +181,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
             tab: tableau,
             rtol: options.rtol,
             atol: options.atol,
-            max_step: options.max_step,
-            min_step: options.min_step,
-            max_steps: options.max_steps,
+            limits: Limits::of(&options),
             ctrl,
             expo,
             t: t0,
@@ -213,7 +210,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
             });
         }
         it.h = match options.h0 {
-            Some(h0) => h0.min(it.max_step),
+            Some(h0) => h0.min(it.limits.max_step()),
             None => it.initial_step(),
         };
         Ok(it)
@@ -273,7 +270,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
     /// with the step size that fitted before it); clipped to the largest step.
     pub fn propose_step_size(&mut self, h: f64) {
         if h.is_finite() && h > 0.0 {
-            self.h = h.min(self.max_step);
+            self.h = h.min(self.limits.max_step());
         }
     }
 
@@ -296,7 +293,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         } else {
             (dny / dnf).sqrt() * 0.01
         };
-        h = h.min(self.max_step);
+        h = h.min(self.limits.max_step());
         let y1 = self.y + self.f_now * h;
         let f1 = self.eval(self.t + h, &y1);
         let der2 = (f1 - self.f_now).component_div(&sk).norm() / h;
@@ -307,7 +304,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         } else {
             (0.01 / der12).powf(1.0 / iord)
         };
-        let h = (100.0 * h).min(h1).min(self.max_step);
+        let h = (100.0 * h).min(h1).min(self.limits.max_step());
         if h.is_finite() && h > 0.0 {
             h
         } else {
@@ -456,27 +453,9 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         mut aim: impl FnMut(&Trial<'_, N>) -> Option<f64>,
     ) -> Result<(), Error> {
         loop {
-            if self.stats.accepted + self.stats.rejected >= self.max_steps {
-                return Err(Error::TooManySteps {
-                    max_steps: self.max_steps,
-                    t: self.t,
-                    state: self.snapshot(),
-                });
-            }
-            let remaining = t_end - self.t;
-            let mut h = self.h.min(self.max_step);
-            let last = remaining <= h * (1.0 + 1e-12);
-            if last {
-                h = remaining;
-            }
-            let h_floor = self.min_step.max(16.0 * f64::EPSILON * self.t.abs());
-            if h <= h_floor && !(last && h > 0.0) {
-                return Err(Error::StepSizeTooSmall {
-                    t: self.t,
-                    h,
-                    state: self.snapshot(),
-                });
-            }
+            let (h, last) = self
+                .limits
+                .trial(self.t, t_end, self.h, &self.stats, &self.y)?;
             let y1 = self.stages(h);
             let err = self.error_norm(h, &y1);
             if err.is_finite() && err <= 1.0 {
@@ -506,12 +485,12 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
                 t1: self.t + h,
                 y1: &y1,
             };
-            self.h = match aim(&trial) {
-                Some(t) if t > self.t + 1e-6 * h && t < self.t + h => t - self.t,
-                _ if err.is_finite() => {
+            self.h = match aimed(aim(&trial), self.t, h) {
+                Some(h_aim) => h_aim,
+                None if err.is_finite() => {
                     h / (1.0 / self.ctrl.min_ratio).min(err.powf(self.expo) / self.ctrl.safety)
                 }
-                _ => h * 0.1,
+                None => h * 0.1,
             };
         }
     }
@@ -578,13 +557,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
     /// [`Error::OutsideStep`] if `t_stop` is not inside the last step; otherwise as
     /// [`Integrator::step`].
     pub fn retake_to(&mut self, t_stop: f64) -> Result<(), Error> {
-        if !(t_stop > self.t_prev && t_stop <= self.t) {
-            return Err(Error::OutsideStep {
-                t: t_stop,
-                t0: self.t_prev,
-                t1: self.t,
-            });
-        }
+        inside_last_step(t_stop, self.t_prev, self.t)?;
         self.t = self.t_prev;
         self.y = self.y_prev;
         self.f_now = self.k[0];

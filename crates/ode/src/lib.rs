@@ -32,6 +32,7 @@
 //! ```
 #![deny(missing_docs)]
 
+mod control;
 mod error;
 mod integrator;
 mod methods;

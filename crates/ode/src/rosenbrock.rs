@@ -16,6 +16,7 @@
 
 #![allow(clippy::excessive_precision)] // coefficients keep their published digits
 
+use crate::control::{aimed, inside_last_step, Limits};
 use crate::integrator::{Dense, Stats, Trial};
 use crate::{Error, Options, State, System};
 
@@ -134,9 +135,7 @@ pub struct Rosenbrock<F, const N: usize> {
     f: F,
     rtol: State<N>,
     atol: State<N>,
-    max_step: f64,
-    min_step: f64,
-    max_steps: u64,
+    limits: Limits,
     t: f64,
     y: State<N>,
     f_now: State<N>,
@@ -171,9 +170,7 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
             f,
             rtol: options.rtol,
             atol: options.atol,
-            max_step: options.max_step,
-            min_step: options.min_step,
-            max_steps: options.max_steps,
+            limits: Limits::of(&options),
             t: t0,
             y: y0,
             f_now,
@@ -192,7 +189,7 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
         it.h = options
             .h0
             .unwrap_or_else(|| it.initial_step())
-            .min(it.max_step);
+            .min(it.limits.max_step());
         Ok(it)
     }
 
@@ -251,7 +248,7 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
     /// Proposes the size of the next step; clipped to the largest step.
     pub fn propose_step_size(&mut self, h: f64) {
         if h.is_finite() && h > 0.0 {
-            self.h = h.min(self.max_step);
+            self.h = h.min(self.limits.max_step());
         }
     }
 
@@ -265,7 +262,7 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
         } else {
             (0.01 / dnf).powf(0.25)
         };
-        h.min(self.max_step)
+        h.min(self.limits.max_step())
     }
 
     fn eval(&mut self, t: f64, y: &State<N>) -> State<N> {
@@ -336,27 +333,9 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
             (f1 - self.f_now) / dt
         };
         loop {
-            if self.stats.accepted + self.stats.rejected >= self.max_steps {
-                return Err(Error::TooManySteps {
-                    max_steps: self.max_steps,
-                    t: self.t,
-                    state: self.snapshot(),
-                });
-            }
-            let remaining = t_end - self.t;
-            let mut h = self.h.min(self.max_step);
-            let last = remaining <= h * (1.0 + 1e-12);
-            if last {
-                h = remaining;
-            }
-            let h_floor = self.min_step.max(16.0 * f64::EPSILON * self.t.abs());
-            if h <= h_floor && !(last && h > 0.0) {
-                return Err(Error::StepSizeTooSmall {
-                    t: self.t,
-                    h,
-                    state: self.snapshot(),
-                });
-            }
+            let (h, last) = self
+                .limits
+                .trial(self.t, t_end, self.h, &self.stats, &self.y)?;
             let attempt = self.attempt(h, &jac, &ft);
             let err = attempt.as_ref().map_or(f64::INFINITY, |(y1, e)| {
                 let sk = self.atol + self.rtol.component_mul(&self.y.abs().sup(&y1.abs()));
@@ -400,10 +379,10 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
                 t1: self.t + h,
                 y1: &y1,
             };
-            self.h = match aim(&trial) {
-                Some(t) if t > self.t + 1e-6 * h && t < self.t + h => t - self.t,
-                _ if err.is_finite() => h * (0.9 / err.powf(0.25)).clamp(0.2, 1.0),
-                _ => h * 0.1,
+            self.h = match aimed(aim(&trial), self.t, h) {
+                Some(h_aim) => h_aim,
+                None if err.is_finite() => h * (0.9 / err.powf(0.25)).clamp(0.2, 1.0),
+                None => h * 0.1,
             };
         }
     }
@@ -444,13 +423,7 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
     /// # Errors
     /// As [`crate::Integrator::retake_to`].
     pub fn retake_to(&mut self, t_stop: f64) -> Result<(), Error> {
-        if !(t_stop > self.t_prev && t_stop <= self.t) {
-            return Err(Error::OutsideStep {
-                t: t_stop,
-                t0: self.t_prev,
-                t1: self.t,
-            });
-        }
+        inside_last_step(t_stop, self.t_prev, self.t)?;
         self.t = self.t_prev;
         self.y = self.y_prev;
         self.f_now = self.f_prev;

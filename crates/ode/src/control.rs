@@ -1,0 +1,83 @@
+//! Step bookkeeping shared by the explicit and the Rosenbrock integrators.
+
+use crate::integrator::Stats;
+use crate::{Error, Options, State};
+
+/// The step limits of a solve.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Limits {
+    max_step: f64,
+    min_step: f64,
+    max_steps: u64,
+}
+
+impl Limits {
+    pub(crate) fn of<const N: usize>(o: &Options<N>) -> Self {
+        Self {
+            max_step: o.max_step,
+            min_step: o.min_step,
+            max_steps: o.max_steps,
+        }
+    }
+
+    /// The largest step.
+    pub(crate) fn max_step(&self) -> f64 {
+        self.max_step
+    }
+
+    /// The next trial from `t` toward `t_end` with proposed size `h`: its size, and whether it
+    /// ends exactly at `t_end`.
+    ///
+    /// # Errors
+    /// [`Error::TooManySteps`] or [`Error::StepSizeTooSmall`], with the state `y` at `t`.
+    pub(crate) fn trial<const N: usize>(
+        &self,
+        t: f64,
+        t_end: f64,
+        h: f64,
+        stats: &Stats,
+        y: &State<N>,
+    ) -> Result<(f64, bool), Error> {
+        if stats.accepted + stats.rejected >= self.max_steps {
+            return Err(Error::TooManySteps {
+                max_steps: self.max_steps,
+                t,
+                state: y.as_slice().to_vec(),
+            });
+        }
+        let remaining = t_end - t;
+        let mut h = h.min(self.max_step);
+        let last = remaining <= h * (1.0 + 1e-12);
+        if last {
+            h = remaining;
+        }
+        let h_floor = self.min_step.max(16.0 * f64::EPSILON * t.abs());
+        if h <= h_floor && !(last && h > 0.0) {
+            return Err(Error::StepSizeTooSmall {
+                t,
+                h,
+                state: y.as_slice().to_vec(),
+            });
+        }
+        Ok((h, last))
+    }
+}
+
+/// The size of the next trial after a rejected trial `[t, t + h]` when the aim hook named `aim`
+/// inside it (at least `1e-6 h` from its start), else `None`.
+pub(crate) fn aimed(aim: Option<f64>, t: f64, h: f64) -> Option<f64> {
+    aim.filter(|a| *a > t + 1e-6 * h && *a < t + h)
+        .map(|a| a - t)
+}
+
+/// Checks that `t_stop` lies inside the last step `(t0, t1]`.
+///
+/// # Errors
+/// [`Error::OutsideStep`] otherwise.
+pub(crate) fn inside_last_step(t_stop: f64, t0: f64, t1: f64) -> Result<(), Error> {
+    if t_stop > t0 && t_stop <= t1 {
+        Ok(())
+    } else {
+        Err(Error::OutsideStep { t: t_stop, t0, t1 })
+    }
+}
