@@ -3,35 +3,12 @@
 
 use bw_models::input::Zero;
 use bw_models::{
-    impact, impact_at, BaseMap, BaseParams, CollisionModel, ModelError, ModelKind, Ndbwmcm,
-    Ndbwshccm, Nondim, NondimParams, Settings, State, Stiffness,
+    impact, impact_at, BaseMap, CollisionModel, ModelError, ModelKind, Ndbwmcm, Ndbwshccm,
+    Settings, State, Stiffness,
 };
 use bwc_ode::{Matrix, VERN7};
 
-fn nd(kind: ModelKind, b: f64, gamma: f64, kappa: f64, sigma: f64, n: f64, p: f64) -> NondimParams {
-    let n = Nondim {
-        b,
-        gamma,
-        kappa,
-        sigma,
-        n,
-        p,
-    };
-    NondimParams::new(kind, n).unwrap()
-}
-
-fn base(b_b: f64, gamma_b: f64, kappa: f64, sigma_b: f64, n: f64, p: f64) -> BaseParams {
-    BaseParams {
-        b_b,
-        gamma_b,
-        kappa,
-        sigma_b,
-        n,
-        p,
-        u_b: 1.0,
-        t_b: 1.0,
-    }
-}
+use super::{base, nd};
 
 /// Central differences with steps 1e-6: error about 1e-12 times the third derivative.
 fn central<M: CollisionModel<N>, const N: usize>(m: &M, y: &State<N>) -> Matrix<N> {
