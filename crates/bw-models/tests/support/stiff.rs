@@ -197,3 +197,49 @@ fn published_cases_are_not_called_stiff() {
         }
     }
 }
+
+/// RODAS4 on the SI models (forward-difference Jacobians, scaled to the state) agrees with the
+/// explicit nondimensional runs on Cross's parameters: e to 1e-8, t_s to 1e-8 relative.
+#[test]
+fn rosenbrock_on_si_models_with_finite_difference_jacobians() {
+    use super::{cross, BASEBALL_MASS};
+    use bw_models::{nondimensionalize, Bwmcm, Bwshccm};
+    let rodas = Settings {
+        stiffness: Stiffness::Rosenbrock,
+        ..Settings::default()
+    };
+    for kind in [ModelKind::Shccm, ModelKind::Mcm] {
+        let params = cross(kind);
+        let v0 = 3.03;
+        let (ndp, sc) = nondimensionalize(&params, BASEBALL_MASS, v0).unwrap();
+        let (si, nd) = match kind {
+            ModelKind::Shccm => (
+                impact(
+                    &Bwshccm::new(&params, BASEBALL_MASS, v0, Zero).unwrap(),
+                    &rodas,
+                ),
+                impact(&Ndbwshccm::new(&ndp, Zero).unwrap(), &Settings::default()),
+            ),
+            ModelKind::Mcm => (
+                impact(
+                    &Bwmcm::new(&params, BASEBALL_MASS, v0, Zero).unwrap(),
+                    &rodas,
+                ),
+                impact(&Ndbwmcm::new(&ndp, Zero).unwrap(), &Settings::default()),
+            ),
+        };
+        let (si, nd) = (si.unwrap(), nd.unwrap());
+        assert!(si.stats.jacobians > 0);
+        assert!(
+            (si.e - nd.e).abs() < 1e-8,
+            "{kind:?}: e {} vs {}",
+            si.e,
+            nd.e
+        );
+        let (ts_si, ts_nd) = (si.t_s.unwrap(), nd.t_s.unwrap() * sc.t_c);
+        assert!(
+            (ts_si - ts_nd).abs() < 1e-8 * ts_nd,
+            "{kind:?}: t_s {ts_si} vs {ts_nd}"
+        );
+    }
+}
