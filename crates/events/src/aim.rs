@@ -9,7 +9,7 @@
 //! the start and the value at the end of the first trial, then through the start and the ends
 //! of the last two trials (a secant-like iteration on the end of the step). Steps that end at
 //! a kink are smooth, so after two or three aimed trials the step is accepted with the
-//! switching function within its noise floor of zero.
+//! switching function within `LANDING` noise floors of zero, and the locator stops there.
 
 use crate::{class, Switches, Values, LANDING, MAX_FUNCTIONS};
 use bwc_ode::Trial;
@@ -20,7 +20,7 @@ pub(crate) struct Aim {
     start: Values,
     class_start: [i8; MAX_FUNCTIONS],
     floor: Values,
-    /// End and switching values of the previous rejected trial that crossed a function.
+    /// End and switching values of the previous rejected trial of this step.
     previous: Option<(f64, Values)>,
     /// The function the last aim was at.
     target: Option<usize>,
