@@ -21,12 +21,12 @@ pub trait CollisionModel<const N: usize>: System<N> {
     fn velocity(&self, y: &State<N>) -> f64;
     /// The external input at `t`.
     fn input(&self, t: f64) -> f64;
-    /// Whether the input is constant in time.
-    fn input_is_constant(&self) -> bool;
-    /// A time from which the input is constant (model time units), if any (see
-    /// [`Input::constant_after`]).
-    fn input_constant_after(&self) -> Option<f64> {
-        self.input_is_constant().then_some(f64::NEG_INFINITY)
+    /// A time from which the input is constant (model time units; `-inf` for a constant
+    /// input), if any (see [`Input::constant_after`]).
+    fn input_constant_after(&self) -> Option<f64>;
+    /// Whether the input is constant at all times.
+    fn input_is_constant(&self) -> bool {
+        self.input_constant_after() == Some(f64::NEG_INFINITY)
     }
     /// Impact speed `v0` (1 for nondimensional models), so that `e = v(t_s) / v0`.
     fn impact_speed(&self) -> f64;
@@ -189,9 +189,6 @@ impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
     fn input(&self, t: f64) -> f64 {
         self.input.at(t)
     }
-    fn input_is_constant(&self) -> bool {
-        self.input.is_constant()
-    }
     fn input_constant_after(&self) -> Option<f64> {
         self.input.constant_after()
     }
@@ -294,9 +291,6 @@ impl<I: Input> CollisionModel<4> for Ndbwmcm<I> {
     fn input(&self, t: f64) -> f64 {
         self.input.at(t)
     }
-    fn input_is_constant(&self) -> bool {
-        self.input.is_constant()
-    }
     fn input_constant_after(&self) -> Option<f64> {
         self.input.constant_after()
     }
@@ -398,8 +392,8 @@ impl CollisionModel<4> for NdbwmcmEarlier {
     fn input(&self, _t: f64) -> f64 {
         0.0
     }
-    fn input_is_constant(&self) -> bool {
-        true
+    fn input_constant_after(&self) -> Option<f64> {
+        Some(f64::NEG_INFINITY)
     }
     fn impact_speed(&self) -> f64 {
         1.0
@@ -473,9 +467,6 @@ impl<I: Input> CollisionModel<3> for Bwshccm<I> {
     fn input(&self, t: f64) -> f64 {
         self.input.at(t)
     }
-    fn input_is_constant(&self) -> bool {
-        self.input.is_constant()
-    }
     fn input_constant_after(&self) -> Option<f64> {
         self.input.constant_after()
     }
@@ -547,9 +538,6 @@ impl<I: Input> CollisionModel<4> for Bwmcm<I> {
     }
     fn input(&self, t: f64) -> f64 {
         self.input.at(t)
-    }
-    fn input_is_constant(&self) -> bool {
-        self.input.is_constant()
     }
     fn input_constant_after(&self) -> Option<f64> {
         self.input.constant_after()
@@ -636,8 +624,8 @@ impl CollisionModel<4> for BwmcmEarlier {
     fn input(&self, _t: f64) -> f64 {
         0.0
     }
-    fn input_is_constant(&self) -> bool {
-        true
+    fn input_constant_after(&self) -> Option<f64> {
+        Some(f64::NEG_INFINITY)
     }
     fn impact_speed(&self) -> f64 {
         self.v0

@@ -252,11 +252,7 @@ impl Config {
     /// [`CliError::Io`], [`CliError::Syntax`] and [`CliError::Invalid`] as for scenes;
     /// [`CliError::Identify`] for a data file's own errors (with its path and line).
     pub fn load(path: &Path) -> Result<Self, CliError> {
-        let src = std::fs::read_to_string(path).map_err(|source| CliError::Io {
-            path: path.to_owned(),
-            source,
-        })?;
-        Self::parse(path, &src)
+        Self::parse(path, &crate::scene::read_text(path)?)
     }
 
     /// Validates a config given as text; data files are read relative to `path`'s folder.

@@ -230,12 +230,13 @@ pub struct Locator<C, S> {
     last: Option<Last>,
 }
 
-/// Boundary and switching values at a point `(t, y)` (states of up to [`MAX_FUNCTIONS`]
-/// components).
+/// Boundary and switching values at the end of a step, valid while the integrator has not
+/// moved since: same time and same RHS-evaluation count (every step, retake or restart
+/// evaluates the right-hand side).
 #[derive(Debug, Clone, Copy)]
 struct Last {
     t: f64,
-    y: [f64; MAX_FUNCTIONS],
+    rhs_evals: u64,
     g: Values,
     s: Values,
 }
@@ -286,7 +287,7 @@ impl<C, S> Locator<C, S> {
         let (t0, y0) = (it.t(), *it.y());
         // The values at the end of the previous step, unless the integrator moved since.
         let (g_start, mut s_start) = match self.last.take() {
-            Some(last) if N <= MAX_FUNCTIONS && last.t == t0 && last.y[..N] == *y0.as_slice() => {
+            Some(last) if last.t == t0 && last.rhs_evals == it.stats().rhs_evals => {
                 (last.g, last.s)
             }
             _ => (
@@ -313,16 +314,12 @@ impl<C, S> Locator<C, S> {
         let (t1, y1) = (it.t(), *it.y());
         let g_end = self.condition.values(t1, &y1);
         let s_end = self.switches.values(t1, &y1);
-        if N <= MAX_FUNCTIONS {
-            let mut y = [0.0; MAX_FUNCTIONS];
-            y[..N].copy_from_slice(y1.as_slice());
-            self.last = Some(Last {
-                t: t1,
-                y,
-                g: g_end,
-                s: s_end,
-            });
-        }
+        self.last = Some(Last {
+            t: t1,
+            rhs_evals: it.stats().rhs_evals,
+            g: g_end,
+            s: s_end,
+        });
         let crosses =
             |a: f64, ca: i8, b: f64| ca != 0 && class(b) != ca && !b.is_nan() && !a.is_nan();
         let above = |i: usize, a: f64| a.abs() > floor[i] || s_end[i].abs() > floor[i];

@@ -188,6 +188,17 @@ impl Ctx<'_> {
     }
 }
 
+/// The text of an input file.
+///
+/// # Errors
+/// [`CliError::Io`] naming the file.
+pub(crate) fn read_text(path: &Path) -> Result<String, CliError> {
+    std::fs::read_to_string(path).map_err(|source| CliError::Io {
+        path: path.to_owned(),
+        source,
+    })
+}
+
 /// A TOML parse error as `file:line:column: message`.
 pub(crate) fn syntax_error(ctx: &Ctx, e: &toml::de::Error) -> CliError {
     let src = ctx.src;
@@ -225,11 +236,7 @@ impl Scene {
     /// types and unknown keys, [`CliError::Invalid`] for missing, conflicting or inadmissible
     /// values (with line and key).
     pub fn load(path: &Path) -> Result<Self, CliError> {
-        let src = std::fs::read_to_string(path).map_err(|source| CliError::Io {
-            path: path.to_owned(),
-            source,
-        })?;
-        Self::parse(path, &src)
+        Self::parse(path, &read_text(path)?)
     }
 
     /// Validates a scene given as text (`path` is only used in messages).
