@@ -3,14 +3,29 @@
 //! states r, y, z). Output: the contact force `F` (N), positive when pushing the bodies apart.
 
 use crate::params::{ModelKind, PhysicalParams};
-use crate::power::Pow;
+use crate::power::{Pow, Powers};
 use crate::{ModelError, State};
 
-/// Bouc-Wen hysteresis `ż = A w - β |z|^(n-1) z |w| - γ |z|^n w`, given `|z|^n`.
+/// Bouc-Wen hysteresis `ż = A w - β |z|^(n-1) z |w| - γ |z|^n w`, with `zn()` giving `|z|^n`.
+///
+/// `β |z|^(n-1) z |w| = β sgn(z) |z|^n |w|`, so `ż = A w - |z|^n (β sgn(z) |w| + γ w)`; the
+/// bracket is exactly 0 on the branch `sgn(z) = sgn(w)` when `γ = -β` (loading in all of the
+/// paper's fits), and then `|z|^n` is not computed (the result is the same bit for bit).
 #[inline]
-pub(crate) fn hysteresis(a: f64, beta: f64, gamma: f64, z: f64, zn: f64, w: f64) -> f64 {
-    // β |z|^(n-1) z |w| = β sign(z) |z|^n |w|; at z = 0 the factor |z|^n vanishes.
-    a * w - zn * ((beta * w.abs()).copysign(z) + gamma * w)
+pub(crate) fn hysteresis(
+    a: f64,
+    beta: f64,
+    gamma: f64,
+    z: f64,
+    w: f64,
+    zn: impl FnOnce() -> f64,
+) -> f64 {
+    let m = (beta * w.abs()).copysign(z) + gamma * w;
+    if m == 0.0 {
+        a * w
+    } else {
+        a * w - zn() * m
+    }
 }
 
 fn expect(params: &PhysicalParams, kind: ModelKind) -> Result<(), ModelError> {
@@ -75,11 +90,12 @@ impl Bwshccl {
         let c = &self.0;
         let (x, z) = (s[0], s[1]);
         let xp = c.p.of_abs(x.abs());
-        let (zp, zn) = Pow::pair(z.abs(), c.p, c.n);
+        let mut zpow = Powers::of(z.abs());
+        let zp = zpow.get(c.p);
         let f =
             -c.alpha * c.k * xp.copysign(x) - (1.0 - c.alpha) * c.k * zp.copysign(z) - c.c * xp * u;
         (
-            State::<2>::new(u, hysteresis(c.a, c.beta, c.gamma, z, zn, u)),
+            State::<2>::new(u, hysteresis(c.a, c.beta, c.gamma, z, u, || zpow.get(c.n))),
             f,
         )
     }
@@ -105,13 +121,37 @@ impl Bwmcl {
     pub fn eval(&self, s: &State<3>, u: f64) -> (State<3>, f64) {
         let c = &self.0;
         let (y, z) = (s[1], s[2]);
-        let (zp, zn) = Pow::pair(z.abs(), c.p, c.n);
+        let mut zpow = Powers::of(z.abs());
+        let zp = zpow.get(c.p);
         let f = -c.k * (c.alpha * c.p.signed(y) + (1.0 - c.alpha) * zp.copysign(z));
         let rdot = -f / c.c;
         let ydot = u - rdot;
-        (
-            State::<3>::new(rdot, ydot, hysteresis(c.a, c.beta, c.gamma, z, zn, ydot)),
-            f,
-        )
+        let zdot = hysteresis(c.a, c.beta, c.gamma, z, ydot, || zpow.get(c.n));
+        (State::<3>::new(rdot, ydot, zdot), f)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::hysteresis;
+
+    #[test]
+    fn hysteresis_skips_the_power_only_where_its_factor_vanishes() {
+        let (beta, gamma, zn) = (7.3, -7.3, 0.37);
+        let direct = |z: f64, w: f64| -> f64 {
+            let sz = z.signum();
+            w - beta * zn * sz * w.abs() - gamma * zn * w
+        };
+        for (z, w) in [(-0.4, -1.2), (0.4, 1.2), (-0.4, 1.2), (0.4, -1.2), (0.0, 0.3)] {
+            let mut called = false;
+            let got = hysteresis(1.0, beta, gamma, z, w, || {
+                called = true;
+                zn
+            });
+            assert!((got - direct(z, w)).abs() <= 1e-15 * direct(z, w).abs(), "{z} {w}");
+            // Loading (sgn z = sgn w, with sgn(+0) = 1) with γ = -β: the bracket is exactly 0.
+            let loading = z.signum() == w.signum();
+            assert_eq!(called, !loading, "z {z} w {w}");
+        }
     }
 }

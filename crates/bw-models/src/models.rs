@@ -5,7 +5,7 @@
 use crate::input::Input;
 use crate::laws::{hysteresis, Bwmcl, Bwshccl};
 use crate::params::{check, ModelKind, NondimParams, PhysicalParams};
-use crate::power::Pow;
+use crate::power::{Pow, Powers};
 use crate::{ModelError, State};
 use bwc_ode::{Matrix, System};
 
@@ -148,26 +148,34 @@ impl<I: Input> Ndbwshccm<I> {
         })
     }
 
+    /// Force `F` and the powers of `|Z|` (for `|Z|^n` when the hysteresis needs it). While
+    /// `|Z| = |X|` (loading with `Γ = -B`, where `Z' = X'` exactly) `|Z|^p` is `|X|^p`.
     #[inline]
-    fn parts(&self, y: &State<3>) -> (f64, f64) {
+    fn parts(&self, y: &State<3>) -> (f64, Powers) {
         let (x, z, v) = (y[0], y[1], y[2]);
         let xp = self.k.p.of_abs(x.abs());
-        let (zp, zn) = Pow::pair(z.abs(), self.k.p, self.k.n);
+        let mut zpow = Powers::of(z.abs());
+        let zp = if z.abs() == x.abs() {
+            xp
+        } else {
+            zpow.get(self.k.p)
+        };
         let f = -self.k.kappa * xp.copysign(x)
             - (1.0 - self.k.kappa) * zp.copysign(z)
             - self.k.sigma * xp * v;
-        (f, zn)
+        (f, zpow)
     }
 }
 
 impl<I: Input> System<3> for Ndbwshccm<I> {
     #[inline]
     fn rhs(&self, t: f64, y: &State<3>) -> State<3> {
-        let (f, zn) = self.parts(y);
+        let (f, mut zpow) = self.parts(y);
         let v = y[2];
+        let n = self.k.n;
         State::<3>::new(
             v,
-            hysteresis(1.0, self.k.b, self.k.gamma, y[1], zn, v),
+            hysteresis(1.0, self.k.b, self.k.gamma, y[1], v, || zpow.get(n)),
             f + self.input.at(t),
         )
     }
@@ -246,30 +254,39 @@ impl<I: Input> Ndbwmcm<I> {
         })
     }
 
-    /// Force and `|Z|^n`.
+    /// Force `F` and the powers of `|Z|` (for `|Z|^n` when the hysteresis needs it). While
+    /// `|Z| = |Y|` (loading with `Γ = -B`, where `Z' = Y'` exactly) `|Z|^p` is `|Y|^p`.
     #[inline]
-    fn parts(&self, y: &State<4>) -> (f64, f64) {
-        let (zp, zn) = Pow::pair(y[2].abs(), self.k.p, self.k.n);
-        let f = -self.k.kappa * self.k.p.signed(y[1]) - (1.0 - self.k.kappa) * zp.copysign(y[2]);
-        (f, zn)
+    fn parts(&self, y: &State<4>) -> (f64, Powers) {
+        let (yy, z) = (y[1], y[2]);
+        let yp = self.k.p.of_abs(yy.abs());
+        let mut zpow = Powers::of(z.abs());
+        let zp = if z.abs() == yy.abs() {
+            yp
+        } else {
+            zpow.get(self.k.p)
+        };
+        let f = -self.k.kappa * yp.copysign(yy) - (1.0 - self.k.kappa) * zp.copysign(z);
+        (f, zpow)
     }
 
     #[inline]
     fn force_of(&self, y: &State<4>) -> f64 {
-        -self.k.kappa * self.k.p.signed(y[1]) - (1.0 - self.k.kappa) * self.k.p.signed(y[2])
+        self.parts(y).0
     }
 }
 
 impl<I: Input> System<4> for Ndbwmcm<I> {
     #[inline]
     fn rhs(&self, t: f64, y: &State<4>) -> State<4> {
-        let (f, zn) = self.parts(y);
+        let (f, mut zpow) = self.parts(y);
         let rdot = -self.k.sigma * f;
         let ydot = y[3] - rdot;
+        let n = self.k.n;
         State::<4>::new(
             rdot,
             ydot,
-            hysteresis(1.0, self.k.b, self.k.gamma, y[2], zn, ydot),
+            hysteresis(1.0, self.k.b, self.k.gamma, y[2], ydot, || zpow.get(n)),
             f + self.input.at(t),
         )
     }
@@ -367,7 +384,7 @@ impl System<4> for NdbwmcmEarlier {
         let m = &self.inner.k;
         let (yy, z, w) = (y[1], y[2], y[3]);
         let rdot = self.rdot(y);
-        let zdot = hysteresis(1.0, m.b, m.gamma, z, m.n.of_abs(z.abs()), w);
+        let zdot = hysteresis(1.0, m.b, m.gamma, z, w, || m.n.of_abs(z.abs()));
         let p = m.p.exponent();
         let wdot = -rdot / m.sigma
             - m.kappa * p * m.sigma * self.pm1.of_abs(yy.abs()) * w
@@ -599,7 +616,7 @@ impl System<4> for BwmcmEarlier {
         let l = &self.law.0;
         let (yy, z, w) = (y[1], y[2], y[3]);
         let rdot = self.rdot(y);
-        let zdot = hysteresis(l.a, l.beta, l.gamma, z, l.n.of_abs(z.abs()), w);
+        let zdot = hysteresis(l.a, l.beta, l.gamma, z, w, || l.n.of_abs(z.abs()));
         let p = l.p.exponent();
         let wdot = -l.c / self.m * rdot
             - l.alpha * p * l.k / l.c * self.pm1.of_abs(yy.abs()) * w

@@ -1,7 +1,7 @@
 //! Powers `|x|^p` with cheap paths for the exponents that occur in practice.
 //!
 //! The general path is `2^(p log2 a)` rather than `powf`: about half the cost, and two powers
-//! of the same base share the logarithm ([`Pow::pair`]). The relative error is at most a few
+//! of the same base share the logarithm (`Powers`). The relative error is at most a few
 //! `ε (1 + p |log2 a|)` (the rounding of `log2 a` scaled by the exponent), i.e. `1e-14` for
 //! `a` in `[1e-3, 1e3]` and `p <= 10`, far below any solver tolerance.
 
@@ -65,26 +65,6 @@ impl Pow {
         }
     }
 
-    /// `a^p` given `l = log2 a` (used only on the general path).
-    #[inline]
-    fn of_abs_log2(self, a: f64, l: f64) -> f64 {
-        match self.kind {
-            Kind::General => (self.p * l).exp2(),
-            _ => self.of_abs(a),
-        }
-    }
-
-    /// `(a^p, a^q)` for `a >= 0`, sharing `log2 a` between the general paths.
-    #[inline]
-    pub fn pair(a: f64, p: Self, q: Self) -> (f64, f64) {
-        if p.kind == Kind::General && q.kind == Kind::General {
-            let l = a.log2();
-            (p.of_abs_log2(a, l), q.of_abs_log2(a, l))
-        } else {
-            (p.of_abs(a), q.of_abs(a))
-        }
-    }
-
     /// `|x|^(p-1) x`, i.e. `sign(x) |x|^p`, for `p > 0` (0 at 0).
     #[inline]
     pub fn signed(self, x: f64) -> f64 {
@@ -92,6 +72,30 @@ impl Pow {
             Kind::One => x,
             Kind::Three => x * x * x,
             _ => self.of_abs(x.abs()).copysign(x),
+        }
+    }
+}
+
+/// Powers of one base `a >= 0` that share `log2 a`, computed on the first power that takes the
+/// general path (so a power that turns out not to be needed costs nothing).
+pub(crate) struct Powers {
+    a: f64,
+    log2: Option<f64>,
+}
+
+impl Powers {
+    /// The base `a >= 0`.
+    #[inline]
+    pub(crate) fn of(a: f64) -> Self {
+        Self { a, log2: None }
+    }
+
+    /// `a^p`, bit for bit equal to `p.of_abs(a)`.
+    #[inline]
+    pub(crate) fn get(&mut self, p: Pow) -> f64 {
+        match p.kind {
+            Kind::General => (p.p * *self.log2.get_or_insert_with(|| self.a.log2())).exp2(),
+            _ => p.of_abs(self.a),
         }
     }
 }
@@ -116,8 +120,9 @@ mod tests {
                     let s = e.signed(-x);
                     assert!((s + want).abs() <= tol, "p {p} x {x}: {s}");
                 }
-                let (a, b) = Pow::pair(x, e, Pow::new(2.93));
-                assert!((a - got).abs() <= tol, "pair p {p} x {x}: {a} vs {got}");
+                let mut shared = Powers::of(x);
+                let (b, a) = (shared.get(Pow::new(2.93)), shared.get(e));
+                assert_eq!(a.to_bits(), got.to_bits(), "shared p {p} x {x}: {a} vs {got}");
                 let want_b = f64::powf(x, 2.93);
                 let tol_b = 4.0 * f64::EPSILON * want_b * (1.0 + 2.93 * x.log2().abs().min(1e3));
                 assert!((b - want_b).abs() <= tol_b, "pair 2.93 x {x}: {b}");
