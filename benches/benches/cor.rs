@@ -1,5 +1,6 @@
 //! One CoR evaluation of the NDBWSHCCM at Table 3's DSS (1), v0 = 2 m/s, side by side:
-//! bwc's default settings, bwc's DOP853 stepping over the kinks, the paper's setup in bwc
+//! bwc's default settings (DOP853 with stops at the kinks), the Taylor-series path
+//! (`Settings::series`), DOP853 stepping over the kinks, the paper's setup in bwc
 //! (DOP853, max_step 1e-2), and the `ode_solvers` crate's DOP853 on the same right-hand side
 //! (no event location: it stops at the end of the first step where F <= 0 <= v).
 //! `cargo bench -p bwc-benches --bench cor`
@@ -44,6 +45,7 @@ fn cor_evaluation(c: &mut Criterion) {
         &Settings {
             rtol: 1e-14,
             atol: 1e-16,
+            series: false,
             ..Settings::default()
         },
     )
@@ -55,10 +57,27 @@ fn cor_evaluation(c: &mut Criterion) {
             Settings::default(),
         ),
         (
+            "bwc Taylor series (order 16) rtol 1e-11",
+            Settings {
+                series: true,
+                ..Settings::default()
+            },
+        ),
+        (
+            "bwc Taylor series (order 16) rtol 1e-9",
+            Settings {
+                rtol: 1e-9,
+                atol: 1e-11,
+                series: true,
+                ..Settings::default()
+            },
+        ),
+        (
             "bwc DOP853 rtol 1e-10, stops at kinks",
             Settings {
                 rtol: 1e-10,
                 atol: 1e-12,
+                series: false,
                 ..Settings::default()
             },
         ),
@@ -69,6 +88,7 @@ fn cor_evaluation(c: &mut Criterion) {
                 rtol: 1e-11,
                 atol: 1e-13,
                 stop_at_kinks: false,
+                series: false,
                 ..Settings::default()
             },
         ),
@@ -79,6 +99,7 @@ fn cor_evaluation(c: &mut Criterion) {
                 rtol: 1e-10,
                 atol: 1e-12,
                 stop_at_kinks: false,
+                series: false,
                 ..Settings::default()
             },
         ),
@@ -91,8 +112,10 @@ fn cor_evaluation(c: &mut Criterion) {
     for (name, s) in settings {
         let out = cor::evaluate(&map, v0, &s).unwrap();
         eprintln!(
-            "{name}: {} RHS evaluations, |e - e_ref| = {:.2e}",
+            "{name}: {} RHS evaluations, {} steps ({} series), |e - e_ref| = {:.2e}",
             out.stats.rhs_evals,
+            out.stats.accepted + out.stats.rejected,
+            out.series_steps,
             (out.e - reference).abs()
         );
         group.bench_function(name, |b| b.iter(|| cor::evaluate(&map, v0, &s).unwrap()));

@@ -70,6 +70,8 @@ pub struct Outcome {
     pub rhs_evals: u64,
     /// Whether the run switched to RODAS4 (stiffness detected).
     pub switched: bool,
+    /// Whether the Taylor-series path finished the run (`Settings::series`).
+    pub series: bool,
     /// Coefficient of restitution and separation time of a run that ended without a failure.
     pub result: Option<(f64, Option<f64>)>,
 }
@@ -160,7 +162,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
     let (a, b, w) = case.input;
     let u = FromFn(move |t: f64| a + b * (w * t).sin());
     let unforced = a == 0.0 && b == 0.0;
-    let mut switched = false;
+    let (mut switched, mut series) = (false, false);
     let mut result = None;
     let (class, evals) = match BaseMap::new(case.kind, case.base)
         .and_then(|map| {
@@ -179,6 +181,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
         })
         .inspect(|out| {
             switched = out.stiff_from.is_some();
+            series = out.series_steps > 0;
             result = Some((out.e, out.t_s));
         }) {
         Ok(out) if out.separated() && out.e.is_finite() && out.e >= 0.0 => {
@@ -212,14 +215,20 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
         seconds: clock.elapsed().as_secs_f64(),
         rhs_evals: evals,
         switched,
+        series,
         result,
     }
 }
 
 /// Runs cases `0..count` of seed `seed` in parallel (results in case order).
 pub fn sweep(seed: u64, count: u64) -> Vec<Outcome> {
+    sweep_with(seed, count, &settings())
+}
+
+/// As [`sweep`], with `settings`.
+pub fn sweep_with(seed: u64, count: u64, settings: &Settings) -> Vec<Outcome> {
     (0..count)
         .into_par_iter()
-        .map(|i| run(&sample(seed, i)))
+        .map(|i| run_with(&sample(seed, i), settings))
         .collect()
 }

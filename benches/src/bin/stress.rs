@@ -1,9 +1,11 @@
 //! Stress sweep over random admissible parameter sets of both models (issue 7): counts and time
 //! per class, the slowest cases, and any energy created without input.
 //!
-//! `cargo run --release -p bwc-benches --bin stress -- [COUNT] [SEED]` (default 100000, 1)
+//! `cargo run --release -p bwc-benches --bin stress -- [COUNT] [SEED] [series]` (default 100000,
+//! 1; `series`: with the Taylor-series path, `Settings::series = true`)
 
-use bwc_benches::stress::{sweep, Class};
+use bw_models::Settings;
+use bwc_benches::stress::{settings, sweep_with, Class};
 use std::collections::BTreeMap;
 use std::time::Instant;
 
@@ -16,33 +18,45 @@ fn main() {
         .nth(2)
         .and_then(|a| a.parse().ok())
         .unwrap_or(1);
+    let series = std::env::args().nth(3).as_deref() == Some("series");
+    let settings = Settings {
+        series,
+        ..settings()
+    };
     let clock = Instant::now();
-    let outcomes = sweep(seed, count);
+    let outcomes = sweep_with(seed, count, &settings);
     let wall = clock.elapsed().as_secs_f64();
-    let mut classes: BTreeMap<&str, (usize, f64, f64, usize)> = BTreeMap::new();
+    let mut classes: BTreeMap<&str, (usize, f64, f64, usize, usize)> = BTreeMap::new();
     for o in &outcomes {
         let e = classes.entry(o.class.name()).or_default();
         e.0 += 1;
         e.1 += o.seconds;
         e.2 = e.2.max(o.seconds);
         e.3 += usize::from(o.switched);
+        e.4 += usize::from(o.series);
     }
     bwc_cli::out!(
-        "# {count} cases, seed {seed}, {wall:.1} s wall ({} threads)",
+        "# {count} cases, seed {seed}, {} path, {wall:.1} s wall ({} threads)",
+        if series {
+            "Taylor-series"
+        } else {
+            "Runge-Kutta"
+        },
         rayon::current_num_threads()
     );
     bwc_cli::out!(
-        "{:<32} {:>8} {:>8} {:>12} {:>10} {:>10}",
+        "{:<32} {:>8} {:>8} {:>12} {:>10} {:>10} {:>8}",
         "class",
         "count",
         "share",
         "mean_ms",
         "max_ms",
-        "to_RODAS4"
+        "to_RODAS4",
+        "series"
     );
-    for (name, (n, total, max, switched)) in &classes {
+    for (name, (n, total, max, switched, series)) in &classes {
         bwc_cli::out!(
-            "{name:<32} {n:>8} {:>7.3}% {:>12.3} {:>10.1} {switched:>10}",
+            "{name:<32} {n:>8} {:>7.3}% {:>12.3} {:>10.1} {switched:>10} {series:>8}",
             100.0 * *n as f64 / count as f64,
             1e3 * total / *n as f64,
             1e3 * max

@@ -9,7 +9,10 @@
 //! * a stiff MCM case from the stress sweep, where the explicit methods run with the switch to
 //!   RODAS4 (method names `...>R`).
 //!
-//! Methods: DOPRI5, DOP853, Vern7 and RODAS4 (Rosenbrock, `Stiffness::Rosenbrock`).
+//! Methods: DOPRI5, DOP853, Vern7 and RODAS4 (Rosenbrock, `Stiffness::Rosenbrock`) on the
+//! Runge-Kutta path, and the Taylor-series path of order 16 (`Settings::series`;
+//! `Taylor16`, its RHS evaluations are those of its DOP853 start steps, so it is left out of the
+//! evaluations plot; `steps` counts every step).
 //!
 //! Side by side in the same run: the paper's setup in SciPy (benches/scipy_cor.py, skipped with a
 //! message when python3 is absent). Writes `cor.csv` and SVG plots into the directory given as
@@ -45,6 +48,7 @@ fn main() {
         method: &VERN7,
         rtol: 1e-14,
         atol: 1e-16,
+        series: false,
         ..Settings::default()
     };
     let mut cases: Vec<Case> = Vec::new();
@@ -119,6 +123,7 @@ fn main() {
         rtol: 1e-13,
         atol: 1e-15,
         stiffness,
+        series: false,
         ..Settings::default()
     };
     let stiff_ref = stiff_run(&tight_with(Stiffness::Rosenbrock))[0];
@@ -137,10 +142,10 @@ fn main() {
         vec![(Some(stiff_ref.e), stiff_ref.t_s)],
     ));
 
-    let mut csv = String::from("case,method,kinks,rtol,err_e,err_Ts,rhs_evals,time_us\n");
+    let mut csv = String::from("case,method,kinks,rtol,err_e,err_Ts,rhs_evals,time_us,steps\n");
     println!(
-        "{:<18} {:<9} {:<6} {:>7} {:>10} {:>10} {:>8} {:>9}",
-        "case", "method", "kinks", "rtol", "err_e", "err_Ts", "evals", "time_us"
+        "{:<18} {:<9} {:<6} {:>7} {:>10} {:>10} {:>8} {:>9} {:>6}",
+        "case", "method", "kinks", "rtol", "err_e", "err_Ts", "evals", "time_us", "steps"
     );
     for (name, run, refs) in &cases {
         let mut by_evals = Vec::new();
@@ -152,16 +157,20 @@ fn main() {
             Stiffness::Ignore
         };
         let methods = tableau::all()
-            .map(|tab| (tab.name, tab, explicit))
+            .map(|tab| (tab.name, tab, explicit, false))
             .into_iter()
-            .chain([("RODAS4", &DOP853, Stiffness::Rosenbrock)]);
-        for (method, tab, stiffness) in methods {
-            let method = if stiffness == Stiffness::Switch {
+            .chain([
+                ("RODAS4", &DOP853, Stiffness::Rosenbrock, false),
+                ("Taylor16", &DOP853, Stiffness::Switch, true),
+            ]);
+        for (method, tab, stiffness, series) in methods {
+            let method = if stiffness == Stiffness::Switch && !series {
                 format!("{method}>R")
             } else {
                 method.to_string()
             };
-            for kinks in [false, true] {
+            let stops: &[bool] = if series { &[true] } else { &[false, true] };
+            for &kinks in stops {
                 let mut pe = Vec::new();
                 let mut pt = Vec::new();
                 for k in 4..=13 {
@@ -172,6 +181,7 @@ fn main() {
                         atol: rtol * 1e-2,
                         stop_at_kinks: kinks,
                         stiffness,
+                        series,
                         ..Settings::default()
                     };
                     let outs = run(&s);
@@ -185,32 +195,43 @@ fn main() {
                         }
                     }
                     let evals: u64 = outs.iter().map(|o| o.stats.rhs_evals).sum();
+                    let steps: u64 = outs
+                        .iter()
+                        .map(|o| o.stats.accepted + o.stats.rejected)
+                        .sum();
                     let secs = median_seconds(|| {
                         std::hint::black_box(run(&s));
                     });
                     let err = ee.max(et).max(1e-17);
                     println!(
-                        "{name:<18} {method:<9} {:<6} {:>7.0e} {:>10.2e} {:>10.2e} {:>8} {:>9.1}",
+                        "{name:<18} {method:<9} {:<6} {:>7.0e} {:>10.2e} {:>10.2e} {:>8} {:>9.1} {:>6}",
                         kinks,
                         rtol,
                         ee,
                         et,
                         evals,
-                        secs * 1e6
+                        secs * 1e6,
+                        steps
                     );
                     let _ = writeln!(
                         csv,
-                        "{name},{method},{kinks},{rtol:e},{ee:e},{et:e},{evals},{:.3}",
+                        "{name},{method},{kinks},{rtol:e},{ee:e},{et:e},{evals},{:.3},{steps}",
                         secs * 1e6
                     );
                     pe.push((evals as f64, err.log10()));
                     pt.push(((secs * 1e6).log10(), err.log10()));
                 }
-                let label = format!("{method}{}", if kinks { " + stops at kinks" } else { "" });
-                by_evals.push(Series {
-                    label: label.clone(),
-                    points: pe,
-                });
+                let label = match (series, kinks) {
+                    (true, _) => format!("{method} (series)"),
+                    (false, true) => format!("{method} + stops at kinks"),
+                    (false, false) => method.clone(),
+                };
+                if !series {
+                    by_evals.push(Series {
+                        label: label.clone(),
+                        points: pe,
+                    });
+                }
                 by_time.push(Series { label, points: pt });
             }
         }

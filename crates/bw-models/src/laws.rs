@@ -142,13 +142,22 @@ mod tests {
             let sz = z.signum();
             w - beta * zn * sz * w.abs() - gamma * zn * w
         };
-        for (z, w) in [(-0.4, -1.2), (0.4, 1.2), (-0.4, 1.2), (0.4, -1.2), (0.0, 0.3)] {
+        for (z, w) in [
+            (-0.4, -1.2),
+            (0.4, 1.2),
+            (-0.4, 1.2),
+            (0.4, -1.2),
+            (0.0, 0.3),
+        ] {
             let mut called = false;
             let got = hysteresis(1.0, beta, gamma, z, w, || {
                 called = true;
                 zn
             });
-            assert!((got - direct(z, w)).abs() <= 1e-15 * direct(z, w).abs(), "{z} {w}");
+            assert!(
+                (got - direct(z, w)).abs() <= 1e-15 * direct(z, w).abs(),
+                "{z} {w}"
+            );
             // Loading (sgn z = sgn w, with sgn(+0) = 1) with γ = -β: the bracket is exactly 0.
             let loading = z.signum() == w.signum();
             assert_eq!(called, !loading, "z {z} w {w}");

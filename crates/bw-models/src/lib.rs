@@ -16,7 +16,9 @@
 //!   `e = v(t_s)/v0` (0 without separation) and `t_d = t_s`; DOP853 with stops at the kinks by
 //!   default, switching to RODAS4 with the model's Jacobian ([`CollisionModel::jacobian`]) when
 //!   the run turns stiff ([`Stiffness`]), and stopping early once a contact under a constant
-//!   input has settled ([`Impact::settled_at`]).
+//!   input has settled ([`Impact::settled_at`]); optionally ([`Settings::series`]) CoR
+//!   evaluations of the nondimensional models under a constant input by Taylor series of order
+//!   16 between the non-smooth points ([`series`]).
 //!
 //! Conventions: `x < 0` is compression, `F > 0` pushes the bodies apart, `v(0) = -v0`.
 //!
@@ -40,6 +42,7 @@ mod models;
 mod params;
 mod power;
 mod scaling;
+pub mod series;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use impact::{impact, simulate, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES};

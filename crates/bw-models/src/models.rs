@@ -6,7 +6,7 @@ use crate::input::Input;
 use crate::laws::{hysteresis, Bwmcl, Bwshccl};
 use crate::params::{check, ModelKind, NondimParams, PhysicalParams};
 use crate::power::{Pow, Powers};
-use crate::{ModelError, State};
+use crate::{Impact, ModelError, Settings, State};
 use bwc_ode::{Matrix, System};
 
 /// A collision model: a right-hand side with the outputs the impact analysis needs.
@@ -24,6 +24,13 @@ pub trait CollisionModel<const N: usize>: System<N> {
     /// A time from which the input is constant (model time units; `-inf` for a constant
     /// input), if any (see [`Input::constant_after`]).
     fn input_constant_after(&self) -> Option<f64>;
+    /// One impact by Taylor series ([`crate::series`]), or `None` where that path does not
+    /// apply or declines (the default: models without it). Called by [`crate::simulate`] for
+    /// CoR evaluations when [`Settings::series`] is set; the settings are validated.
+    fn series_impact(&self, settings: &Settings) -> Option<Impact> {
+        let _ = settings;
+        None
+    }
     /// Whether the input is constant at all times.
     fn input_is_constant(&self) -> bool {
         self.input_constant_after() == Some(f64::NEG_INFINITY)
@@ -79,13 +86,13 @@ fn check_mass_speed(m: f64, v0: f64) -> Result<(), ModelError> {
 
 /// The nondimensional parameters both ND models use, with the exponents classified once.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct NdCoefficients {
-    b: f64,
-    gamma: f64,
-    kappa: f64,
-    sigma: f64,
-    n: Pow,
-    p: Pow,
+pub(crate) struct NdCoefficients {
+    pub(crate) b: f64,
+    pub(crate) gamma: f64,
+    pub(crate) kappa: f64,
+    pub(crate) sigma: f64,
+    pub(crate) n: Pow,
+    pub(crate) p: Pow,
     /// `n - 1` and `p - 1`, for the Jacobians.
     nm1: Pow,
     pm1: Pow,
@@ -132,7 +139,7 @@ impl NdCoefficients {
 /// `V' = -κ|X|^(p-1) X - (1-κ)|Z|^(p-1) Z - σ|X|^p V + U(T)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ndbwshccm<I> {
-    k: NdCoefficients,
+    pub(crate) k: NdCoefficients,
     input: I,
 }
 
@@ -212,6 +219,9 @@ impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
     fn kinks(&self, _t: f64, y: &State<3>) -> [f64; 2] {
         [y[2], y[1]]
     }
+    fn series_impact(&self, settings: &Settings) -> Option<Impact> {
+        crate::series::impact(self, settings)
+    }
     fn jacobian(&self, _t: f64, y: &State<3>) -> Matrix<3> {
         let k = &self.k;
         let (x, z, v) = (y[0], y[1], y[2]);
@@ -238,7 +248,7 @@ impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
 /// `X = R + Y`, `F = -κ|Y|^(p-1) Y - (1-κ)|Z|^(p-1) Z`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ndbwmcm<I> {
-    k: NdCoefficients,
+    pub(crate) k: NdCoefficients,
     input: I,
 }
 
@@ -322,6 +332,9 @@ impl<I: Input> CollisionModel<4> for Ndbwmcm<I> {
     }
     fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
         [y[3] + self.k.sigma * self.force_of(y), y[2]]
+    }
+    fn series_impact(&self, settings: &Settings) -> Option<Impact> {
+        crate::series::impact(self, settings)
     }
     fn jacobian(&self, _t: f64, y: &State<4>) -> Matrix<4> {
         let k = &self.k;

@@ -122,7 +122,11 @@ mod tests {
                 }
                 let mut shared = Powers::of(x);
                 let (b, a) = (shared.get(Pow::new(2.93)), shared.get(e));
-                assert_eq!(a.to_bits(), got.to_bits(), "shared p {p} x {x}: {a} vs {got}");
+                assert_eq!(
+                    a.to_bits(),
+                    got.to_bits(),
+                    "shared p {p} x {x}: {a} vs {got}"
+                );
                 let want_b = f64::powf(x, 2.93);
                 let tol_b = 4.0 * f64::EPSILON * want_b * (1.0 + 2.93 * x.log2().abs().min(1e3));
                 assert!((b - want_b).abs() <= tol_b, "pair 2.93 x {x}: {b}");

@@ -6,6 +6,8 @@
 mod alloc_counter;
 #[path = "support/lyapunov.rs"]
 mod lyapunov;
+#[path = "support/series.rs"]
+mod series;
 #[path = "support/settling.rs"]
 mod settling;
 #[path = "support/stiff.rs"]
@@ -598,6 +600,22 @@ fn cor_evaluation_does_not_allocate() {
     });
     assert!(a.separated() && b.separated() && c.separated());
     assert_eq!(allocations, 0, "heap allocations in three CoR evaluations");
+    // Nor does the Taylor-series path (its jets live on the stack).
+    let series = Settings {
+        series: true,
+        ..Settings::default()
+    };
+    let ((a, b), allocations) = alloc_counter::count(|| {
+        (
+            impact(&shccm, &series).unwrap(),
+            impact(&mcm, &series).unwrap(),
+        )
+    });
+    assert!(a.series_steps > 0 && b.series_steps > 0);
+    assert_eq!(
+        allocations, 0,
+        "heap allocations in two series CoR evaluations"
+    );
     // Nor does RODAS4 (the Jacobian and M^-1 live on the stack).
     let rodas = Settings {
         stiffness: Stiffness::Rosenbrock,

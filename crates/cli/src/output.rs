@@ -35,6 +35,8 @@ pub struct RunSummary {
     pub jacobians: u64,
     /// When the run switched to RODAS4 because it had become stiff (unit of `t_s`), or null.
     pub stiff_from: Option<f64>,
+    /// Steps taken by Taylor series (0 on the Runge-Kutta path; counted in `accepted`).
+    pub series_steps: u64,
     /// `"shccm"` or `"mcm"`.
     pub model: &'static str,
     /// System name, if any.
@@ -68,6 +70,7 @@ impl Summary {
                     events: r.stats.events,
                     jacobians: r.stats.jacobians,
                     stiff_from: r.stiff_from,
+                    series_steps: r.series_steps,
                     model: r.model.name(),
                     name: r.name.clone(),
                     time_unit: r.time_unit,

@@ -32,6 +32,8 @@ pub struct Run {
     pub stats: Stats,
     /// When the run switched to RODAS4 because it had become stiff (in the unit of `t_s`).
     pub stiff_from: Option<f64>,
+    /// Steps taken by Taylor series (`bw_models::Settings::series`).
+    pub series_steps: u64,
     /// Sampled trajectory (only when an output asks for it).
     pub trajectory: Vec<Sample>,
 }
@@ -130,6 +132,7 @@ fn run_one(
             time_unit,
             stats: impact.stats,
             stiff_from: impact.stiff_from.map(|t| t * t_scale.unwrap_or(1.0)),
+            series_steps: impact.series_steps,
             trajectory,
         }
     };

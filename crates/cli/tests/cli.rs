@@ -157,6 +157,23 @@ fn nondimensional_scene_reports_null_speed_and_duration() {
     assert!((run["e"].as_f64().unwrap() - 0.748434931597434).abs() < 1e-9);
 }
 
+/// `[solver] series = true` puts a CoR-only nondimensional scene under a constant input on the
+/// Taylor-series path (`series_steps` in the JSON summary); the default is the Runge-Kutta path;
+/// both give the Hunt-Crossley closed form.
+#[test]
+fn series_key_and_series_steps() {
+    let dir = scratch("series");
+    let hc = "model = \"shccm\"\n[nondimensional]\nB = 0\nGamma = 0\nkappa = 0.5\nsigma = 0.5\nn = 1\np = 1.5\n";
+    let scene = dir.join("hc.toml");
+    for (extra, series) in [("", false), ("[solver]\nseries = true\n", true)] {
+        std::fs::write(&scene, format!("{hc}{extra}")).unwrap();
+        let v = json(&simulate(&["run", scene.to_str().unwrap(), "--json"]));
+        let run = &v["runs"][0];
+        assert!((run["e"].as_f64().unwrap() - 0.748434931597434).abs() < 1e-10);
+        assert_eq!(run["series_steps"].as_u64().unwrap() > 0, series, "{run}");
+    }
+}
+
 /// `method = "rosenbrock"` runs RODAS4 (Jacobian evaluations reported, the Hunt-Crossley answer
 /// kept); a nearly rigid dashpot in the MCM makes the default explicit method switch, reported
 /// as `stiff_from`; `switch_when_stiff = false` keeps the explicit method.

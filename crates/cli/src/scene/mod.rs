@@ -10,7 +10,7 @@
 //! [input]                    # optional: constant | gravity | arctan | table | sum
 //! kind = "gravity"
 //! [solver]                   # optional: method, rtol, atol, max_step, t_max, max_steps, stop_at_kinks,
-//!                            #   switch_when_stiff
+//!                            #   switch_when_stiff, series
 //! [output]                   # optional: trajectory, dt, loops, sweep, plots
 //! ```
 
@@ -754,7 +754,7 @@ pub(crate) fn signal(
 }
 
 /// Parses a `[solver]`-like table (`method`, `rtol`, `atol`, `max_step`, `t_max`, `max_steps`,
-/// `stop_at_kinks`, `switch_when_stiff`) over `defaults`.
+/// `stop_at_kinks`, `switch_when_stiff`, `series`) over `defaults`.
 pub(crate) fn solver_settings(
     ctx: &Ctx,
     table: &Option<Spanned<RawSolver>>,
@@ -813,6 +813,9 @@ pub(crate) fn solver_settings(
     }
     if let Some(v) = &r.stop_at_kinks {
         s.stop_at_kinks = *v.get_ref();
+    }
+    if let Some(v) = &r.series {
+        s.series = *v.get_ref();
     }
     s.validate().map_err(|e| {
         let span_of = |n: &str| match n {

@@ -186,6 +186,7 @@ pub struct RawSolver {
     pub max_steps: Option<Spanned<i64>>,
     pub stop_at_kinks: Option<Spanned<bool>>,
     pub switch_when_stiff: Option<Spanned<bool>>,
+    pub series: Option<Spanned<bool>>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -1,0 +1,731 @@
+//! Taylor-series integration of one impact of the nondimensional models under a constant input:
+//! the fast path of a CoR evaluation ([`crate::Settings::series`]).
+//!
+//! Between the non-smooth points each right-hand side is analytic in its branch (fixed signs of
+//! `X` or `Y`, of `Z` and of the rate across the hysteretic element), so the solution is
+//! expanded about the start of each step in its Taylor series of order [`ORDER`], computed by
+//! automatic differentiation: the coefficients of `y = b^e` (`|X|^p`, `|Z|^n`, `|Z|^p`) follow
+//! from `b y' = e b' y`,
+//!
+//! `y_k = (1 / (k b_0)) Σ_{i<k} (e (k - i) - i) b_{k-i} y_i`,
+//!
+//! and products by the Cauchy rule (Jorba & Zou, Experiment. Math. 14 (2005) 99-117). The step
+//! is Jorba & Zou's, `h = 0.9 min(ρ_K, ρ_{K-1})` with `ρ_k = (tol / |c_k|_∞)^(1/k)` over the
+//! state and the force and `tol = TOLERANCE_SCALE (atol + rtol |y|_∞)`; there are no rejected
+//! steps. The non-smooth points (the rate and
+//! `Z` changing sign) and the separation `F <= 0 <= V` are roots of the step's polynomials, found
+//! by safeguarded Newton iteration, so the state there has the accuracy of the step.
+//!
+//! Where a base of a power vanishes (`X = Z = 0` at contact, `Z = 0` at its kink) the solution is
+//! only finitely smooth and the recurrence divides by zero: one step of the explicit method of
+//! the settings leaves the point, then the series take over.
+//!
+//! A contact that comes to rest is reported as settled, as on the Runge-Kutta path. A run this
+//! path cannot finish (a start step that meets an event, more than [`MAX_SERIES_STEPS`] steps,
+//! e.g. a stiff contact, or the horizon) is declined, and the caller simulates the impact with
+//! the Runge-Kutta path instead.
+
+use crate::impact::{at_rest, pad, Impact, Settings};
+use crate::input::Input;
+use crate::models::{CollisionModel, Ndbwmcm, Ndbwshccm};
+use crate::State;
+use bwc_ode::{Integrator, Options, Stats};
+
+/// Order of the Taylor polynomials (chosen by the work-precision benchmark, BENCHMARKS.md).
+pub const ORDER: usize = 16;
+
+/// The series steps are controlled with this multiple of the settings' tolerances: the
+/// truncation error of a step is well below Jorba & Zou's estimate (the last term); at
+/// `10 rtol` the errors in `e` and `T_s` are at most those of the Runge-Kutta path at `rtol`
+/// on the benchmark's cases (BENCHMARKS.md) and within a few times them on random parameters
+/// (tested).
+pub const TOLERANCE_SCALE: f64 = 10.0;
+
+/// The start steps leave a point where the right-hand side is only finitely smooth (`C^1` for
+/// exponents near 1), where the error estimate of a Runge-Kutta step is least reliable: they
+/// run at this multiple of the settings' tolerances.
+pub const START_TOLERANCE: f64 = 0.01;
+
+/// Largest ratio of a series step to the step before it. Next to a point where a base vanished,
+/// the coefficients up to the order can be nearly those of a polynomial while the orders beyond
+/// it are not (`|X|^p` with `X = -T + O(T^(p+2))`): the estimate alone would then jump far
+/// ahead (measured: a hundredfold, with a local error of 2e-7 at rtol 1e-11, p = 10).
+const MAX_GROWTH: f64 = 2.0;
+
+/// Orders whose coefficients set the step size.
+const ESTIMATE_TERMS: usize = 4;
+
+/// Most series steps of one impact before it is handed to the Runge-Kutta path.
+pub const MAX_SERIES_STEPS: u64 = 1000;
+
+/// Taylor coefficients `c_0 ..= c_ORDER` of one function about the start of a step.
+pub(crate) type Series = [f64; ORDER + 1];
+
+/// The Taylor polynomials of one step.
+pub(crate) struct Jet<const N: usize> {
+    /// The state components.
+    state: [Series; N],
+    /// The contact force `F`.
+    force: Series,
+    /// The rate across the hysteretic element (`V` or `Y'`), whose sign picks the branch.
+    rate: Series,
+    /// Scratch of [`Expand::expand`], kept between steps: the bases of the powers and the
+    /// powers (each expansion writes every coefficient it reads).
+    bases: [Base; 2],
+    powers: [Power; 3],
+}
+
+impl<const N: usize> Jet<N> {
+    fn new() -> Self {
+        Self {
+            state: [[0.0; ORDER + 1]; N],
+            force: [0.0; ORDER + 1],
+            rate: [0.0; ORDER + 1],
+            bases: [Base::ZERO, Base::ZERO],
+            powers: [Power::ZERO, Power::ZERO, Power::ZERO],
+        }
+    }
+
+    /// The state, force and rate polynomials at `s` (Horner's scheme on all of them at once,
+    /// so that the dependency chains overlap).
+    fn at(&self, s: f64) -> ([f64; N], f64, f64) {
+        let (mut y, mut f, mut r) = ([0.0; N], 0.0, 0.0);
+        for k in (0..=ORDER).rev() {
+            for (yi, c) in y.iter_mut().zip(&self.state) {
+                *yi = *yi * s + c[k];
+            }
+            f = f * s + self.force[k];
+            r = r * s + self.rate[k];
+        }
+        (y, f, r)
+    }
+}
+
+/// A nondimensional model whose solution the series path can expand.
+pub(crate) trait Expand<const N: usize>: CollisionModel<N> {
+    /// Index of the displacement whose power is in the force (`X` or `Y`).
+    const BASE: usize;
+    /// Index of `Z`.
+    const Z: usize;
+    /// Whether the rate is the velocity `V` (NDBWSHCCM).
+    const RATE_IS_VELOCITY: bool;
+
+    /// The Taylor coefficients of the solution through `y` in the branch where the rate has
+    /// sign `rate_sign`, for the constant input `u`; `y[BASE]` and `y[Z]` are nonzero.
+    fn expand(&self, y: &State<N>, rate_sign: f64, u: f64, jet: &mut Jet<N>);
+}
+
+/// `Σ_j p_j q_j` over the common length, in four lanes.
+#[inline(always)]
+fn dot(p: &[f64], q: &[f64]) -> f64 {
+    let n = p.len().min(q.len());
+    let (p, q) = (p[..n].chunks_exact(4), q[..n].chunks_exact(4));
+    let tail: f64 = p
+        .remainder()
+        .iter()
+        .zip(q.remainder())
+        .map(|(a, b)| a * b)
+        .sum();
+    let mut acc = [0.0; 4];
+    for (a, b) in p.zip(q) {
+        for l in 0..4 {
+            acc[l] += a[l] * b[l];
+        }
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
+/// The base `b` of a power: its coefficients and the coefficients times their index.
+struct Base {
+    c: Series,
+    kc: Series,
+}
+
+impl Base {
+    const ZERO: Self = Self {
+        c: [0.0; ORDER + 1],
+        kc: [0.0; ORDER + 1],
+    };
+
+    #[inline(always)]
+    fn set(&mut self, k: usize, v: f64) {
+        self.c[k] = v;
+        self.kc[k] = k as f64 * v;
+    }
+}
+
+/// A power `y = b^e` of a base, stored in reverse (`r[ORDER - k] = y_k`, `kr[ORDER - k] =
+/// k y_k`) so that the convolutions of the recurrence, `Σ_m w_m y_{k-m}`, are forward dot
+/// products.
+struct Power {
+    r: Series,
+    kr: Series,
+}
+
+impl Power {
+    const ZERO: Self = Self {
+        r: [0.0; ORDER + 1],
+        kr: [0.0; ORDER + 1],
+    };
+
+    #[inline(always)]
+    fn set(&mut self, k: usize, v: f64) {
+        self.r[ORDER - k] = v;
+        self.kr[ORDER - k] = k as f64 * v;
+    }
+
+    /// Coefficient `k >= 1` of `y = b^e` from `b_0 ..= b_k` and `y_0 .. y_{k-1}` (`b_0 > 0`):
+    /// `k b_0 y_k = e Σ_{m=1..k} m b_m y_{k-m} - Σ_{m=1..k} b_m (k-m) y_{k-m}`.
+    #[inline(always)]
+    fn term(&self, b: &Base, e: f64, k: usize) -> f64 {
+        let w = ORDER + 1 - k;
+        let s = e * dot(&b.kc[1..=k], &self.r[w..]) - dot(&b.c[1..=k], &self.kr[w..]);
+        s / (k as f64 * b.c[0])
+    }
+
+    /// Coefficient `k` of the product of this power and the series `w`.
+    #[inline(always)]
+    fn times(&self, w: &Series, k: usize) -> f64 {
+        dot(&w[..=k], &self.r[ORDER - k..])
+    }
+}
+
+/// The polynomial and its derivative at `s`.
+fn eval_d(c: &Series, s: f64) -> (f64, f64) {
+    let (mut p, mut d) = (0.0, 0.0);
+    for ci in c.iter().rev() {
+        d = d * s + p;
+        p = p * s + ci;
+    }
+    (p, d)
+}
+
+/// Sign class: -1, 0 or 1.
+fn class(v: f64) -> i8 {
+    if v > 0.0 {
+        1
+    } else if v < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+/// The root in `(0, h]` of a function `g` (value and slope at `s`) that has class `start` just
+/// after 0 and another class at `h`, as the first point found on the far side (within a few
+/// ulps of the root): Newton's iteration kept inside the shrinking bracket (bisection where it
+/// would leave it; a probe just past the iterate once Newton creeps up on the root from one
+/// side).
+fn root(g: impl Fn(f64) -> (f64, f64), h: f64, start: i8) -> f64 {
+    let (mut lo, mut hi) = (0.0, h);
+    let mut s = h;
+    for _ in 0..100 {
+        let (p, d) = g(s);
+        if class(p) == start {
+            lo = s;
+        } else {
+            hi = s;
+        }
+        let tiny = 4.0 * f64::EPSILON * hi;
+        if hi - lo <= tiny {
+            break;
+        }
+        let newton = s - p / d;
+        s = if !(newton > lo && newton < hi) {
+            0.5 * (lo + hi)
+        } else if (newton - s).abs() > tiny {
+            newton
+        } else if class(p) == start {
+            (newton + tiny).min(0.5 * (newton + hi))
+        } else {
+            (newton - tiny).max(0.5 * (newton + lo))
+        };
+    }
+    hi
+}
+
+/// Jorba & Zou's step size for the coefficients of `jet` about `y`, made robust to series whose
+/// last coefficients happen to be small (nearly polynomial stretches, integer exponents):
+/// `0.9 min_k ρ_k` over the last [`ESTIMATE_TERMS`] orders, `ρ_k = (tol / |c_k|_∞)^(1/k)` over the
+/// state and the force, with `tol = TOLERANCE_SCALE (atol + rtol |y|_∞)`.
+fn step_size<const N: usize>(jet: &Jet<N>, y: &State<N>, settings: &Settings) -> f64 {
+    let tol = TOLERANCE_SCALE * (settings.atol + settings.rtol * y.amax());
+    let lt = tol.log2();
+    // One exp2 for the smallest (log2 0 = -inf gives an infinite ρ).
+    let mut x = f64::INFINITY;
+    for k in ORDER + 1 - ESTIMATE_TERMS..=ORDER {
+        let c = jet
+            .state
+            .iter()
+            .chain([&jet.force])
+            .fold(0.0f64, |m, s| m.max(s[k].abs()));
+        x = x.min((lt - c.log2()) / k as f64);
+    }
+    0.9 * x.exp2()
+}
+
+/// What ends a step early.
+#[derive(Clone, Copy, PartialEq)]
+enum Event {
+    Rate,
+    Z,
+    Base,
+    Force,
+    Velocity,
+}
+
+/// One impact by Taylor series, or `None` where this path declines (see the module docs).
+pub(crate) fn impact<M: Expand<N>, const N: usize>(
+    model: &M,
+    settings: &Settings,
+) -> Option<Impact> {
+    if !model.input_is_constant() {
+        return None;
+    }
+    let u = model.input(0.0);
+    let velocity = |y: &State<N>| model.velocity(y);
+    let mut t = 0.0;
+    let mut y = model.initial_state();
+    let mut stats = Stats::default();
+    let mut series_steps = 0u64;
+    // The last step's size: a step may be at most MAX_GROWTH times it.
+    let mut h_last = f64::INFINITY;
+    let mut rate_class = class(model.kinks(t, &y)[0]);
+    let mut jet = Jet::new();
+    loop {
+        if series_steps >= MAX_SERIES_STEPS || stats.accepted >= settings.max_steps {
+            return None;
+        }
+        if t >= settings.t_max {
+            return None;
+        }
+        if y[M::BASE] == 0.0 || y[M::Z] == 0.0 {
+            let t_start = t;
+            (t, y) = start_step(model, settings, t, &y, &mut stats)?;
+            h_last = t - t_start;
+            let met = class(model.kinks(t, &y)[0]) != rate_class
+                || y[M::BASE] == 0.0
+                || y[M::Z] == 0.0
+                || (model.force(&y) <= 0.0 && velocity(&y) >= 0.0);
+            if met {
+                return None;
+            }
+            continue;
+        }
+        let (force, velocity_now) = (model.force(&y), velocity(&y));
+        if force <= 0.0 && velocity_now >= 0.0 {
+            // Reached at the end of the last step.
+            stats.events += 1;
+            return Some(Impact {
+                t_s: Some(t),
+                e: velocity_now.max(0.0) / model.impact_speed(),
+                state: pad(&y),
+                settled_at: None,
+                stiff_from: None,
+                series_steps,
+                stats,
+            });
+        }
+        model.expand(&y, f64::from(rate_class), u, &mut jet);
+        // At rest under the constant input: an equilibrium, the contact has settled.
+        let rate_of_change = State::<N>::from_fn(|i, _| jet.state[i][1]);
+        if at_rest(model, &rate_of_change, settings.atol) {
+            return Some(Impact {
+                t_s: None,
+                e: 0.0,
+                state: pad(&y),
+                settled_at: Some(t),
+                stiff_from: None,
+                series_steps,
+                stats,
+            });
+        }
+        series_steps += 1;
+        stats.accepted += 1;
+        let h = step_size(&jet, &y, settings)
+            .min(MAX_GROWTH * h_last)
+            .min(settings.max_step)
+            .min(settings.t_max - t);
+        h_last = h;
+        // The event functions in the order ties are resolved (the separation first), their
+        // class at the start, and whether they are watched in this step.
+        let (z, base) = (M::Z, M::BASE);
+        let watch = [
+            (Event::Force, 1, force > 0.0),
+            (
+                Event::Velocity,
+                -1,
+                !M::RATE_IS_VELOCITY && velocity_now < 0.0,
+            ),
+            (Event::Rate, rate_class, true),
+            (Event::Z, class(y[z]), true),
+            (Event::Base, class(y[base]), true),
+        ];
+        // The state and the event values at `s`: the force from the state (its sign is exact
+        // where the force has a multiple root, e.g. -|X|^(p-1) X at X = 0), the others from
+        // their series.
+        let values = |s: f64| {
+            let (ys, _, rate) = jet.at(s);
+            let force = model.force(&State::<N>::from(ys));
+            (ys, [force, ys[N - 1], rate, ys[z], ys[base]])
+        };
+        let series_of = |event: Event| match event {
+            Event::Force => &jet.force,
+            Event::Velocity => &jet.state[N - 1],
+            Event::Rate => &jet.rate,
+            Event::Z => &jet.state[z],
+            Event::Base => &jet.state[base],
+        };
+        let changed = |at: &[f64; 5]| {
+            watch
+                .iter()
+                .zip(at)
+                .any(|(&(_, start, on), v)| on && class(*v) != start)
+        };
+        // The earliest root: search where a class has changed (in the first half of the step
+        // if one has changed there already), then again up to the root found, until no function
+        // changes earlier (a function may cross and cross back inside a long step).
+        let (end, at_end) = values(h);
+        let (_, at_mid) = values(0.5 * h);
+        let (mut upto, mut at) = if changed(&at_mid) {
+            (0.5 * h, at_mid)
+        } else {
+            (h, at_end)
+        };
+        let mut first: Option<(f64, Event)> = None;
+        for _ in 0..8 {
+            let mut best: Option<(f64, Event)> = None;
+            for (&(event, start, on), v) in watch.iter().zip(&at) {
+                if !on || class(*v) == start {
+                    continue;
+                }
+                let c = series_of(event);
+                let s = if event == Event::Force {
+                    root(|s| (values(s).1[0], eval_d(c, s).1), upto, start)
+                } else {
+                    root(|s| eval_d(c, s), upto, start)
+                };
+                // Ties go to the function listed first (the separation).
+                if best.is_none_or(|(b, _)| s < b) {
+                    best = Some((s, event));
+                }
+            }
+            let Some((s, _)) = best else { break };
+            first = best;
+            if s >= upto {
+                break;
+            }
+            upto = s;
+            at = values(upto).1;
+        }
+        let Some((s, event)) = first else {
+            y = State::<N>::from(end);
+            t += h;
+            continue;
+        };
+        match event {
+            // A base vanishes at its root: there the series converge slowest (the root is their
+            // radius of convergence), so the explicit method takes the state there.
+            Event::Z | Event::Base => {
+                stats.events += 1;
+                let i = if event == Event::Z { z } else { base };
+                let target = Target::Component(i);
+                (t, y) = reach_root(model, settings, (t, &y), t + s, target, &mut stats)?;
+            }
+            Event::Rate => {
+                stats.events += 1;
+                rate_class = -rate_class;
+                y = State::<N>::from(jet.at(s).0);
+                t += s;
+                if M::RATE_IS_VELOCITY {
+                    y[N - 1] = 0.0;
+                }
+            }
+            // A separation: the explicit method takes the state there (the force can vanish
+            // where a base does, at the radius of convergence of the series).
+            Event::Force if jet.at(s).0[N - 1] >= 0.0 => {
+                (t, y) = reach_root(model, settings, (t, &y), t + s, Target::Force, &mut stats)?;
+            }
+            Event::Velocity | Event::Force => {
+                y = State::<N>::from(jet.at(s).0);
+                t += s;
+                if event == Event::Velocity {
+                    y[N - 1] = 0.0;
+                }
+            }
+        }
+        // The separation F <= 0 <= V, checked at every event (at a located root of the force,
+        // F is zero to rounding, either sign).
+        let force_zero = event == Event::Force && velocity(&y) >= 0.0;
+        if force_zero || (model.force(&y) <= 0.0 && velocity(&y) >= 0.0) {
+            stats.events += 1;
+            return Some(Impact {
+                t_s: Some(t),
+                e: velocity(&y).max(0.0) / model.impact_speed(),
+                state: pad(&y),
+                settled_at: None,
+                stiff_from: None,
+                series_steps,
+                stats,
+            });
+        }
+    }
+}
+
+/// One step of the settings' explicit method from `(t, y)`, where a base vanishes, at
+/// [`START_TOLERANCE`] times the settings' tolerances.
+fn start_step<M: CollisionModel<N>, const N: usize>(
+    model: &M,
+    settings: &Settings,
+    t: f64,
+    y: &State<N>,
+    stats: &mut Stats,
+) -> Option<(f64, State<N>)> {
+    let (rtol, atol) = (
+        START_TOLERANCE * settings.rtol,
+        START_TOLERANCE * settings.atol,
+    );
+    let options = Options::new(rtol, atol).with_max_step(settings.max_step);
+    let rhs = |t: f64, y: &State<N>| model.rhs(t, y);
+    let mut it = Integrator::new(rhs, settings.method, t, *y, options).ok()?;
+    it.step(settings.t_max).ok()?;
+    *stats += it.stats();
+    Some((it.t(), *it.y()))
+}
+
+/// What [`reach_root`] closes in on.
+#[derive(Clone, Copy)]
+enum Target {
+    /// A state component, set to exactly zero at its root.
+    Component(usize),
+    /// The contact force.
+    Force,
+}
+
+/// From `start`, the explicit method of the settings up to `t1`, where the series put a root of
+/// `target`; then one Newton step along `f` onto the root (declined unless it is tiny: an
+/// ill-conditioned root is left to the Runge-Kutta path).
+fn reach_root<M: CollisionModel<N>, const N: usize>(
+    model: &M,
+    settings: &Settings,
+    start: (f64, &State<N>),
+    t1: f64,
+    target: Target,
+    stats: &mut Stats,
+) -> Option<(f64, State<N>)> {
+    let (t0, y0) = start;
+    let options = Options::new(settings.rtol, settings.atol)
+        .with_max_step(settings.max_step)
+        .with_h0(t1 - t0);
+    let rhs = |t: f64, y: &State<N>| model.rhs(t, y);
+    let mut it = Integrator::new(rhs, settings.method, t0, *y0, options).ok()?;
+    it.integrate_to(t1).ok()?;
+    *stats += it.stats();
+    let (mut y, f) = (*it.y(), *it.derivative());
+    let dt = match target {
+        Target::Component(i) => -y[i] / f[i],
+        Target::Force => {
+            // dF/dt along the flow by a central difference.
+            let d = 1e-7 * (t1 - t0);
+            let slope = (model.force(&(y + f * d)) - model.force(&(y - f * d))) / (2.0 * d);
+            -model.force(&y) / slope
+        }
+    };
+    let tiny = dt.abs() <= 1e-6 * (t1 - t0);
+    if !tiny {
+        return None;
+    }
+    // The error of this step, about dt^2 |y''| / 2, is below 1e-12 |y''| (t1 - t0)^2.
+    y += f * dt;
+    if let Target::Component(i) = target {
+        y[i] = 0.0;
+    }
+    Some((t1 + dt, y))
+}
+
+impl<I: Input> Expand<3> for Ndbwshccm<I> {
+    const BASE: usize = 0;
+    const Z: usize = 1;
+    const RATE_IS_VELOCITY: bool = true;
+
+    fn expand(&self, y: &State<3>, sw: f64, u: f64, jet: &mut Jet<3>) {
+        let k = &self.k;
+        let (sx, sz) = (y[0].signum(), y[1].signum());
+        // Z' = V - |Z|^n (B sgn(Z) |V| + Γ V) = V - c |Z|^n V in this branch.
+        let c = k.b * sz * sw + k.gamma;
+        // Loading with Γ = -B from Z = X: Z' = X' exactly, Z stays X.
+        let shared = c == 0.0 && y[1] == y[0];
+        let (p, n, kc) = (k.p.exponent(), k.n.exponent(), 1.0 - k.kappa);
+        let Jet {
+            state: [x, z, v],
+            force,
+            bases: [a, zb],
+            powers: [ap, zp, zn],
+            ..
+        } = jet;
+        (x[0], z[0], v[0]) = (y[0], y[1], y[2]);
+        for j in 0..=ORDER {
+            a.set(j, sx * x[j]);
+            let apj = if j == 0 {
+                k.p.of_abs(a.c[0])
+            } else {
+                ap.term(a, p, j)
+            };
+            ap.set(j, apj);
+            let zpj = if shared {
+                apj
+            } else {
+                zb.set(j, sz * z[j]);
+                if c != 0.0 {
+                    let znj = if j == 0 {
+                        k.n.of_abs(zb.c[0])
+                    } else {
+                        zn.term(zb, n, j)
+                    };
+                    zn.set(j, znj);
+                }
+                if j == 0 {
+                    k.p.of_abs(zb.c[0])
+                } else {
+                    zp.term(zb, p, j)
+                }
+            };
+            zp.set(j, zpj);
+            force[j] = -k.kappa * sx * apj - kc * sz * zpj - k.sigma * ap.times(v, j);
+            if j == ORDER {
+                break;
+            }
+            let inv = 1.0 / (j + 1) as f64;
+            x[j + 1] = v[j] * inv;
+            z[j + 1] = if c == 0.0 {
+                x[j + 1]
+            } else {
+                (v[j] - c * zn.times(v, j)) * inv
+            };
+            v[j + 1] = (force[j] + if j == 0 { u } else { 0.0 }) * inv;
+        }
+        jet.rate = jet.state[2];
+    }
+}
+
+impl<I: Input> Expand<4> for Ndbwmcm<I> {
+    const BASE: usize = 1;
+    const Z: usize = 2;
+    const RATE_IS_VELOCITY: bool = false;
+
+    fn expand(&self, y: &State<4>, sw: f64, u: f64, jet: &mut Jet<4>) {
+        let k = &self.k;
+        let (sy, sz) = (y[1].signum(), y[2].signum());
+        // Z' = Y' - c |Z|^n Y' in this branch (rate Y' = V + σ F).
+        let c = k.b * sz * sw + k.gamma;
+        let shared = c == 0.0 && y[2] == y[1];
+        let (p, n, kc) = (k.p.exponent(), k.n.exponent(), 1.0 - k.kappa);
+        let Jet {
+            state: [r, yy, z, v],
+            force,
+            rate,
+            bases: [a, zb],
+            powers: [ap, zp, zn],
+        } = jet;
+        (r[0], yy[0], z[0], v[0]) = (y[0], y[1], y[2], y[3]);
+        for j in 0..=ORDER {
+            a.set(j, sy * yy[j]);
+            let apj = if j == 0 {
+                k.p.of_abs(a.c[0])
+            } else {
+                ap.term(a, p, j)
+            };
+            ap.set(j, apj);
+            let zpj = if shared {
+                apj
+            } else {
+                zb.set(j, sz * z[j]);
+                if c != 0.0 {
+                    let znj = if j == 0 {
+                        k.n.of_abs(zb.c[0])
+                    } else {
+                        zn.term(zb, n, j)
+                    };
+                    zn.set(j, znj);
+                }
+                if j == 0 {
+                    k.p.of_abs(zb.c[0])
+                } else {
+                    zp.term(zb, p, j)
+                }
+            };
+            zp.set(j, zpj);
+            force[j] = -k.kappa * sy * apj - kc * sz * zpj;
+            rate[j] = v[j] + k.sigma * force[j];
+            if j == ORDER {
+                break;
+            }
+            let inv = 1.0 / (j + 1) as f64;
+            r[j + 1] = -k.sigma * force[j] * inv;
+            yy[j + 1] = rate[j] * inv;
+            z[j + 1] = if c == 0.0 {
+                yy[j + 1]
+            } else {
+                (rate[j] - c * zn.times(rate, j)) * inv
+            };
+            v[j + 1] = (force[j] + if j == 0 { u } else { 0.0 }) * inv;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Coefficients of `(1 + s)^e` by the binomial series.
+    fn binomial(e: f64) -> Series {
+        let mut c = [0.0; ORDER + 1];
+        c[0] = 1.0;
+        for k in 1..=ORDER {
+            c[k] = c[k - 1] * (e - (k - 1) as f64) / k as f64;
+        }
+        c
+    }
+
+    #[test]
+    fn power_recurrence_gives_the_binomial_series() {
+        let mut b = Base::ZERO;
+        b.set(0, 1.0);
+        b.set(1, 1.0);
+        for e in [1.0, 1.75, 2.62, 2.93, 0.5] {
+            let want = binomial(e);
+            let mut y = Power::ZERO;
+            y.set(0, 1.0);
+            for (k, wk) in want.iter().enumerate().skip(1) {
+                let yk = y.term(&b, e, k);
+                y.set(k, yk);
+                assert!((yk - wk).abs() <= 1e-14 * wk.abs().max(1e-3), "e {e} k {k}");
+            }
+            // (1 + s)^e (1 - s): coefficient k is want_k - want_{k-1}.
+            let mut w = [0.0; ORDER + 1];
+            (w[0], w[1]) = (1.0, -1.0);
+            for (k, pair) in want.windows(2).enumerate() {
+                let k = k + 1;
+                let got = y.times(&w, k);
+                let exact = pair[1] - pair[0];
+                assert!(
+                    (got - exact).abs() <= 1e-14 * exact.abs().max(1e-3),
+                    "e {e} k {k}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn roots_of_polynomials() {
+        // s^2 - 0.3 on (0, 1]: root sqrt(0.3), from either side.
+        let mut q = [0.0; ORDER + 1];
+        (q[0], q[2]) = (-0.3, 1.0);
+        let r = root(|s| eval_d(&q, s), 1.0, -1);
+        assert!((r - 0.3f64.sqrt()).abs() <= 1e-15 && eval_d(&q, r).0 >= 0.0);
+        let neg = q.map(|c| -c);
+        let r = root(|s| eval_d(&neg, s), 1.0, 1);
+        assert!((r - 0.3f64.sqrt()).abs() <= 1e-15 && eval_d(&neg, r).0 <= 0.0);
+        assert_eq!(eval_d(&q, 2.0), (3.7, 4.0));
+    }
+}

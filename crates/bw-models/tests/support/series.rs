@@ -1,0 +1,275 @@
+//! The Taylor-series path of a CoR evaluation (`Settings::series`, for constant inputs): against the closed forms, against the Runge-Kutta path on the published cases and
+//! on random admissible parameters, and where it must hand over to the Runge-Kutta path.
+
+use bw_models::input::{Arctan, Constant, Zero};
+use bw_models::{
+    impact, impact_at, BaseMap, BaseParams, CollisionModel, Impact, ModelKind, Ndbwmcm, Ndbwshccm,
+    Nondim, NondimParams, Settings, State, Stiffness,
+};
+use proptest::prelude::*;
+
+fn nd(kind: ModelKind, b: f64, gamma: f64, kappa: f64, sigma: f64, n: f64, p: f64) -> NondimParams {
+    NondimParams::new(
+        kind,
+        Nondim {
+            b,
+            gamma,
+            kappa,
+            sigma,
+            n,
+            p,
+        },
+    )
+    .unwrap()
+}
+
+/// The default settings with the series path on.
+fn with_series() -> Settings {
+    Settings {
+        series: true,
+        ..Settings::default()
+    }
+}
+
+fn runge_kutta(rtol: f64) -> Settings {
+    Settings {
+        rtol,
+        atol: rtol / 100.0,
+        series: false,
+        ..Settings::default()
+    }
+}
+
+fn base(b_b: f64, gamma_b: f64, kappa: f64, sigma_b: f64, n: f64, p: f64) -> BaseParams {
+    BaseParams {
+        b_b,
+        gamma_b,
+        kappa,
+        sigma_b,
+        n,
+        p,
+        u_b: 1.0,
+        t_b: 1.0,
+    }
+}
+
+/// Elastic limit (B = Γ = σ = 0): e = 1 and T_s = 2 X_m B(1/(p+1), 1/2) / (p+1) with
+/// X_m = ((p+1)/2)^(1/(p+1)) (mpmath, 20 digits), at the default settings; Hunt-Crossley limit (B = Γ = 0): e from σ - ln(1+σ) = -σe - ln(1-σe).
+#[test]
+fn series_meets_the_closed_forms() {
+    let s = with_series();
+    for (p, ts_exact) in [(1.5, 3.2180654597190430845), (2.62, 3.1579961449608979578)] {
+        for out in [
+            impact(
+                &Ndbwshccm::new(&nd(ModelKind::Shccm, 0.0, 0.0, 0.3, 0.0, 1.7, p), Zero).unwrap(),
+                &s,
+            ),
+            impact(
+                &Ndbwmcm::new(&nd(ModelKind::Mcm, 0.0, 0.0, 0.6, 1e-17, 2.0, p), Zero).unwrap(),
+                &s,
+            ),
+        ] {
+            let out = out.unwrap();
+            assert!(out.series_steps > 0, "p {p}: {out:?}");
+            let ts = out.t_s.expect("separates");
+            assert!(
+                (ts - ts_exact).abs() < 1e-10,
+                "p {p}: T_s {ts} vs {ts_exact}"
+            );
+            assert!((out.e - 1.0).abs() < 1e-10, "p {p}: e {}", out.e);
+        }
+    }
+    for (sigma, e_exact) in [(0.2, 0.882189986247306374), (0.9, 0.619736466081975129)] {
+        for (kappa, n, p) in [(0.2, 2.5, 1.5), (0.9, 1.3, 3.0)] {
+            let m = Ndbwshccm::new(&nd(ModelKind::Shccm, 0.0, 0.0, kappa, sigma, n, p), Zero);
+            let out = impact(&m.unwrap(), &s).unwrap();
+            assert!(out.series_steps > 0);
+            assert!(
+                (out.e - e_exact).abs() < 1e-10,
+                "σ {sigma} p {p}: e {}",
+                out.e
+            );
+        }
+    }
+}
+
+/// Table 3's DSS (1), both models, three speeds: the series at the default settings agree with
+/// the Runge-Kutta path at rtol 1e-14 to 1e-10 in e and T_s, in fewer steps.
+#[test]
+fn series_agree_with_runge_kutta_on_the_published_cases() {
+    let cases = [
+        (
+            ModelKind::Shccm,
+            base(2.38, -2.38, 0.677, 0.0348, 2.93, 2.62),
+        ),
+        (
+            ModelKind::Mcm,
+            base(0.966, -0.966, 0.531, 2.22e-16, 1.57, 1.75),
+        ),
+        (
+            ModelKind::Mcm,
+            base(0.655, -0.64, 0.519, 0.0118, 1.94, 2.28),
+        ),
+    ];
+    for (kind, b) in cases {
+        let map = BaseMap::new(kind, b).unwrap();
+        for v0 in [0.5, 2.0, 5.0] {
+            let series = impact_at(&map, Zero, v0, &with_series()).unwrap();
+            let reference = impact_at(&map, Zero, v0, &runge_kutta(1e-14)).unwrap();
+            assert_eq!(reference.series_steps, 0);
+            assert!(
+                series.series_steps > 0 && series.stats.accepted < 80,
+                "{series:?}"
+            );
+            let (ts, ts_ref) = (series.t_s.unwrap(), reference.t_s.unwrap());
+            assert!(
+                (series.e - reference.e).abs() < 1e-10,
+                "{kind:?} {v0}: e {series:?}"
+            );
+            assert!(
+                (ts - ts_ref).abs() < 1e-10,
+                "{kind:?} {v0}: T_s {ts} vs {ts_ref}"
+            );
+            // Three events: the rate and Z change sign, then the separation.
+            assert_eq!(series.stats.events, 3);
+        }
+    }
+}
+
+/// What the series cannot do goes to the Runge-Kutta path: a time-varying input, RODAS4
+/// throughout, samples; a constant push that never lets go settles on the series path, where
+/// the force balances the input as on the Runge-Kutta path.
+#[test]
+fn series_hand_over_what_they_cannot_do() {
+    let p = nd(ModelKind::Shccm, 1.0, -0.5, 0.6, 0.8, 1.5, 1.5);
+    let arctan = Arctan {
+        m: 1.0,
+        d: -0.5,
+        omega: 1.0,
+    };
+    let ramp = Ndbwshccm::new(&p, arctan).unwrap();
+    let out = impact(&ramp, &with_series()).unwrap();
+    assert_eq!(out.series_steps, 0);
+    let zero = Ndbwshccm::new(&p, Zero).unwrap();
+    let rodas = Settings {
+        stiffness: Stiffness::Rosenbrock,
+        ..with_series()
+    };
+    assert_eq!(impact(&zero, &rodas).unwrap().series_steps, 0);
+
+    let push = Ndbwshccm::new(&p, Constant(-2.0)).unwrap();
+    let series = impact(&push, &with_series()).unwrap();
+    let rk = impact(&push, &runge_kutta(1e-11)).unwrap();
+    assert!(series.series_steps > 0 && series.t_s.is_none());
+    let (a, b) = (series.settled_at.unwrap(), rk.settled_at.unwrap());
+    assert!(a < 200.0 && b < 200.0, "settled at {a} and {b}");
+    for (x, y) in series.state.iter().zip(&rk.state) {
+        assert!((x - y).abs() < 1e-8, "{:?} vs {:?}", series.state, rk.state);
+    }
+}
+
+/// Separation under a constant input pulling the bodies apart or pushing them together (within
+/// what still separates), both models.
+#[test]
+fn series_with_constant_inputs() {
+    for u in [-0.1, 0.3] {
+        let shccm = Ndbwshccm::new(
+            &nd(ModelKind::Shccm, 3.0, -1.0, 0.4, 0.1, 2.2, 1.8),
+            Constant(u),
+        );
+        let mcm = Ndbwmcm::new(
+            &nd(ModelKind::Mcm, 3.0, -1.0, 0.4, 0.6, 2.2, 2.5),
+            Constant(u),
+        );
+        let pairs: [(Impact, Impact); 2] = [
+            (
+                impact(shccm.as_ref().unwrap(), &with_series()).unwrap(),
+                impact(shccm.as_ref().unwrap(), &runge_kutta(1e-14)).unwrap(),
+            ),
+            (
+                impact(mcm.as_ref().unwrap(), &with_series()).unwrap(),
+                impact(mcm.as_ref().unwrap(), &runge_kutta(1e-14)).unwrap(),
+            ),
+        ];
+        for (series, rk) in pairs {
+            assert!(series.series_steps > 0, "{series:?}");
+            assert!(
+                (series.e - rk.e).abs() < 1e-10,
+                "u {u}: {} vs {}",
+                series.e,
+                rk.e
+            );
+            let (a, b) = (series.t_s.unwrap(), rk.t_s.unwrap());
+            assert!((a - b).abs() < 1e-10 * b.max(1.0), "u {u}: T_s {a} vs {b}");
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// Random admissible parameters and speeds: where the series path finishes an impact, it is
+    /// about as accurate as the Runge-Kutta path at the same (default) settings, both measured
+    /// against the Runge-Kutta path at rtol 1e-13: within 3 times the Runge-Kutta error, or
+    /// 1e-10 (relative to T_s for long contacts). The separation time can be ill-conditioned:
+    /// where the force reaches zero slowly, a state error of rtol = 1e-11 (what the tolerance
+    /// allows) moves it by `1e-11 / |dF/dT|`, and that much more is allowed.
+    #[test]
+    fn series_agree_with_runge_kutta_on_random_parameters(
+        mcm in any::<bool>(),
+        b_b in 0.0..5.0f64,
+        g in -1.0..1.0f64,
+        kappa in 0.05..0.95f64,
+        sigma_b in 0.0..0.5f64,
+        n in 1.0..4.0f64,
+        p in 1.0..4.0f64,
+        v0 in 0.3..10.0f64,
+    ) {
+        let (kind, p, sigma_b) = if mcm {
+            // The NDBWMCM needs p = 1 or p >= 2, and sigma > 0.
+            let p = match p {
+                p if p < 1.5 => 1.0,
+                p if p < 2.0 => 2.0,
+                p => p,
+            };
+            (ModelKind::Mcm, p, sigma_b + 0.01)
+        } else {
+            (ModelKind::Shccm, p, sigma_b)
+        };
+        let map = BaseMap::new(kind, base(b_b, g * b_b, kappa, sigma_b, n, p)).unwrap();
+        let series = impact_at(&map, Zero, v0, &with_series()).unwrap();
+        let rk = impact_at(&map, Zero, v0, &runge_kutta(1e-11)).unwrap();
+        let reference = impact_at(&map, Zero, v0, &runge_kutta(1e-13)).unwrap();
+        prop_assert_eq!(series.separated(), reference.separated());
+        if series.series_steps > 0 && reference.separated() {
+            let err = |o: &Impact| {
+                let dt = (o.t_s.unwrap() - reference.t_s.unwrap()).abs();
+                ((o.e - reference.e).abs(), dt)
+            };
+            let ((se, st), (re, rt)) = (err(&series), err(&rk));
+            let allowed = 1e-10 * reference.t_s.unwrap().max(1.0)
+                + 1e-11 / force_rate(&map, v0, &reference.state);
+            prop_assert!(se <= 3.0 * re + 1e-10, "e: series {:e}, Runge-Kutta {:e}", se, re);
+            prop_assert!(
+                st <= 3.0 * rt + allowed,
+                "T_s: series {:e}, Runge-Kutta {:e}, allowed {:e}", st, rt, allowed
+            );
+        }
+    }
+}
+
+/// `|dF/dT|` at the state `y` (a central difference along the flow): a state error `δ` moves
+/// the separation time by about `δ / |dF/dT|`.
+fn force_rate(map: &BaseMap, v0: f64, y: &[f64; 4]) -> f64 {
+    fn rate<M: CollisionModel<N>, const N: usize>(m: &M, y: &[f64; 4]) -> f64 {
+        let y = State::<N>::from_fn(|i, _| y[i]);
+        let f = m.rhs(0.0, &y);
+        let d = 1e-6;
+        ((m.force(&(y + f * d)) - m.force(&(y - f * d))) / (2.0 * d)).abs()
+    }
+    let (nd, _) = map.at(v0).unwrap();
+    match map.kind() {
+        ModelKind::Shccm => rate(&Ndbwshccm::new(&nd, Zero).unwrap(), y),
+        ModelKind::Mcm => rate(&Ndbwmcm::new(&nd, Zero).unwrap(), y),
+    }
+}
