@@ -56,7 +56,7 @@ const MAX_GROWTH: f64 = 2.0;
 const ESTIMATE_TERMS: usize = 4;
 
 /// Most series steps of one impact before it is handed to the Runge-Kutta path.
-pub const MAX_SERIES_STEPS: u64 = 1000;
+pub const MAX_SERIES_STEPS: u64 = 300;
 
 /// Taylor coefficients `c_0 ..= c_ORDER` of one function about the start of a step.
 pub(crate) type Series = [f64; ORDER + 1];
