@@ -1,27 +1,15 @@
-//! The Taylor-series path of a CoR evaluation (`Settings::series`, for constant inputs): against the closed forms, against the Runge-Kutta path on the published cases and
-//! on random admissible parameters, and where it must hand over to the Runge-Kutta path.
+//! The Taylor-series path of a CoR evaluation (`Settings::series`, for constant inputs):
+//! against the closed forms, against the Runge-Kutta path on the published cases and on random
+//! admissible parameters, and where it must hand over to the Runge-Kutta path.
 
 use bw_models::input::{Arctan, Constant, Zero};
 use bw_models::{
-    impact, impact_at, BaseMap, BaseParams, CollisionModel, Impact, ModelKind, Ndbwmcm, Ndbwshccm,
-    Nondim, NondimParams, Settings, State, Stiffness,
+    impact, impact_at, BaseMap, CollisionModel, Impact, ModelKind, Ndbwmcm, Ndbwshccm, Settings,
+    State, Stiffness,
 };
 use proptest::prelude::*;
 
-fn nd(kind: ModelKind, b: f64, gamma: f64, kappa: f64, sigma: f64, n: f64, p: f64) -> NondimParams {
-    NondimParams::new(
-        kind,
-        Nondim {
-            b,
-            gamma,
-            kappa,
-            sigma,
-            n,
-            p,
-        },
-    )
-    .unwrap()
-}
+use super::{base, nd};
 
 /// The default settings with the series path on.
 fn with_series() -> Settings {
@@ -37,19 +25,6 @@ fn runge_kutta(rtol: f64) -> Settings {
         atol: rtol / 100.0,
         series: false,
         ..Settings::default()
-    }
-}
-
-fn base(b_b: f64, gamma_b: f64, kappa: f64, sigma_b: f64, n: f64, p: f64) -> BaseParams {
-    BaseParams {
-        b_b,
-        gamma_b,
-        kappa,
-        sigma_b,
-        n,
-        p,
-        u_b: 1.0,
-        t_b: 1.0,
     }
 }
 
