@@ -33,10 +33,10 @@ pub struct Settings {
     /// constant input by Taylor series between the non-smooth points ([`crate::series`]), with
     /// `method` for the steps next to the points where a base vanishes and onto the separation;
     /// runs that path declines (stiff, time-varying input, ill-conditioned roots) take the
-    /// Runge-Kutta path. Not with [`Stiffness::Rosenbrock`]. Off by default: about 1.3-1.4x
-    /// faster than the default on the paper's cases, with errors far below it, but on the stress
-    /// sweep's extreme parameters it is less accurate than the Runge-Kutta path in about 0.7 % of
-    /// its runs (BENCHMARKS.md, STABILITY.md).
+    /// Runge-Kutta path. Not with [`Stiffness::Rosenbrock`]. Off by default: 1.1-1.8x faster
+    /// at equal error on the paper's cases, with errors about 100x below the Runge-Kutta path's
+    /// at the same rtol, but on the stress sweep's extreme parameters less accurate than the
+    /// Runge-Kutta path in about 0.7 % of its runs (BENCHMARKS.md, STABILITY.md).
     pub series: bool,
 }
 
