@@ -27,8 +27,7 @@ pub trait CollisionModel<const N: usize>: System<N> {
     /// One impact by Taylor series ([`crate::series`]), or `None` where that path does not
     /// apply or declines (the default: models without it). Called by [`crate::simulate`] for
     /// CoR evaluations when [`Settings::series`] is set; the settings are validated.
-    fn series_impact(&self, settings: &Settings) -> Option<Impact> {
-        let _ = settings;
+    fn series_impact(&self, _settings: &Settings) -> Option<Impact> {
         None
     }
     /// Whether the input is constant at all times.

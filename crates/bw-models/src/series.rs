@@ -98,18 +98,17 @@ impl<const N: usize> Jet<N> {
         }
     }
 
-    /// The state, force and rate polynomials at `s` (Horner's scheme on all of them at once,
-    /// so that the dependency chains overlap).
-    fn at(&self, s: f64) -> ([f64; N], f64, f64) {
-        let (mut y, mut f, mut r) = ([0.0; N], 0.0, 0.0);
+    /// The state and rate polynomials at `s` (Horner's scheme on all of them at once, so that
+    /// the dependency chains overlap; the force is evaluated from the state instead).
+    fn at(&self, s: f64) -> ([f64; N], f64) {
+        let (mut y, mut r) = ([0.0; N], 0.0);
         for k in (0..=ORDER).rev() {
             for (yi, c) in y.iter_mut().zip(&self.state) {
                 *yi = *yi * s + c[k];
             }
-            f = f * s + self.force[k];
             r = r * s + self.rate[k];
         }
-        (y, f, r)
+        (y, r)
     }
 }
 
@@ -377,7 +376,7 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
         // where the force has a multiple root, e.g. -|X|^(p-1) X at X = 0), the others from
         // their series.
         let values = |s: f64| {
-            let (ys, _, rate) = jet.at(s);
+            let (ys, rate) = jet.at(s);
             let force = model.force(&State::<N>::from(ys));
             (ys, [force, ys[N - 1], rate, ys[z], ys[base]])
         };
@@ -557,7 +556,7 @@ fn reach_root<M: CollisionModel<N>, const N: usize>(
 
 /// Order by order, the powers of an expansion: `|D|^p` of the displacement `D` (`X` or `Y`),
 /// `|Z|^p` (that of `D` while `Z = D`) and `|Z|^n` (only where the hysteresis needs it).
-struct Powers<'a> {
+struct JetPowers<'a> {
     p: Pow,
     n: Pow,
     /// `Z = D` and stays so (loading with `Γ = -B` from contact).
@@ -568,7 +567,7 @@ struct Powers<'a> {
     powers: &'a mut [Power; 3],
 }
 
-impl<'a> Powers<'a> {
+impl<'a> JetPowers<'a> {
     /// The powers of the model with coefficients `k` in the branch with hysteresis bracket
     /// factor `c`, in the scratch `bases` and `powers`.
     fn new(
@@ -651,7 +650,7 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
             powers,
             ..
         } = jet;
-        let mut pw = Powers::new(k, shared, c, bases, powers);
+        let mut pw = JetPowers::new(k, shared, c, bases, powers);
         (x[0], z[0], v[0]) = (y[0], y[1], y[2]);
         for j in 0..=ORDER {
             let (xp, zp) = pw.order(j, sx * x[j], sz * z[j]);
@@ -691,7 +690,7 @@ impl<I: Input> Expand<4> for Ndbwmcm<I> {
             bases,
             powers,
         } = jet;
-        let mut pw = Powers::new(k, shared, c, bases, powers);
+        let mut pw = JetPowers::new(k, shared, c, bases, powers);
         (r[0], yy[0], z[0], v[0]) = (y[0], y[1], y[2], y[3]);
         for j in 0..=ORDER {
             let (yp, zp) = pw.order(j, sy * yy[j], sz * z[j]);

@@ -207,11 +207,11 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
         stats: Stats,
     ) -> Result<Self, Error> {
         let mut it = Self::new(f, t, y, options.with_h0(h.max(f64::MIN_POSITIVE)))?;
-        it.stats.rhs_evals += stats.rhs_evals;
-        it.stats.accepted = stats.accepted;
-        it.stats.rejected = stats.rejected;
-        it.stats.events = stats.events;
-        it.stats.jacobians = stats.jacobians;
+        // Carry the counts over; the new start's evaluation of f adds to them.
+        it.stats = Stats {
+            rhs_evals: it.stats.rhs_evals + stats.rhs_evals,
+            ..stats
+        };
         Ok(it)
     }
 
