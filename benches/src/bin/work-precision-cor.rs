@@ -9,7 +9,7 @@
 //! * a stiff MCM case from the stress sweep, where the explicit methods run with the switch to
 //!   RODAS4 (method names `...>R`).
 //!
-//! Methods: DOPRI5, DOP853, Vern7 and RODAS4 (Rosenbrock, `Stiffness::Rosenbrock`) on the
+//! Methods: DOPRI5, DOP853, Vern7, Vern9 and RODAS4 (Rosenbrock, `Stiffness::Rosenbrock`) on the
 //! Runge-Kutta path, and the Taylor-series path of order 16 (`Settings::series`;
 //! `Taylor16`, its RHS evaluations are those of its DOP853 start steps, so it is left out of the
 //! evaluations plot; `steps` counts every step).

@@ -4,7 +4,7 @@
 use bwc_events::{
     class, Condition, Crossing, Direction, Locator, NoSwitches, Outcome, Step, SwitchAt, Values,
 };
-use bwc_ode::{tableau, Integrator, Options, State, DOP853, VERN7};
+use bwc_ode::{tableau, Integrator, Options, State, DOP853, VERN7, VERN9};
 
 /// Separation `F <= 0 <= v` for a two-state oscillator `x' = v, v' = F(x)`.
 struct Separation<G>(G);
@@ -72,7 +72,7 @@ fn elastic_separation(
 #[test]
 fn elastic_limit_separation_time_to_1e12() {
     for (p, ts_exact) in ELASTIC {
-        for tab in [&DOP853, &VERN7] {
+        for tab in [&DOP853, &VERN7, &VERN9] {
             for switch in [false, true] {
                 let (ts, v, evals, events, switched) = elastic_separation(tab, p, 1e-13, switch);
                 // v = 0 is both a switching point and a boundary of the separation condition:

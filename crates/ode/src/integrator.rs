@@ -4,8 +4,8 @@ use crate::control::{aimed, inside_last_step, Limits};
 use crate::tableau::{ErrorEstimate, Tableau};
 use crate::{Controller, Error, Options, State, System};
 
-/// Most stages any built-in method needs (DOP853 and Verner 7 with their dense stages).
-pub const MAX_STAGES: usize = 16;
+/// Most stages any built-in method needs (Verner 9 with its dense stages).
+pub const MAX_STAGES: usize = 21;
 /// A step counts as limited by stability when `h |λ|` exceeds this fraction of the method's
 /// real stability boundary (see [`crate::tableau::StiffnessTest`]).
 const STIFF_FRACTION: f64 = 0.6;

@@ -5,7 +5,8 @@
 //!
 //! * [`DOPRI5`]: Dormand-Prince 5(4) with Hairer's 4th-order dense output;
 //! * [`DOP853`]: Hairer's 8(5,3) with its 7th-order dense output (3 extra stages, lazily);
-//! * [`VERN7`]: Verner's efficient 7(6) with its 7th-order interpolant (6 extra stages, lazily).
+//! * [`VERN7`]: Verner's efficient 7(6) with its 7th-order interpolant (6 extra stages, lazily);
+//! * [`VERN9`]: Verner's efficient 9(8) with an 8th-order interpolant (5 extra stages, lazily).
 //!
 //! Step control follows Hairer (scaled RMS error norm with `sc_i = atol_i + rtol_i max(|y_i|,
 //! |y1_i|)`, DOP853's combined 5th/3rd-order norm, Hairer's initial step, I or PI controller),
@@ -43,7 +44,7 @@ pub mod tableau;
 
 pub use error::Error;
 pub use integrator::{Dense, Integrator, Stats, Trial, MAX_STAGES};
-pub use methods::{DOP853, DOPRI5, VERN7};
+pub use methods::{DOP853, DOPRI5, VERN7, VERN9};
 pub use options::{Controller, Options};
 pub use rosenbrock::{Jacobian, Matrix, Rosenbrock};
 pub use stepper::{Method, Solver, Stepper};

@@ -93,8 +93,8 @@ impl Tableau {
 }
 
 /// All built-in methods, in order of increasing order.
-pub fn all() -> [&'static Tableau; 3] {
-    [&crate::DOPRI5, &crate::DOP853, &crate::VERN7]
+pub fn all() -> [&'static Tableau; 4] {
+    [&crate::DOPRI5, &crate::DOP853, &crate::VERN7, &crate::VERN9]
 }
 
 #[cfg(test)]
@@ -153,6 +153,47 @@ mod tests {
 
     /// The stiffness bounds are where |R(z)| first exceeds 1 on the negative real axis, R the
     /// stability polynomial `1 + z b^T (I - z A)^-1 1` (to 0.1 %).
+    /// The weights integrate `c^k` exactly for `k < order` (`Σ b_j c_j^k = 1/(k+1)`), and the
+    /// interpolant's weights at `θ` do for `k < its order` (`Σ b_j(θ) c_j^k = θ^(k+1)/(k+1)`):
+    /// necessary order conditions that catch a mistyped coefficient.
+    #[test]
+    fn quadrature_conditions_hold_to_each_order() {
+        for t in all() {
+            for k in 0..t.order as i32 {
+                let sum: f64 = t.b.iter().zip(t.c).map(|(b, c)| b * c.powi(k)).sum();
+                let want = 1.0 / f64::from(k + 1);
+                assert!(
+                    (sum - want).abs() < 1e-14,
+                    "{} k {k}: {sum} vs {want}",
+                    t.name
+                );
+            }
+            let rows = t.interpolant.rows;
+            for theta in [0.3f64, 0.7] {
+                // b_j(θ) = θ (D_0j + (1-θ) (D_1j + θ (D_2j + ...))), Hairer's nested basis.
+                let weight = |j: usize| {
+                    let mut acc = rows[rows.len() - 1][j];
+                    for r in (0..rows.len() - 1).rev() {
+                        let m = if (r + 1) % 2 == 0 { theta } else { 1.0 - theta };
+                        acc = rows[r][j] + acc * m;
+                    }
+                    acc * theta
+                };
+                for k in 0..t.interpolant.order as i32 {
+                    let sum: f64 = (0..t.total_stages())
+                        .map(|j| weight(j) * t.c[j].powi(k))
+                        .sum();
+                    let want = theta.powi(k + 1) / f64::from(k + 1);
+                    assert!(
+                        (sum - want).abs() < 1e-13,
+                        "{} interpolant θ {theta} k {k}: {sum} vs {want}",
+                        t.name
+                    );
+                }
+            }
+        }
+    }
+
     #[test]
     fn stiffness_bounds_are_the_real_stability_boundaries() {
         for t in all() {

@@ -2,7 +2,7 @@
 #![allow(clippy::excessive_precision)] // reference values keep their published digits
 
 use bwc_ode::{
-    tableau, Controller, Error, Integrator, Options, State, Tableau, DOP853, DOPRI5, VERN7,
+    tableau, Controller, Error, Integrator, Options, State, Tableau, DOP853, DOPRI5, VERN7, VERN9,
 };
 
 /// Non-autonomous, nonlinear problem with exact solution:
@@ -52,7 +52,9 @@ fn measured_convergence_order_matches_each_method() {
         let (n0, t_end) = match tab.order {
             5 => (20, 1.0),
             7 => (6, 1.0),
-            _ => (5, 1.0),
+            8 => (5, 1.0),
+            // Verner 9 is at round-off within a dozen steps of this problem: 1, 2, 4 steps.
+            _ => (1, 0.8),
         };
         let e1 = fixed_step_error(tab, n0, t_end);
         let e2 = fixed_step_error(tab, 2 * n0, t_end);
@@ -120,6 +122,8 @@ fn arenstorf_orbit_closes_after_one_period() {
         (&DOP853, 1e-14),
         (&VERN7, 1e-13),
         (&VERN7, 1e-14),
+        (&VERN9, 1e-13),
+        (&VERN9, 1e-14),
     ] {
         let mut it = Integrator::new(arenstorf, tab, 0.0, y0, Options::new(rtol, rtol)).unwrap();
         it.integrate_to(ARENSTORF_PERIOD).unwrap();
@@ -157,19 +161,24 @@ fn dense_output_error_matches_interpolant_order() {
                 .map(|th| (d.eval(t0 + th * h) - nonautonomous_exact(t0 + th * h)).amax())
                 .fold(0.0, f64::max)
         };
-        let h = if q < 5.0 { 0.4 } else { 0.1 };
+        let h = match tab.interpolant.order {
+            8 => 0.2,
+            q if q < 5 => 0.4,
+            _ => 0.1,
+        };
         let (e1, e2) = (err_at(h), err_at(h / 2.0));
         let p = (e1 / e2).log2();
         assert!(e2 > 1e-14, "{}: dense errors at round-off", tab.name);
-        // DOP853 and Vern7 show exactly 2^(q+1); DOPRI5's leading h^5 term is small on this
-        // problem, so its measured order is higher (about 6.5): at least q + 1 is the claim.
+        // DOP853 and Vern7 show exactly 2^(q+1); the leading terms of DOPRI5 (h^5) and Vern9
+        // (h^9: its order-9 defects are about 3e-6) are small on this problem, so their measured
+        // orders are higher (about 6.5 and 10.2): at least q + 1 is the claim.
         assert!(
             p > q + 0.6,
             "{}: dense local order {p:.2}, expected {}",
             tab.name,
             q + 1.0
         );
-        if q >= 7.0 {
+        if q == 7.0 {
             assert!(
                 (p - (q + 1.0)).abs() < 0.3,
                 "{}: dense local order {p:.2}",
@@ -406,14 +415,14 @@ fn rodas4_is_stable_on_a_stiff_problem() {
 }
 
 /// Hairer's stiffness test fires on the stiff Prothero-Robinson problem within a few dozen
-/// steps for DOP853 and Vern7, and never on the (non-stiff) Arenstorf orbit; a `Solver` that
+/// steps for DOP853, Vern7 and Vern9, and never on the (non-stiff) Arenstorf orbit; a `Solver` that
 /// switches then finishes with RODAS4 at a fraction of the explicit cost. (DOPRI5 with its PI
 /// controller settles at h |λ| = 2.72 on this problem, below Hairer's 3.25: not detected.)
 #[test]
 fn stiffness_is_detected_and_the_solver_switches() {
     use bwc_ode::{Method, Solver, Stepper};
     let g = |t: f64, y: &State<1>| bwc_ode::System::rhs(&ProtheroRobinson(-1e4), t, y);
-    for tab in [&DOP853, &VERN7] {
+    for tab in [&DOP853, &VERN7, &VERN9] {
         let mut it =
             Integrator::new(g, tab, 0.0, State::<1>::new(0.0), Options::new(1e-8, 1e-10)).unwrap();
         while !it.is_stiff() {

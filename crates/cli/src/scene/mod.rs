@@ -23,7 +23,7 @@ use bw_models::{
     BaseMap, BaseParams, Bodies, ModelError, ModelKind, Nondim, NondimParams, Physical,
     PhysicalParams, Settings, Stiffness,
 };
-use bwc_ode::{DOP853, DOPRI5, VERN7};
+use bwc_ode::{DOP853, DOPRI5, VERN7, VERN9};
 use raw::{Num, RawBase, RawInput, RawScene, RawSolver, SeqOrMap};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -770,12 +770,15 @@ pub(crate) fn solver_settings(
             "dopri5" => s.method = &DOPRI5,
             "dop853" => s.method = &DOP853,
             "vern7" => s.method = &VERN7,
+            "vern9" => s.method = &VERN9,
             "rosenbrock" => s.stiffness = Stiffness::Rosenbrock,
             other => {
                 return Err(ctx.invalid(
                     &m.span(),
                     key("method"),
-                    format!("\"{other}\": use \"dopri5\", \"dop853\", \"vern7\" or \"rosenbrock\""),
+                    format!(
+                        "\"{other}\": use \"dopri5\", \"dop853\", \"vern7\", \"vern9\" or \"rosenbrock\""
+                    ),
                 ))
             }
         };

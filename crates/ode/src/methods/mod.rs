@@ -7,7 +7,9 @@
 mod dop853;
 mod dopri5;
 mod vern7;
+mod vern9;
 
 pub use dop853::DOP853;
 pub use dopri5::DOPRI5;
 pub use vern7::VERN7;
+pub use vern9::VERN9;
