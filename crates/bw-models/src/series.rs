@@ -226,11 +226,14 @@ fn class(v: f64) -> i8 {
 /// after 0 and another class at `h`, as the first point found on the far side (within a few
 /// ulps of the root): Newton's iteration kept inside the shrinking bracket (bisection where it
 /// would leave it; a probe just past the iterate once Newton creeps up on the root from one
-/// side).
+/// side). After [`NEWTON_ITERATIONS`], a bisection wherever two iterations failed to halve the
+/// bracket: where `g` is tiny but far from its root (a force `|X|^p (...)` near `X = 0`) the
+/// slope does not describe it and Newton's steps crawl.
 fn root(g: impl Fn(f64) -> (f64, f64), h: f64, start: i8) -> f64 {
     let (mut lo, mut hi) = (0.0, h);
     let mut s = h;
-    for _ in 0..100 {
+    let (mut width_two_ago, mut width_one_ago) = (f64::INFINITY, h);
+    for iteration in 0..200 {
         let (p, d) = g(s);
         if class(p) == start {
             lo = s;
@@ -241,8 +244,10 @@ fn root(g: impl Fn(f64) -> (f64, f64), h: f64, start: i8) -> f64 {
         if hi - lo <= tiny {
             break;
         }
+        let stalled = iteration >= NEWTON_ITERATIONS && hi - lo > 0.5 * width_two_ago;
+        (width_two_ago, width_one_ago) = (width_one_ago, hi - lo);
         let newton = s - p / d;
-        s = if !(newton > lo && newton < hi) {
+        s = if !(newton > lo && newton < hi) || stalled {
             0.5 * (lo + hi)
         } else if (newton - s).abs() > tiny {
             newton
@@ -254,6 +259,10 @@ fn root(g: impl Fn(f64) -> (f64, f64), h: f64, start: i8) -> f64 {
     }
     hi
 }
+
+/// Iterations of [`root`] before a bracket that does not shrink fast enough is bisected (Newton
+/// converges on the roots of the step polynomials within a few).
+const NEWTON_ITERATIONS: usize = 8;
 
 /// Jorba & Zou's step size for the coefficients of `jet` about `y`, made robust to series whose
 /// last coefficients happen to be small (nearly polynomial stretches, integer exponents):
@@ -766,5 +775,10 @@ mod tests {
         let r = root(|s| eval_d(&neg, s), 1.0, 1);
         assert!((r - 0.3f64.sqrt()).abs() <= 1e-15 && eval_d(&neg, r).0 <= 0.0);
         assert_eq!(eval_d(&q, 2.0), (3.7, 4.0));
+        // A value that is tiny past its root and a slope that does not describe it (a force
+        // |X|^p (...) near X = 0): Newton's steps from the far end would crawl 2e-12 at a time.
+        let g = |s: f64| (if s < 0.05 { 1e-20 } else { -4e-25 }, -1.9e-13);
+        let r = root(g, 0.068, 1);
+        assert!((r - 0.05).abs() <= 1e-15, "{r}");
     }
 }

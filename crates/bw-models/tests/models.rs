@@ -6,6 +6,8 @@
 mod alloc_counter;
 #[path = "support/lyapunov.rs"]
 mod lyapunov;
+#[path = "support/separation.rs"]
+mod separation;
 #[path = "support/series.rs"]
 mod series;
 #[path = "support/settling.rs"]

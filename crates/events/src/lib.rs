@@ -19,7 +19,11 @@
 //! adjacent floating-point numbers, so zeros of high multiplicity (a force vanishing like
 //! `(t_s - t)^p`) are located to the last bit of the interpolant. A function that merely
 //! *leaves* zero (as the contact force does at `t = 0`) is not a crossing: no event fires at the
-//! initial instant.
+//! initial instant. A boundary function that leaves its class and comes back inside one step
+//! (equal classes at both ends) is caught by a cubic model of it from its values and rates at
+//! the ends, confirmed on the dense output (one extra evaluation of the condition per step;
+//! see the `interior` module), and a condition that holds at a switching point where a step
+//! stopped is reported there.
 //!
 //! ```
 //! use bwc_events::{Crossing, Direction, Locator, NoSwitches, Outcome};
@@ -39,6 +43,7 @@
 #![deny(missing_docs)]
 
 mod aim;
+mod interior;
 mod root;
 
 pub use root::{class, find_crossing, Bracket};
@@ -239,6 +244,8 @@ struct Last {
     rhs_evals: u64,
     g: Values,
     s: Values,
+    /// Rates of the boundary functions (see the `interior` module).
+    rate: Values,
 }
 
 impl<C, S> Locator<C, S> {
@@ -284,15 +291,16 @@ impl<C, S> Locator<C, S> {
                 });
             }
         }
-        let (t0, y0) = (it.t(), *it.y());
+        let (t0, y0, f0) = (it.t(), *it.y(), *it.derivative());
         // The values at the end of the previous step, unless the integrator moved since.
-        let (g_start, mut s_start) = match self.last.take() {
+        let (g_start, mut s_start, rate_start) = match self.last.take() {
             Some(last) if last.t == t0 && last.rhs_evals == it.stats().rhs_evals => {
-                (last.g, last.s)
+                (last.g, last.s, Some(last.rate))
             }
             _ => (
                 self.condition.values(t0, &y0),
                 self.switches.values(t0, &y0),
+                None,
             ),
         };
         let mut s_class = [0i8; MAX_FUNCTIONS];
@@ -311,20 +319,61 @@ impl<C, S> Locator<C, S> {
         let pending = self.pending.take().filter(|(_, t)| *t > t0 && *t < t_end);
         let t_stop = pending.map_or(t_end, |(_, t)| t);
         it.step_aiming(t_stop, &mut |trial| aim.after_rejection(switches, trial))?;
-        let (t1, y1) = (it.t(), *it.y());
+        let (t1, y1, f1) = (it.t(), *it.y(), *it.derivative());
         let g_end = self.condition.values(t1, &y1);
         let s_end = self.switches.values(t1, &y1);
+        let h = t1 - t0;
+        let rate_end = if nc > 0 {
+            interior::rates(&self.condition, nc, (t1, &y1, &f1), &g_end, h)
+        } else {
+            [0.0; MAX_FUNCTIONS]
+        };
         self.last = Some(Last {
             t: t1,
             rhs_evals: it.stats().rhs_evals,
             g: g_end,
             s: s_end,
+            rate: rate_end,
         });
         let crosses =
             |a: f64, ca: i8, b: f64| ca != 0 && class(b) != ca && !b.is_nan() && !a.is_nan();
-        let above = |i: usize, a: f64| a.abs() > floor[i] || s_end[i].abs() > floor[i];
-        let any = (0..nc).any(|i| crosses(g_start[i], class(g_start[i]), g_end[i]))
-            || (0..ns).any(|i| crosses(s_start[i], s_class[i], s_end[i]) && above(i, s_start[i]));
+        // A boundary function that left its class and came back inside the step: the scan
+        // below first covers the step up to the first dense-output sample past the crossing.
+        let mut scan_end = (t1, g_end, s_end);
+        if nc > 0 {
+            let rate_start = rate_start.unwrap_or_else(|| {
+                interior::rates(&self.condition, nc, (t0, &y0, &f0), &g_start, h)
+            });
+            let suspected = (0..nc)
+                .filter_map(|i| {
+                    interior::suspect(g_start[i], h * rate_start[i], g_end[i], h * rate_end[i])
+                })
+                .min_by(f64::total_cmp);
+            if let Some(theta) = suspected {
+                let dense = it.dense();
+                let mut thetas = [theta; interior::SAMPLES];
+                for (j, th) in thetas.iter_mut().enumerate().skip(1) {
+                    *th = j as f64 / interior::SAMPLES as f64;
+                }
+                thetas.sort_by(f64::total_cmp);
+                for th in thetas {
+                    let t = t0 + th * h;
+                    let y = dense.eval(t);
+                    let g = self.condition.values(t, &y);
+                    if (0..nc).any(|i| crosses(g_start[i], class(g_start[i]), g[i])) {
+                        scan_end = (t, g, self.switches.values(t, &y));
+                        break;
+                    }
+                }
+            }
+        }
+        let inside = scan_end.0 < t1;
+        let above = |i: usize, a: f64, b: f64| a.abs() > floor[i] || b.abs() > floor[i];
+        let any = inside
+            || (0..nc).any(|i| crosses(g_start[i], class(g_start[i]), g_end[i]))
+            || (0..ns).any(|i| {
+                crosses(s_start[i], s_class[i], s_end[i]) && above(i, s_start[i], s_end[i])
+            });
         // A step that ends on a switching point, within LANDING noise floors, stops there
         // without a retake: reached from the old side (a predicted point) or just past it.
         // (Ending a distance d short of a kink costs the next step an error of about h J d for
@@ -334,7 +383,8 @@ impl<C, S> Locator<C, S> {
         let reached = pending.filter(|&(i, t)| t == t1 && class(s_end[i]) == s_class[i]);
         let passed =
             |i: usize| crosses(s_start[i], s_class[i], s_end[i]) && s_start[i].abs() > floor[i];
-        let boundary_crossed = (0..nc).any(|i| crosses(g_start[i], class(g_start[i]), g_end[i]));
+        let boundary_crossed =
+            inside || (0..nc).any(|i| crosses(g_start[i], class(g_start[i]), g_end[i]));
         if !boundary_crossed {
             let stop = reached
                 .map(|(i, _)| i)
@@ -356,25 +406,26 @@ impl<C, S> Locator<C, S> {
 
         let dense = it.dense();
         let (mut ta, mut ga, mut sa) = (t0, g_start, s_start);
+        let (mut te, mut ge, mut se) = scan_end;
         loop {
-            // Earliest crossing in (ta, t1] of a boundary function and of a switching function.
+            // Earliest crossing in (ta, te] of a boundary function and of a switching function.
             let earliest = |acc: Option<(Bracket, usize)>, b: Bracket, i: usize| match acc {
                 Some((a, _)) if a.hi <= b.hi => acc,
                 _ => Some((b, i)),
             };
             let mut boundary: Option<(Bracket, usize)> = None;
             for i in 0..nc {
-                if crosses(ga[i], class(ga[i]), g_end[i]) {
+                if crosses(ga[i], class(ga[i]), ge[i]) {
                     let g = |t: f64| self.condition.values(t, &dense.eval(t))[i];
-                    boundary = earliest(boundary, find_crossing(g, ta, t1, ga[i], g_end[i]), i);
+                    boundary = earliest(boundary, find_crossing(g, ta, te, ga[i], ge[i]), i);
                 }
             }
             let mut switch: Option<(Bracket, usize)> = None;
             for i in 0..ns {
                 let ca = if ta == t0 { s_class[i] } else { class(sa[i]) };
-                if crosses(sa[i], ca, s_end[i]) && above(i, sa[i]) {
+                if crosses(sa[i], ca, se[i]) && above(i, sa[i], se[i]) {
                     let g = |t: f64| self.switches.values(t, &dense.eval(t))[i];
-                    switch = earliest(switch, find_crossing(g, ta, t1, sa[i], s_end[i]), i);
+                    switch = earliest(switch, find_crossing(g, ta, te, sa[i], se[i]), i);
                 }
             }
             if let Some((b, _)) = boundary {
@@ -405,10 +456,35 @@ impl<C, S> Locator<C, S> {
                 }
             }
             let Some((bracket, index)) = switch else {
+                if te < t1 {
+                    // Nothing more up to the interior sample: scan the rest of the step.
+                    (ta, ga, sa) = (te, ge, se);
+                    (te, ge, se) = (t1, g_end, s_end);
+                    continue;
+                }
                 return Ok(Step::Continued);
             };
             it.record_event();
-            if ta == t0 && passed(index) && landed(index) {
+            if te == t1 && ta == t0 && passed(index) && landed(index) {
+                // The step ends on the switching point. A boundary crossing just past the
+                // point (inside the landing zone) is still the event: the next step would start
+                // inside the set and never see it cross.
+                if let Some((b, _)) = boundary {
+                    let y = dense.eval(b.hi);
+                    if self
+                        .condition
+                        .holds(&g_start, &self.condition.values(b.hi, &y))
+                    {
+                        if b.hi < t1 {
+                            it.retake_to(b.hi)?;
+                            return Ok(Step::Event {
+                                t: b.hi,
+                                y: *it.y(),
+                            });
+                        }
+                        return Ok(Step::Event { t: t1, y: y1 });
+                    }
+                }
                 self.forced[index] = Some(-s_class[index]);
                 self.resume(it);
                 return Ok(Step::Switched { index, t: t1 });
@@ -418,6 +494,14 @@ impl<C, S> Locator<C, S> {
             if t < t1 {
                 self.resume_h = self.resume_h.max(t1 - t0);
                 it.retake_to(t)?;
+            }
+            // The condition may hold at the switching point itself (a boundary function that
+            // reaches zero there).
+            if self
+                .condition
+                .holds(&g_start, &self.condition.values(t, it.y()))
+            {
+                return Ok(Step::Event { t, y: *it.y() });
             }
             self.resume(it);
             return Ok(Step::Switched { index, t });

@@ -252,3 +252,22 @@ fn crossing_directions() {
         }
     }
 }
+
+/// A boundary function that leaves its class and comes back inside one step: the ends of the
+/// step agree, the event in between must still be found (here one step spans the whole run).
+#[test]
+fn a_crossing_and_back_inside_one_step_is_found() {
+    // y = t; g = (y - a)(y - b) is negative on (a, b) only.
+    for (a, b) in [(0.3, 0.6), (0.05, 0.12), (0.81, 0.9)] {
+        let f = |_t: f64, _y: &State<1>| State::<1>::new(1.0);
+        let options = Options::new(1e-10, 1e-12).with_h0(1.0);
+        let mut it = Integrator::new(f, &DOP853, 0.0, State::<1>::new(0.0), options).unwrap();
+        let g = move |_t: f64, y: &State<1>| (y[0] - a) * (y[0] - b);
+        let mut locator = Locator::new(Crossing::new(g, Direction::Down), NoSwitches);
+        match locator.run(&mut it, 1.0).unwrap() {
+            Outcome::Event { t, .. } => assert!((t - a).abs() < 1e-14, "({a}, {b}): {t}"),
+            Outcome::Horizon { .. } => panic!("({a}, {b}): the dip was missed"),
+        }
+        assert_eq!(it.stats().accepted, 1, "one step to the event (retaken)");
+    }
+}

@@ -1,0 +1,133 @@
+//! Separations that are easy to miss, found by the stress sweep (STABILITY.md): both paths (the
+//! Runge-Kutta path with its event location, and the Taylor-series path) must find the first
+//! instant with `F <= 0 <= V`.
+
+use super::nd;
+use bw_models::input::Constant;
+use bw_models::*;
+
+fn both() -> [Settings; 2] {
+    let rk = Settings {
+        t_max: 100.0,
+        ..Settings::default()
+    };
+    [rk, Settings { series: true, ..rk }]
+}
+
+/// Elastic contact under a strong constant pull: the bodies part where `X` returns to 0 with
+/// the impact speed (the spring gives back its energy and the pull has done no net work, so
+/// `e = 1` exactly), but the pull brings them back together within a fraction of a step. The
+/// force is positive at both ends of that step: the separation inside it used to be missed
+/// (the run then bounced on until the horizon, `e = 0`).
+#[test]
+fn elastic_contact_under_a_strong_pull_separates_with_e_1() {
+    for (p, u) in [(6.0, -150.0), (10.0, -40.0), (10.0, -80.0), (10.0, -150.0)] {
+        let model = Ndbwshccm::new(
+            &nd(ModelKind::Shccm, 0.0, 0.0, 0.5, 0.0, 1.0, p),
+            Constant(u),
+        )
+        .unwrap();
+        let mut t_s = Vec::new();
+        for s in both() {
+            let out = impact(&model, &s).unwrap();
+            let t = out.t_s.expect("separates");
+            assert!(
+                (out.e - 1.0).abs() < 1e-8,
+                "p {p} U {u} series {}: e = {}",
+                s.series,
+                out.e
+            );
+            // X = 0 there (the first return: T_s is under one time unit).
+            assert!(out.state[0].abs() < 1e-9 && t < 1.0, "p {p} U {u}: {out:?}");
+            t_s.push(t);
+        }
+        assert!(
+            (t_s[0] - t_s[1]).abs() < 1e-9 * t_s[0],
+            "p {p} U {u}: {t_s:?}"
+        );
+    }
+}
+
+/// Stress case 23226 (seed 1): nearly elastic, `p = 10`, pulled back by `U = -4.46`; the bodies
+/// part at `X = 0` with `V = 0.245` and meet again 0.11 later, inside one step.
+#[test]
+fn a_separation_inside_a_step_is_found() {
+    let model = Ndbwshccm::new(
+        &nd(
+            ModelKind::Shccm,
+            0.0,
+            0.0,
+            0.9999988482675066,
+            0.015026785099308337,
+            1.0,
+            10.0,
+        ),
+        Constant(-4.457591246739221),
+    )
+    .unwrap();
+    let [rk, series] = both().map(|s| impact(&model, &s).unwrap());
+    for out in [&rk, &series] {
+        assert!(out.t_s.expect("separates") < 1.5, "{out:?}");
+        assert!(out.state[0].abs() < 1e-9 && out.e > 0.2, "{out:?}");
+    }
+    assert!((rk.e - series.e).abs() < 1e-9, "{} vs {}", rk.e, series.e);
+}
+
+/// Stress case 83189 (seed 1): MCM with a nearly rigid dashpot at 0.5 mm/s; `Y` and `Z` reach
+/// 0 together, and the force changes sign a rounding error after the switching point `Z = 0`
+/// where the step stopped. The separation used to be lost (the next step started inside the
+/// set and never saw the force cross).
+#[test]
+fn a_separation_at_a_switching_point_is_found() {
+    let model = Ndbwmcm::new(
+        &nd(
+            ModelKind::Mcm,
+            7.51913987871537e-15,
+            3.652694995812471e-15,
+            0.9999817914014651,
+            4.8946162967984925,
+            5.833216825171758,
+            2.4031684894516014,
+        ),
+        Constant(0.0),
+    )
+    .unwrap();
+    let [rk, series] = both().map(|s| impact(&model, &s).unwrap());
+    for out in [&rk, &series] {
+        let t = out.t_s.expect("separates");
+        assert!((t - 34.1424516).abs() < 1e-6, "{out:?}");
+        assert!(out.state[1].abs() < 1e-12 && out.e > 4e-3, "{out:?}");
+    }
+    assert!((rk.e - series.e).abs() < 1e-10, "{} vs {}", rk.e, series.e);
+}
+
+/// Stress case 78848 (seed 1): `p = 10` under a push `U = 7.8`. The force
+/// `|X|^10 (κ + (1-κ)|Z/X|^10 - σV)` (X, Z < 0) reaches 0 where its bracket does, at `X = -0.014`,
+/// while `|X|^10` is 1e-19: the series path's root search used to crawl towards `X = 0`, where the
+/// force is tiny for another reason, and report the separation there (e = 1.0 instead of 0.88).
+#[test]
+fn a_separation_where_the_force_is_tiny_is_found_at_its_root() {
+    let (kappa, sigma, p) = (0.4987207909673853, 1.1310166164322775, 10.0);
+    let model = Ndbwshccm::new(
+        &nd(
+            ModelKind::Shccm,
+            41.87241984363382,
+            -41.87241984363382,
+            kappa,
+            sigma,
+            6.722502259974871,
+            p,
+        ),
+        Constant(7.797042325326018),
+    )
+    .unwrap();
+    let [rk, series] = both().map(|s| impact(&model, &s).unwrap());
+    for out in [&rk, &series] {
+        let [x, z, v, _] = out.state;
+        // The bracket vanishes: σ V = κ + (1-κ) |Z/X|^p.
+        let bracket = kappa + (1.0 - kappa) * (z / x).abs().powf(p) - sigma * v;
+        assert!(bracket.abs() < 1e-9 && x < -0.01, "{out:?}: {bracket}");
+    }
+    assert!((rk.e - series.e).abs() < 1e-9, "{} vs {}", rk.e, series.e);
+    assert!((rk.t_s.unwrap() - series.t_s.unwrap()).abs() < 1e-9);
+}

@@ -1,0 +1,93 @@
+//! Boundary crossings inside a step that its ends do not show.
+//!
+//! A boundary function can leave its sign class and come back within one accepted step: a
+//! contact force that dips below zero while the bodies part and meet again under a pull. Its
+//! values at the two ends then agree and the crossing (the event) would be missed. After each
+//! step, each boundary function gets a cubic Hermite model from its values and rates at the
+//! ends (rates by a forward difference along the solution, one extra evaluation of the
+//! condition per step, reused by the next step); where the model's extremum inside the step
+//! has left the class both ends share, the step's dense output is sampled to confirm it and
+//! the crossing is bracketed between the start and the first sample past it.
+
+use crate::{class, Condition, Values};
+use bwc_ode::State;
+
+/// Relative size of the forward-difference step, as a fraction of the step size.
+const DIFFERENCE: f64 = 1e-8;
+
+/// Samples of the dense output (per unit step) that confirm a suspected interior crossing.
+pub(crate) const SAMPLES: usize = 8;
+
+/// Rates `dg/dt` of the first `n` boundary functions along the solution through `(t, y)` with
+/// derivative `f`, by a forward difference over `DIFFERENCE * h`; `g` are their values there.
+pub(crate) fn rates<C: Condition<N>, const N: usize>(
+    condition: &C,
+    n: usize,
+    (t, y, f): (f64, &State<N>, &State<N>),
+    g: &Values,
+    h: f64,
+) -> Values {
+    let eps = DIFFERENCE * h;
+    let ahead = condition.values(t + eps, &(y + f * eps));
+    let mut r = [0.0; crate::MAX_FUNCTIONS];
+    for i in 0..n {
+        r[i] = (ahead[i] - g[i]) / eps;
+    }
+    r
+}
+
+/// The cubic `p(θ)` on `[0, 1]` with `p(0) = g0`, `p'(0) = d0`, `p(1) = g1`, `p'(1) = d1` (rates
+/// times the step size): the `θ` in `(0, 1)` of an extremum whose sign class differs from the
+/// class `g0` and `g1` share, if any.
+pub(crate) fn suspect(g0: f64, d0: f64, g1: f64, d1: f64) -> Option<f64> {
+    let c0 = class(g0);
+    if c0 == 0 || class(g1) != c0 || !(d0.is_finite() && d1.is_finite()) {
+        return None;
+    }
+    let delta = g1 - g0;
+    let b = 3.0 * delta - 2.0 * d0 - d1;
+    let c = -2.0 * delta + d0 + d1;
+    let p = |s: f64| g0 + s * (d0 + s * (b + s * c));
+    // p'(θ) = d0 + 2 b θ + 3 c θ².
+    let (qa, qb, qc) = (3.0 * c, 2.0 * b, d0);
+    let mut roots = [f64::NAN; 2];
+    if qa == 0.0 {
+        if qb != 0.0 {
+            roots[0] = -qc / qb;
+        }
+    } else {
+        let disc = qb * qb - 4.0 * qa * qc;
+        if disc >= 0.0 {
+            let q = -0.5 * (qb + qb.signum() * disc.sqrt());
+            roots[0] = q / qa;
+            if q != 0.0 {
+                roots[1] = qc / q;
+            }
+        }
+    }
+    roots
+        .into_iter()
+        .filter(|s| *s > 0.0 && *s < 1.0 && class(p(*s)) != c0)
+        .min_by(f64::total_cmp)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_dip_through_zero_between_positive_ends_is_suspected() {
+        // g = (θ - 0.3)(θ - 0.6) + 0.01 dips to -0.0125 at θ = 0.45 and is positive at the ends.
+        let g = |s: f64| (s - 0.3) * (s - 0.6) + 0.01;
+        let dg = |s: f64| 2.0 * s - 0.9;
+        let s = suspect(g(0.0), dg(0.0), g(1.0), dg(1.0)).expect("suspected");
+        assert!((s - 0.45).abs() < 1e-12, "{s}");
+        // Lifted above zero: nothing to suspect.
+        let lifted = |s: f64| g(s) + 0.05;
+        assert_eq!(suspect(lifted(0.0), dg(0.0), lifted(1.0), dg(1.0)), None);
+        // Ends in different classes are an ordinary crossing, not an interior one.
+        assert_eq!(suspect(1.0, -3.0, -1.0, -1.0), None);
+        // A function leaving zero is not a crossing.
+        assert_eq!(suspect(0.0, -1.0, 0.0, 1.0), None);
+    }
+}
