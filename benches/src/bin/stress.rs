@@ -1,8 +1,9 @@
 //! Stress sweep over random admissible parameter sets of both models (issue 7): counts and time
 //! per class, the slowest cases, and any energy created without input.
 //!
-//! `cargo run --release -p bwc-benches --bin stress -- [COUNT] [SEED] [series]` (default 100000,
-//! 1; `series`: with the Taylor-series path, `Settings::series = true`)
+//! `cargo run --release -p bwc-benches --bin stress -- [COUNT] [SEED] [series|rk]` (default
+//! 100000, 1, the default settings: the Taylor-series path for the runs it takes, `series`;
+//! `rk`: the Runge-Kutta path throughout, `Settings::series = false`)
 
 use bw_models::Settings;
 use bwc_benches::stress::{settings, sweep_with, Class};
@@ -18,7 +19,7 @@ fn main() {
         .nth(2)
         .and_then(|a| a.parse().ok())
         .unwrap_or(1);
-    let series = std::env::args().nth(3).as_deref() == Some("series");
+    let series = std::env::args().nth(3).as_deref() != Some("rk");
     let settings = Settings {
         series,
         ..settings()

@@ -3,6 +3,7 @@
 
 use crate::models::CollisionModel;
 use crate::params::check;
+use crate::series::SeriesRun;
 use crate::{ModelError, State};
 use bwc_events::{Condition, Locator, Step, Switches, Values, MAX_FUNCTIONS};
 use bwc_ode::{Jacobian, Matrix, Method, Options, Solver, Stats, Stepper, System, Tableau, DOP853};
@@ -33,10 +34,12 @@ pub struct Settings {
     /// constant input by Taylor series between the non-smooth points ([`crate::series`]), with
     /// `method` for the steps next to the points where a base vanishes and onto the separation;
     /// runs that path declines (stiff, time-varying input, ill-conditioned roots) take the
-    /// Runge-Kutta path. Not with [`Stiffness::Rosenbrock`]. Off by default: 1.1-1.8x faster
+    /// Runge-Kutta path. Not with [`Stiffness::Rosenbrock`]. On by default: 1.2-1.8x faster
     /// at equal error on the paper's cases, with errors about 100x below the Runge-Kutta path's
-    /// at the same rtol, but on the stress sweep's extreme parameters less accurate than the
-    /// Runge-Kutta path in about 0.7 % of its runs (BENCHMARKS.md, STABILITY.md).
+    /// at the same rtol; on the stress sweep more accurate in `e` than the Runge-Kutta path
+    /// (BENCHMARKS.md, STABILITY.md). Trajectories ([`simulate`] with samples) always take the
+    /// Runge-Kutta path, so a CoR from a trajectory run can differ from a CoR evaluation by
+    /// about the Runge-Kutta path's error (1e-11 at the default rtol).
     pub series: bool,
 }
 
@@ -54,10 +57,12 @@ pub enum Stiffness {
 }
 
 impl Default for Settings {
-    /// DOP853 at rtol 1e-11, atol 1e-13, stopping at the non-smooth points, no step limit,
-    /// horizon 1000: the cheapest setting of the work-precision benchmark (BENCHMARKS.md) whose
-    /// error in e and T_s stays below 1e-10 on all its cases (both models at Table 3's DSS (1)
-    /// for v0 = 0.5, 2, 5 m/s, the elastic and the Hunt-Crossley limits; worst 5.8e-11).
+    /// Taylor series for CoR evaluations, DOP853 otherwise, at rtol 1e-11, atol 1e-13,
+    /// stopping at the non-smooth points, no step limit, horizon 1000. On the work-precision
+    /// benchmark (BENCHMARKS.md: both models at Table 3's DSS (1) for v0 = 0.5, 2, 5 m/s, the
+    /// elastic and the Hunt-Crossley limits) the series are the cheapest path whose error in e
+    /// and T_s stays below 1e-10 on all cases (worst 1.2e-12 at this rtol); DOP853 at this rtol
+    /// is the cheapest Runge-Kutta setting that does (worst 5.8e-11).
     fn default() -> Self {
         Self {
             method: &DOP853,
@@ -68,7 +73,7 @@ impl Default for Settings {
             max_steps: 1_000_000,
             stop_at_kinks: true,
             stiffness: Stiffness::Switch,
-            series: false,
+            series: true,
         }
     }
 }
@@ -135,8 +140,9 @@ pub struct Impact {
     pub settled_at: Option<f64>,
     /// When the run switched to RODAS4 because it had become stiff ([`Stiffness::Switch`]).
     pub stiff_from: Option<f64>,
-    /// Steps taken by Taylor series ([`Settings::series`]; 0 on the Runge-Kutta path). The
-    /// statistics count them as accepted steps, and the RHS evaluations of the start steps.
+    /// Steps taken by Taylor series ([`Settings::series`]; 0 on the Runge-Kutta path, and
+    /// counted also where the series handed the impact over to it). The statistics count them
+    /// as accepted steps, and the RHS evaluations of the start steps.
     pub series_steps: u64,
     /// Solver statistics.
     pub stats: Stats,
@@ -245,14 +251,29 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
     if let Sampling::Grid { dt } = sampling {
         check("dt", dt, dt > 0.0, "grid spacing dt > 0")?;
     }
+    // Where the series hand over, the Runge-Kutta path starts from their state with their work.
+    let (mut t0, mut y0) = (0.0, model.initial_state());
+    let (mut done, mut series_steps) = (Stats::default(), 0);
     if sampling == Sampling::None && settings.series && settings.stiffness != Stiffness::Rosenbrock
     {
-        if let Some(out) = model.series_impact(settings) {
-            sink(0.0, &model.initial_state());
-            if let Some(t) = out.t_s {
-                sink(t, &State::<N>::from_fn(|i, _| out.state[i]));
+        match model.series_impact(settings) {
+            Some(SeriesRun::Done(out)) => {
+                sink(0.0, &y0);
+                if let Some(t) = out.t_s {
+                    sink(t, &State::<N>::from_fn(|i, _| out.state[i]));
+                }
+                return Ok(out);
             }
-            return Ok(out);
+            Some(SeriesRun::HandOver {
+                t,
+                state,
+                stats,
+                series_steps: steps,
+            }) => {
+                (t0, y0) = (t, State::<N>::from_fn(|i, _| state[i]));
+                (done, series_steps) = (stats, steps);
+            }
+            None => {}
         }
     }
     let ts = model.time_scale();
@@ -260,14 +281,18 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
     let options = Options::per_component(State::<N>::repeat(settings.rtol), scale * settings.atol)
         .with_max_step(settings.max_step * ts)
         .with_max_steps(settings.max_steps);
-    let y0 = model.initial_state();
     let method = match settings.stiffness {
         Stiffness::Ignore => Method::Explicit(settings.method),
         Stiffness::Switch => Method::SwitchWhenStiff(settings.method),
         Stiffness::Rosenbrock => Method::Rosenbrock,
     };
     let mut it =
-        Solver::new(Rhs(model), method, 0.0, y0, options).map_err(bwc_events::Error::from)?;
+        Solver::new(Rhs(model), method, t0, y0, options).map_err(bwc_events::Error::from)?;
+    let stats = |it: &Solver<Rhs<'_, M>, N>| {
+        let mut s = it.stats();
+        s += done;
+        s
+    };
     let mut locator = Locator::new(
         Separation(model),
         Kinks {
@@ -277,7 +302,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
         },
     );
     let t_end = settings.t_max * ts;
-    sink(0.0, &y0);
+    sink(t0, &y0);
     let mut grid = GridSampler { sampling, next: 1 };
     // Once the input is constant, a state where the right-hand side vanishes is an equilibrium:
     // the contact has settled and will never end.
@@ -295,10 +320,10 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
                     t_s: Some(t),
                     e,
                     state: pad(&y),
-                    stats: it.stats(),
+                    stats: stats(&it),
                     settled_at: None,
                     stiff_from: it.switched_at(),
-                    series_steps: 0,
+                    series_steps,
                 });
             }
             Step::Continued | Step::Switched { .. } => {
@@ -309,15 +334,14 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
                 }
                 let constant_input = constant_from.is_some_and(|t0| it.t() >= t0);
                 if constant_input && at_rest(model, it.derivative(), settings.atol) {
-                    let stats = it.stats();
                     return Ok(Impact {
                         t_s: None,
                         e: 0.0,
                         state: pad(it.y()),
-                        stats,
+                        stats: stats(&it),
                         settled_at: Some(it.t()),
                         stiff_from: it.switched_at(),
-                        series_steps: 0,
+                        series_steps,
                     });
                 }
             }
@@ -327,10 +351,10 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
         t_s: None,
         e: 0.0,
         state: pad(it.y()),
-        stats: it.stats(),
+        stats: stats(&it),
         settled_at: None,
         stiff_from: it.switched_at(),
-        series_steps: 0,
+        series_steps,
     })
 }
 

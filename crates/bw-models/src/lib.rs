@@ -13,12 +13,12 @@
 //!   `P(P*, u, v0)` ([`BaseParams`], [`base_params`], [`BaseMap`]);
 //! * inputs ([`input`]) and the two-body system of Section 3 ([`Bodies`]);
 //! * one impact ([`impact`], [`simulate`]): separation `t_s = inf{t > 0 : F <= 0 <= v}`,
-//!   `e = v(t_s)/v0` (0 without separation) and `t_d = t_s`; DOP853 with stops at the kinks by
-//!   default, switching to RODAS4 with the model's Jacobian ([`CollisionModel::jacobian`]) when
-//!   the run turns stiff ([`Stiffness`]), and stopping early once a contact under a constant
-//!   input has settled ([`Impact::settled_at`]); optionally ([`Settings::series`]) CoR
-//!   evaluations of the nondimensional models under a constant input by Taylor series of order
-//!   16 between the non-smooth points ([`series`]).
+//!   `e = v(t_s)/v0` (0 without separation) and `t_d = t_s`; by default CoR evaluations of
+//!   the nondimensional models under a constant input by Taylor series of order 16 between the
+//!   non-smooth points ([`Settings::series`], [`series`]), everything else by DOP853 with stops
+//!   at the kinks, switching to RODAS4 with the model's Jacobian ([`CollisionModel::jacobian`])
+//!   when the run turns stiff ([`Stiffness`]), and stopping early once a contact under a
+//!   constant input has settled ([`Impact::settled_at`]).
 //!
 //! Conventions: `x < 0` is compression, `F > 0` pushes the bodies apart, `v(0) = -v0`.
 //!

@@ -26,15 +26,17 @@
 //! onto a zero of `Z` (or `X`, `Y`) and onto the separation, where one Newton step along `f`
 //! polishes the root.
 //!
-//! A contact that comes to rest is reported as settled, as on the Runge-Kutta path. A run this
-//! path cannot finish (a start step that meets an event, more than [`MAX_SERIES_STEPS`] steps,
-//! e.g. a stiff contact, an ill-conditioned root, or the horizon) is declined, and the caller
-//! simulates the impact with the Runge-Kutta path instead.
+//! A contact that comes to rest is reported as settled, as on the Runge-Kutta path. Where this
+//! path cannot go on (a start step that meets an event, more than [`MAX_SERIES_STEPS`] steps,
+//! e.g. a stiff contact, a state sliding along a switching surface, an ill-conditioned root, or
+//! the horizon) it hands the impact over ([`SeriesRun::HandOver`]) and the Runge-Kutta path
+//! continues from the last state the series reached.
 //!
 //! Accuracy and cost (BENCHMARKS.md): on the paper's cases errors about 100x below the
-//! Runge-Kutta path's at the same rtol, 1.1-1.8x faster at equal error; on the stress sweep's
-//! extreme parameters less accurate than the Runge-Kutta path in 0.7 % of its runs
-//! (STABILITY.md), which is why the path is opt-in.
+//! Runge-Kutta path's at the same rtol, 1.2-1.8x faster at equal error; on the stress sweep's
+//! extreme parameters more accurate in `e` than the Runge-Kutta path (69 runs in which the
+//! Runge-Kutta path is worse by more than 10x and 1e-9, 18 the other way, of 39,576;
+//! STABILITY.md), which is why it is the default for CoR evaluations.
 
 use crate::impact::{at_rest, pad, Impact, Settings};
 use crate::input::Input;
@@ -68,7 +70,32 @@ pub const MAX_GROWTH: f64 = 2.0;
 pub const ESTIMATE_TERMS: usize = 4;
 
 /// Most series steps of one impact before it is handed to the Runge-Kutta path.
-pub const MAX_SERIES_STEPS: u64 = 300;
+pub const MAX_SERIES_STEPS: u64 = 150;
+
+/// Most event steps in a row that leave the time where it was (the state sliding along a
+/// switching surface, e.g. the MCM creeping with `Y' = 0` under a pull) before the impact is
+/// handed to the Runge-Kutta path, whose stops at the kinks and RODAS4 handle such runs.
+pub const MAX_STALLED: u32 = 2;
+
+/// What the series path made of an impact ([`crate::CollisionModel::series_impact`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SeriesRun {
+    /// The impact, finished by the series.
+    Done(Impact),
+    /// The series declined at time `t` (a stiff or sliding contact, an ill-conditioned root,
+    /// more than [`MAX_SERIES_STEPS`] steps, the horizon): the Runge-Kutta path continues from
+    /// the state there, adding its work to `stats`.
+    HandOver {
+        /// Time reached (0: nothing done).
+        t: f64,
+        /// State there (the model's components first).
+        state: [f64; 4],
+        /// Work done so far.
+        stats: Stats,
+        /// Series steps taken so far.
+        series_steps: u64,
+    },
+}
 
 /// Taylor coefficients `c_0 ..= c_ORDER` of one function about the start of a step.
 pub(crate) type Series = [f64; ORDER + 1];
@@ -298,7 +325,7 @@ enum Event {
 pub(crate) fn impact<M: Expand<N>, const N: usize>(
     model: &M,
     settings: &Settings,
-) -> Option<Impact> {
+) -> Option<SeriesRun> {
     if !model.input_is_constant() {
         return None;
     }
@@ -312,31 +339,25 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
     let mut h_last = f64::INFINITY;
     let mut rate_class = class(model.kinks(t, &y)[0]);
     let mut jet = Jet::new();
+    // Event steps in a row that did not advance the time (a sliding mode: the rate across the
+    // hysteretic element stays at zero and its sign flips at every step).
+    let mut stalled = 0;
+    // Where this path declines, the Runge-Kutta path takes over from the last state the series
+    // reached (not from contact: the work done so far is kept).
+    let hand_over = |t: f64, y: &State<N>, stats: Stats, series_steps: u64| {
+        Some(SeriesRun::HandOver {
+            t,
+            state: pad(y),
+            stats,
+            series_steps,
+        })
+    };
     loop {
-        if series_steps >= MAX_SERIES_STEPS || stats.accepted >= settings.max_steps {
-            return None;
-        }
-        if t >= settings.t_max {
-            return None;
-        }
-        if y[M::BASE] == 0.0 || y[M::Z] == 0.0 {
-            let t_start = t;
-            (t, y) = start_step(model, settings, t, &y, &mut stats)?;
-            h_last = t - t_start;
-            let met = class(model.kinks(t, &y)[0]) != rate_class
-                || y[M::BASE] == 0.0
-                || y[M::Z] == 0.0
-                || (model.force(&y) <= 0.0 && velocity(&y) >= 0.0);
-            if met {
-                return None;
-            }
-            continue;
-        }
         let (force, velocity_now) = (model.force(&y), velocity(&y));
-        if force <= 0.0 && velocity_now >= 0.0 {
+        if force <= 0.0 && velocity_now >= 0.0 && t > 0.0 {
             // Reached at the end of the last step.
             stats.events += 1;
-            return Some(Impact {
+            return Some(SeriesRun::Done(Impact {
                 t_s: Some(t),
                 e: velocity_now.max(0.0) / model.impact_speed(),
                 state: pad(&y),
@@ -344,13 +365,36 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
                 stiff_from: None,
                 series_steps,
                 stats,
-            });
+            }));
+        }
+        if series_steps >= MAX_SERIES_STEPS || stats.accepted >= settings.max_steps {
+            return hand_over(t, &y, stats, series_steps);
+        }
+        if t >= settings.t_max {
+            return hand_over(t, &y, stats, series_steps);
+        }
+        if y[M::BASE] == 0.0 || y[M::Z] == 0.0 {
+            let (t_start, y_start, stats_start) = (t, y, stats);
+            let Some(next) = start_step(model, settings, t, &y, &mut stats) else {
+                return hand_over(t_start, &y_start, stats_start, series_steps);
+            };
+            (t, y) = next;
+            h_last = t - t_start;
+            let met = class(model.kinks(t, &y)[0]) != rate_class
+                || y[M::BASE] == 0.0
+                || y[M::Z] == 0.0
+                || (model.force(&y) <= 0.0 && velocity(&y) >= 0.0);
+            if met {
+                // The start step met an event: the Runge-Kutta path retakes it.
+                return hand_over(t_start, &y_start, stats_start, series_steps);
+            }
+            continue;
         }
         model.expand(&y, f64::from(rate_class), u, &mut jet);
         // At rest under the constant input: an equilibrium, the contact has settled.
         let rate_of_change = State::<N>::from_fn(|i, _| jet.state[i][1]);
         if at_rest(model, &rate_of_change, settings.atol) {
-            return Some(Impact {
+            return Some(SeriesRun::Done(Impact {
                 t_s: None,
                 e: 0.0,
                 state: pad(&y),
@@ -358,7 +402,7 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
                 stiff_from: None,
                 series_steps,
                 stats,
-            });
+            }));
         }
         series_steps += 1;
         stats.accepted += 1;
@@ -441,8 +485,17 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
         let Some((s, event)) = first else {
             y = State::<N>::from(end);
             t += h;
+            stalled = 0;
             continue;
         };
+        if t + s > t {
+            stalled = 0;
+        } else {
+            stalled += 1;
+            if stalled > MAX_STALLED {
+                return hand_over(t, &y, stats, series_steps);
+            }
+        }
         match event {
             // A base vanishes at its root: there the series converge slowest (the root is their
             // radius of convergence), so the explicit method takes the state there.
@@ -450,7 +503,11 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
                 stats.events += 1;
                 let i = if event == Event::Z { z } else { base };
                 let target = Target::Component(i);
-                (t, y) = reach_root(model, settings, (t, &y), t + s, target, &mut stats)?;
+                let Some(next) = reach_root(model, settings, (t, &y), t + s, target, &mut stats)
+                else {
+                    return hand_over(t, &y, stats, series_steps);
+                };
+                (t, y) = next;
             }
             Event::Rate => {
                 stats.events += 1;
@@ -464,7 +521,12 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
             // A separation: the explicit method takes the state there (the force can vanish
             // where a base does, at the radius of convergence of the series).
             Event::Force if jet.at(s).0[N - 1] >= 0.0 => {
-                (t, y) = reach_root(model, settings, (t, &y), t + s, Target::Force, &mut stats)?;
+                let force = Target::Force;
+                let Some(next) = reach_root(model, settings, (t, &y), t + s, force, &mut stats)
+                else {
+                    return hand_over(t, &y, stats, series_steps);
+                };
+                (t, y) = next;
             }
             Event::Velocity | Event::Force => {
                 y = State::<N>::from(jet.at(s).0);
@@ -479,7 +541,7 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
         let force_zero = event == Event::Force && velocity(&y) >= 0.0;
         if force_zero || (model.force(&y) <= 0.0 && velocity(&y) >= 0.0) {
             stats.events += 1;
-            return Some(Impact {
+            return Some(SeriesRun::Done(Impact {
                 t_s: Some(t),
                 e: velocity(&y).max(0.0) / model.impact_speed(),
                 state: pad(&y),
@@ -487,7 +549,7 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
                 stiff_from: None,
                 series_steps,
                 stats,
-            });
+            }));
         }
     }
 }

@@ -157,15 +157,16 @@ fn nondimensional_scene_reports_null_speed_and_duration() {
     assert!((run["e"].as_f64().unwrap() - 0.748434931597434).abs() < 1e-9);
 }
 
-/// `[solver] series = true` puts a CoR-only nondimensional scene under a constant input on the
-/// Taylor-series path (`series_steps` in the JSON summary); the default is the Runge-Kutta path;
+/// A CoR-only nondimensional scene under a constant input takes the Taylor-series path by
+/// default (`series_steps` in the JSON summary); `[solver] series = false` the Runge-Kutta path;
 /// both give the Hunt-Crossley closed form.
 #[test]
 fn series_key_and_series_steps() {
     let dir = scratch("series");
     let hc = "model = \"shccm\"\n[nondimensional]\nB = 0\nGamma = 0\nkappa = 0.5\nsigma = 0.5\nn = 1\np = 1.5\n";
     let scene = dir.join("hc.toml");
-    for (extra, series) in [("", false), ("[solver]\nseries = true\n", true)] {
+    // The series are the default for CoR-only runs; `series = false` takes the Runge-Kutta path.
+    for (extra, series) in [("", true), ("[solver]\nseries = false\n", false)] {
         std::fs::write(&scene, format!("{hc}{extra}")).unwrap();
         let v = json(&simulate(&["run", scene.to_str().unwrap(), "--json"]));
         let run = &v["runs"][0];

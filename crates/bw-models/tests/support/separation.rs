@@ -9,6 +9,7 @@ use bw_models::*;
 fn both() -> [Settings; 2] {
     let rk = Settings {
         t_max: 100.0,
+        series: false,
         ..Settings::default()
     };
     [rk, Settings { series: true, ..rk }]

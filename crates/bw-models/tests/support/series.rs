@@ -248,3 +248,43 @@ fn force_rate(map: &BaseMap, v0: f64, y: &[f64; 4]) -> f64 {
         ModelKind::Mcm => rate(&Ndbwmcm::new(&nd, Zero).unwrap(), y),
     }
 }
+
+/// Where the series stop part-way (a contact creeping along `Y' = 0` under a pull, where each
+/// series step ends on the switching surface again: MCM, villegas-like parameters), the
+/// Runge-Kutta path continues from their state instead of starting over: the same outcome as
+/// the Runge-Kutta path alone (no separation by the horizon, the same final state), with the
+/// series steps counted and a fraction of the Runge-Kutta path's work.
+#[test]
+fn a_run_the_series_hand_over_is_finished_from_their_state() {
+    let b_b = 36.78406051831915;
+    let map = BaseMap::new(
+        ModelKind::Mcm,
+        bw_models::BaseParams {
+            b_b,
+            gamma_b: -18.198670864717588,
+            kappa: 0.13958354450223415,
+            sigma_b: 0.7439696538044864,
+            n: 2.2063573524971467,
+            p: 1.3511210444211286,
+            u_b: 0.13317870005896226,
+            t_b: 0.0673884222298349,
+        },
+    )
+    .unwrap();
+    let pull = Constant(-0.43130588102048095);
+    let series = Settings {
+        rtol: 1e-8,
+        atol: 1e-10,
+        ..with_series()
+    };
+    let a = impact_at(&map, pull, 0.29, &series).unwrap();
+    let b = impact_at(&map, pull, 0.29, &runge_kutta(1e-8)).unwrap();
+    assert!(
+        a.series_steps > 0 && !a.separated() && !b.separated(),
+        "{a:?}"
+    );
+    for (x, y) in a.state.iter().zip(&b.state) {
+        assert!((x - y).abs() < 1e-5 * y.abs().max(1.0), "{a:?} vs {b:?}");
+    }
+    assert!(a.stats.rhs_evals < b.stats.rhs_evals / 2, "{a:?} vs {b:?}");
+}
