@@ -34,9 +34,10 @@
 //!
 //! Accuracy and cost (BENCHMARKS.md): on the paper's cases errors about 100x below the
 //! Runge-Kutta path's at the same rtol, 1.2-1.8x faster at equal error; on the stress sweep's
-//! extreme parameters more accurate in `e` than the Runge-Kutta path (69 runs in which the
-//! Runge-Kutta path is worse by more than 10x and 1e-9, 18 the other way, of 39,576;
-//! STABILITY.md), which is why it is the default for CoR evaluations.
+//! extreme parameters more accurate in `e` than the Runge-Kutta path (of 75,059 runs with series
+//! steps, 71 in which the Runge-Kutta path is worse by more than 10x and 1e-9, 23 the other way
+//! besides contacts that hover at zero force; STABILITY.md), which is why it is the default for
+//! CoR evaluations.
 
 use crate::impact::{at_rest, pad, Impact, Settings};
 use crate::input::Input;
