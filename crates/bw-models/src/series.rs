@@ -174,6 +174,34 @@ fn dot(p: &[f64], q: &[f64]) -> f64 {
     (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
+/// `(Σ_j a_j q_j, Σ_j b_j q_j)` over the common length of `a`, `b` (equal) and `q`, in four
+/// lanes: two convolutions with one pass over `q`.
+#[inline(always)]
+fn dot2(a: &[f64], b: &[f64], q: &[f64]) -> (f64, f64) {
+    let n = a.len().min(q.len());
+    let (a, b, q) = (
+        a[..n].chunks_exact(4),
+        b[..n].chunks_exact(4),
+        q[..n].chunks_exact(4),
+    );
+    let (mut tx, mut ty) = (0.0, 0.0);
+    for ((x, y), z) in a.remainder().iter().zip(b.remainder()).zip(q.remainder()) {
+        tx += x * z;
+        ty += y * z;
+    }
+    let (mut x, mut y) = ([0.0; 4], [0.0; 4]);
+    for ((ca, cb), cq) in a.zip(b).zip(q) {
+        for l in 0..4 {
+            x[l] += ca[l] * cq[l];
+            y[l] += cb[l] * cq[l];
+        }
+    }
+    (
+        (x[0] + x[1]) + (x[2] + x[3]) + tx,
+        (y[0] + y[1]) + (y[2] + y[3]) + ty,
+    )
+}
+
 /// The base `b` of a power: its coefficients and the coefficients times their index.
 struct Base {
     c: Series,
@@ -193,33 +221,61 @@ impl Base {
     }
 }
 
-/// A power `y = b^e` of a base, stored in reverse (`r[ORDER - k] = y_k`, `kr[ORDER - k] =
-/// k y_k`) so that the convolutions of the recurrence, `Σ_m w_m y_{k-m}`, are forward dot
-/// products.
+/// A power `y = b^e` of a base, stored in reverse (`r[ORDER - k] = y_k`) so that the
+/// convolutions of the recurrence, `Σ_m w_m y_{k-m}`, are forward dot products.
 struct Power {
     r: Series,
-    kr: Series,
 }
 
 impl Power {
     const ZERO: Self = Self {
         r: [0.0; ORDER + 1],
-        kr: [0.0; ORDER + 1],
     };
 
     #[inline(always)]
     fn set(&mut self, k: usize, v: f64) {
         self.r[ORDER - k] = v;
-        self.kr[ORDER - k] = k as f64 * v;
     }
 
     /// Coefficient `k >= 1` of `y = b^e` from `b_0 ..= b_k` and `y_0 .. y_{k-1}` (`b_0 > 0`):
-    /// `k b_0 y_k = e Σ_{m=1..k} m b_m y_{k-m} - Σ_{m=1..k} b_m (k-m) y_{k-m}`.
+    /// `k b_0 y_k = e Σ_{m=1..k} m b_m y_{k-m} - Σ_{m=1..k} b_m (k-m) y_{k-m}
+    /// = (e + 1) A - k B` with `A = Σ m b_m y_{k-m}`, `B = Σ b_m y_{k-m}` (one pass).
     #[inline(always)]
     fn term(&self, b: &Base, e: f64, k: usize) -> f64 {
         let w = ORDER + 1 - k;
-        let s = e * dot(&b.kc[1..=k], &self.r[w..]) - dot(&b.c[1..=k], &self.kr[w..]);
-        s / (k as f64 * b.c[0])
+        let (a, s) = dot2(&b.kc[1..=k], &b.c[1..=k], &self.r[w..]);
+        ((e + 1.0) * a - k as f64 * s) / (k as f64 * b.c[0])
+    }
+
+    /// Coefficients `k >= 1` of two powers `y = b^e1`, `u = b^e2` of one base, as
+    /// [`Power::term`] with one pass over the base for both.
+    #[inline(always)]
+    fn terms(y: &Power, u: &Power, b: &Base, (e1, e2): (f64, f64), k: usize) -> (f64, f64) {
+        let w = ORDER + 1 - k;
+        let (kc, c) = (&b.kc[1..=k], &b.c[1..=k]);
+        let (yr, ur) = (&y.r[w..], &u.r[w..]);
+        let (mut a1, mut s1, mut a2, mut s2) = ([0.0; 2], [0.0; 2], [0.0; 2], [0.0; 2]);
+        let whole = k - k % 2;
+        for i in (0..whole).step_by(2) {
+            for l in 0..2 {
+                a1[l] += kc[i + l] * yr[i + l];
+                s1[l] += c[i + l] * yr[i + l];
+                a2[l] += kc[i + l] * ur[i + l];
+                s2[l] += c[i + l] * ur[i + l];
+            }
+        }
+        if whole < k {
+            let i = whole;
+            a1[0] += kc[i] * yr[i];
+            s1[0] += c[i] * yr[i];
+            a2[0] += kc[i] * ur[i];
+            s2[0] += c[i] * ur[i];
+        }
+        let (kf, b0) = (k as f64, b.c[0]);
+        let term = |a: [f64; 2], s: [f64; 2], e: f64| {
+            ((e + 1.0) * (a[0] + a[1]) - kf * (s[0] + s[1])) / (kf * b0)
+        };
+        (term(a1, s1, e1), term(a2, s2, e2))
     }
 
     /// Coefficient `k` of the product of this power and the series `w`.
@@ -679,11 +735,18 @@ impl<'a> JetPowers<'a> {
             dpj
         } else {
             z.set(j, z_j);
-            if self.hysteretic {
-                let znj = of(zn, z, self.n);
+            if !self.hysteretic {
+                of(zp, z, self.p)
+            } else if j == 0 {
+                // |Z|^n and |Z|^p of one base share its logarithm.
+                let mut powers = crate::power::Powers::of(z.c[0]);
+                zn.set(0, powers.get(self.n));
+                powers.get(self.p)
+            } else {
+                let (znj, zpj) = Power::terms(zn, zp, z, (self.n.exponent(), self.p.exponent()), j);
                 zn.set(j, znj);
+                zpj
             }
-            of(zp, z, self.p)
         };
         zp.set(j, zpj);
         (dpj, zpj)
@@ -693,6 +756,15 @@ impl<'a> JetPowers<'a> {
     #[inline(always)]
     fn displacement_times(&self, w: &Series, j: usize) -> f64 {
         self.powers[0].times(w, j)
+    }
+
+    /// Coefficients `j` of `|D|^p w` and `|Z|^n w`, in one pass over `w`.
+    #[inline(always)]
+    fn both_times(&self, w: &Series, j: usize) -> (f64, f64) {
+        let [dp, _, zn] = &*self.powers;
+        let at = ORDER - j;
+        let (a, b) = dot2(&dp.r[at..], &zn.r[at..], &w[..=j]);
+        (a, b)
     }
 
     /// Coefficient `j` of `|Z|^n w`.
@@ -726,7 +798,13 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
         (x[0], z[0], v[0]) = (y[0], y[1], y[2]);
         for j in 0..=ORDER {
             let (xp, zp) = pw.order(j, sx * x[j], sz * z[j]);
-            force[j] = -k.kappa * sx * xp - kc * sz * zp - k.sigma * pw.displacement_times(v, j);
+            // |X|^p V and |Z|^n V (the latter where the hysteresis needs it) in one pass.
+            let (xpv, znv) = if c == 0.0 || j == ORDER {
+                (pw.displacement_times(v, j), 0.0)
+            } else {
+                pw.both_times(v, j)
+            };
+            force[j] = -k.kappa * sx * xp - kc * sz * zp - k.sigma * xpv;
             if j == ORDER {
                 break;
             }
@@ -735,7 +813,7 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
             z[j + 1] = if c == 0.0 {
                 x[j + 1]
             } else {
-                (v[j] - c * pw.hysteresis_times(v, j)) * inv
+                (v[j] - c * znv) * inv
             };
             v[j + 1] = (force[j] + if j == 0 { u } else { 0.0 }) * inv;
         }
@@ -823,6 +901,19 @@ mod tests {
                     (got - exact).abs() <= 1e-14 * exact.abs().max(1e-3),
                     "e {e} k {k}"
                 );
+            }
+        }
+        // Two powers of one base in one pass: the same binomial series for both exponents.
+        let (e1, e2) = (2.93, 2.62);
+        let (w1, w2) = (binomial(e1), binomial(e2));
+        let (mut y, mut u) = (Power::ZERO, Power::ZERO);
+        (y.r[ORDER], u.r[ORDER]) = (1.0, 1.0);
+        for k in 1..=ORDER {
+            let (yk, uk) = Power::terms(&y, &u, &b, (e1, e2), k);
+            y.set(k, yk);
+            u.set(k, uk);
+            for (got, want) in [(yk, w1[k]), (uk, w2[k])] {
+                assert!((got - want).abs() <= 1e-14 * want.abs().max(1e-3), "k {k}");
             }
         }
     }
