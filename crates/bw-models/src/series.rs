@@ -409,8 +409,11 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
             series_steps,
         })
     };
+    // The force at the end of the last step, where this one starts (computed there already).
+    let mut force_here: Option<f64> = None;
     loop {
-        let (force, velocity_now) = (model.force(&y), velocity(&y));
+        let force = force_here.take().unwrap_or_else(|| model.force(&y));
+        let velocity_now = velocity(&y);
         if force <= 0.0 && velocity_now >= 0.0 && t > 0.0 {
             // Reached at the end of the last step.
             stats.events += 1;
@@ -541,6 +544,7 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
         }
         let Some((s, event)) = first else {
             y = State::<N>::from(end);
+            force_here = Some(at_end[0]);
             t += h;
             stalled = 0;
             continue;
