@@ -1,0 +1,432 @@
+//! The jets of the series path: Taylor coefficients of the solution of each nondimensional model
+//! about the start of a step, by the recurrences of the powers and Cauchy products.
+
+use super::ORDER;
+use crate::input::Input;
+use crate::models::{CollisionModel, NdCoefficients, Ndbwmcm, Ndbwshccm};
+use crate::power::Pow;
+use crate::State;
+
+/// Taylor coefficients `c_0 ..= c_ORDER` of one function about the start of a step.
+pub(crate) type Series = [f64; ORDER + 1];
+
+/// The Taylor polynomials of one step.
+pub(crate) struct Jet<const N: usize> {
+    /// The state components.
+    pub(super) state: [Series; N],
+    /// The contact force `F`.
+    pub(super) force: Series,
+    /// The rate across the hysteretic element (`V` or `Y'`), whose sign picks the branch.
+    pub(super) rate: Series,
+    /// Scratch of [`Expand::expand`], kept between steps: the bases of the powers and the
+    /// powers (each expansion writes every coefficient it reads).
+    bases: [Base; 2],
+    powers: [Power; 3],
+}
+
+impl<const N: usize> Jet<N> {
+    pub(super) fn new() -> Self {
+        Self {
+            state: [[0.0; ORDER + 1]; N],
+            force: [0.0; ORDER + 1],
+            rate: [0.0; ORDER + 1],
+            bases: [Base::ZERO, Base::ZERO],
+            powers: [Power::ZERO, Power::ZERO, Power::ZERO],
+        }
+    }
+
+    /// The state and rate polynomials at `s` (Horner's scheme on all of them at once, so that
+    /// the dependency chains overlap; the force is evaluated from the state instead).
+    pub(super) fn at(&self, s: f64) -> ([f64; N], f64) {
+        let (mut y, mut r) = ([0.0; N], 0.0);
+        for k in (0..=ORDER).rev() {
+            for (yi, c) in y.iter_mut().zip(&self.state) {
+                *yi = *yi * s + c[k];
+            }
+            r = r * s + self.rate[k];
+        }
+        (y, r)
+    }
+}
+
+/// A nondimensional model whose solution the series path can expand.
+pub(crate) trait Expand<const N: usize>: CollisionModel<N> {
+    /// Index of the displacement whose power is in the force (`X` or `Y`).
+    const BASE: usize;
+    /// Index of `Z`.
+    const Z: usize;
+    /// Whether the rate is the velocity `V` (NDBWSHCCM).
+    const RATE_IS_VELOCITY: bool;
+
+    /// The Taylor coefficients of the solution through `y` in the branch where the rate has
+    /// sign `rate_sign`, for the constant input `u`; `y[BASE]` and `y[Z]` are nonzero.
+    fn expand(&self, y: &State<N>, rate_sign: f64, u: f64, jet: &mut Jet<N>);
+}
+
+/// `Σ_j p_j q_j` over the common length, in four lanes.
+#[inline(always)]
+fn dot(p: &[f64], q: &[f64]) -> f64 {
+    let n = p.len().min(q.len());
+    let (p, q) = (p[..n].chunks_exact(4), q[..n].chunks_exact(4));
+    let tail: f64 = p
+        .remainder()
+        .iter()
+        .zip(q.remainder())
+        .map(|(a, b)| a * b)
+        .sum();
+    let mut acc = [0.0; 4];
+    for (a, b) in p.zip(q) {
+        for l in 0..4 {
+            acc[l] += a[l] * b[l];
+        }
+    }
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
+}
+
+/// `(Σ_j a_j q_j, Σ_j b_j q_j)` over the common length of `a`, `b` (equal) and `q`, in four
+/// lanes: two convolutions with one pass over `q`.
+#[inline(always)]
+fn dot2(a: &[f64], b: &[f64], q: &[f64]) -> (f64, f64) {
+    let n = a.len().min(q.len());
+    let (a, b, q) = (
+        a[..n].chunks_exact(4),
+        b[..n].chunks_exact(4),
+        q[..n].chunks_exact(4),
+    );
+    let (mut tx, mut ty) = (0.0, 0.0);
+    for ((x, y), z) in a.remainder().iter().zip(b.remainder()).zip(q.remainder()) {
+        tx += x * z;
+        ty += y * z;
+    }
+    let (mut x, mut y) = ([0.0; 4], [0.0; 4]);
+    for ((ca, cb), cq) in a.zip(b).zip(q) {
+        for l in 0..4 {
+            x[l] += ca[l] * cq[l];
+            y[l] += cb[l] * cq[l];
+        }
+    }
+    (
+        (x[0] + x[1]) + (x[2] + x[3]) + tx,
+        (y[0] + y[1]) + (y[2] + y[3]) + ty,
+    )
+}
+
+/// The base `b` of a power: its coefficients and the coefficients times their index.
+struct Base {
+    c: Series,
+    kc: Series,
+}
+
+impl Base {
+    const ZERO: Self = Self {
+        c: [0.0; ORDER + 1],
+        kc: [0.0; ORDER + 1],
+    };
+
+    #[inline(always)]
+    fn set(&mut self, k: usize, v: f64) {
+        self.c[k] = v;
+        self.kc[k] = k as f64 * v;
+    }
+}
+
+/// A power `y = b^e` of a base, stored in reverse (`r[ORDER - k] = y_k`) so that the
+/// convolutions of the recurrence, `Σ_m w_m y_{k-m}`, are forward dot products.
+struct Power {
+    r: Series,
+}
+
+impl Power {
+    const ZERO: Self = Self {
+        r: [0.0; ORDER + 1],
+    };
+
+    #[inline(always)]
+    fn set(&mut self, k: usize, v: f64) {
+        self.r[ORDER - k] = v;
+    }
+
+    /// Coefficient `k >= 1` of `y = b^e` from `b_0 ..= b_k` and `y_0 .. y_{k-1}` (`b_0 > 0`):
+    /// `k b_0 y_k = e Σ_{m=1..k} m b_m y_{k-m} - Σ_{m=1..k} b_m (k-m) y_{k-m}
+    /// = (e + 1) A - k B` with `A = Σ m b_m y_{k-m}`, `B = Σ b_m y_{k-m}` (one pass).
+    #[inline(always)]
+    fn term(&self, b: &Base, e: f64, k: usize) -> f64 {
+        let w = ORDER + 1 - k;
+        let (a, s) = dot2(&b.kc[1..=k], &b.c[1..=k], &self.r[w..]);
+        ((e + 1.0) * a - k as f64 * s) / (k as f64 * b.c[0])
+    }
+
+    /// Coefficients `k >= 1` of two powers `y = b^e1`, `u = b^e2` of one base, as
+    /// [`Power::term`] with one pass over the base for both.
+    #[inline(always)]
+    fn terms(y: &Power, u: &Power, b: &Base, (e1, e2): (f64, f64), k: usize) -> (f64, f64) {
+        let w = ORDER + 1 - k;
+        let (kc, c) = (&b.kc[1..=k], &b.c[1..=k]);
+        let (yr, ur) = (&y.r[w..], &u.r[w..]);
+        let (mut a1, mut s1, mut a2, mut s2) = ([0.0; 2], [0.0; 2], [0.0; 2], [0.0; 2]);
+        let whole = k - k % 2;
+        for i in (0..whole).step_by(2) {
+            for l in 0..2 {
+                a1[l] += kc[i + l] * yr[i + l];
+                s1[l] += c[i + l] * yr[i + l];
+                a2[l] += kc[i + l] * ur[i + l];
+                s2[l] += c[i + l] * ur[i + l];
+            }
+        }
+        if whole < k {
+            let i = whole;
+            a1[0] += kc[i] * yr[i];
+            s1[0] += c[i] * yr[i];
+            a2[0] += kc[i] * ur[i];
+            s2[0] += c[i] * ur[i];
+        }
+        let (kf, b0) = (k as f64, b.c[0]);
+        let term = |a: [f64; 2], s: [f64; 2], e: f64| {
+            ((e + 1.0) * (a[0] + a[1]) - kf * (s[0] + s[1])) / (kf * b0)
+        };
+        (term(a1, s1, e1), term(a2, s2, e2))
+    }
+
+    /// Coefficient `k` of the product of this power and the series `w`.
+    #[inline(always)]
+    fn times(&self, w: &Series, k: usize) -> f64 {
+        dot(&w[..=k], &self.r[ORDER - k..])
+    }
+}
+
+/// Order by order, the powers of an expansion: `|D|^p` of the displacement `D` (`X` or `Y`),
+/// `|Z|^p` (that of `D` while `Z = D`) and `|Z|^n` (only where the hysteresis needs it).
+struct JetPowers<'a> {
+    p: Pow,
+    n: Pow,
+    /// `Z = D` and stays so (loading with `Γ = -B` from contact).
+    shared: bool,
+    /// The hysteresis bracket is nonzero in this branch: `|Z|^n` is needed.
+    hysteretic: bool,
+    bases: &'a mut [Base; 2],
+    powers: &'a mut [Power; 3],
+}
+
+impl<'a> JetPowers<'a> {
+    /// The powers of the model with coefficients `k` in the branch with hysteresis bracket
+    /// factor `c`, in the scratch `bases` and `powers`.
+    fn new(
+        k: &NdCoefficients,
+        shared: bool,
+        c: f64,
+        bases: &'a mut [Base; 2],
+        powers: &'a mut [Power; 3],
+    ) -> Self {
+        Self {
+            p: k.p,
+            n: k.n,
+            shared,
+            hysteretic: c != 0.0,
+            bases,
+            powers,
+        }
+    }
+
+    /// Coefficient `j` of `|D|^p` and `|Z|^p` from coefficient `j` of `|D|` and `|Z|` (the
+    /// lower ones were given before).
+    #[inline(always)]
+    fn order(&mut self, j: usize, d_j: f64, z_j: f64) -> (f64, f64) {
+        let [d, z] = &mut *self.bases;
+        let [dp, zp, zn] = &mut *self.powers;
+        let of = |power: &Power, base: &Base, e: Pow| {
+            if j == 0 {
+                e.of_abs(base.c[0])
+            } else {
+                power.term(base, e.exponent(), j)
+            }
+        };
+        d.set(j, d_j);
+        let dpj = of(dp, d, self.p);
+        dp.set(j, dpj);
+        let zpj = if self.shared {
+            dpj
+        } else {
+            z.set(j, z_j);
+            if !self.hysteretic {
+                of(zp, z, self.p)
+            } else if j == 0 {
+                // |Z|^n and |Z|^p of one base share its logarithm.
+                let mut powers = crate::power::Powers::of(z.c[0]);
+                zn.set(0, powers.get(self.n));
+                powers.get(self.p)
+            } else {
+                let (znj, zpj) = Power::terms(zn, zp, z, (self.n.exponent(), self.p.exponent()), j);
+                zn.set(j, znj);
+                zpj
+            }
+        };
+        zp.set(j, zpj);
+        (dpj, zpj)
+    }
+
+    /// Coefficient `j` of `|D|^p w`.
+    #[inline(always)]
+    fn displacement_times(&self, w: &Series, j: usize) -> f64 {
+        self.powers[0].times(w, j)
+    }
+
+    /// Coefficients `j` of `|D|^p w` and `|Z|^n w`, in one pass over `w`.
+    #[inline(always)]
+    fn both_times(&self, w: &Series, j: usize) -> (f64, f64) {
+        let [dp, _, zn] = &*self.powers;
+        let at = ORDER - j;
+        let (a, b) = dot2(&dp.r[at..], &zn.r[at..], &w[..=j]);
+        (a, b)
+    }
+
+    /// Coefficient `j` of `|Z|^n w`.
+    #[inline(always)]
+    fn hysteresis_times(&self, w: &Series, j: usize) -> f64 {
+        self.powers[2].times(w, j)
+    }
+}
+
+impl<I: Input> Expand<3> for Ndbwshccm<I> {
+    const BASE: usize = 0;
+    const Z: usize = 1;
+    const RATE_IS_VELOCITY: bool = true;
+
+    fn expand(&self, y: &State<3>, sw: f64, u: f64, jet: &mut Jet<3>) {
+        let k = &self.k;
+        let (sx, sz) = (y[0].signum(), y[1].signum());
+        // Z' = V - |Z|^n (B sgn(Z) |V| + Γ V) = V - c |Z|^n V in this branch.
+        let c = k.b * sz * sw + k.gamma;
+        // Loading with Γ = -B from Z = X: Z' = X' exactly, Z stays X.
+        let shared = c == 0.0 && y[1] == y[0];
+        let kc = 1.0 - k.kappa;
+        let Jet {
+            state: [x, z, v],
+            force,
+            bases,
+            powers,
+            ..
+        } = jet;
+        let mut pw = JetPowers::new(k, shared, c, bases, powers);
+        (x[0], z[0], v[0]) = (y[0], y[1], y[2]);
+        for j in 0..=ORDER {
+            let (xp, zp) = pw.order(j, sx * x[j], sz * z[j]);
+            // |X|^p V and |Z|^n V (the latter where the hysteresis needs it) in one pass.
+            let (xpv, znv) = if c == 0.0 || j == ORDER {
+                (pw.displacement_times(v, j), 0.0)
+            } else {
+                pw.both_times(v, j)
+            };
+            force[j] = -k.kappa * sx * xp - kc * sz * zp - k.sigma * xpv;
+            if j == ORDER {
+                break;
+            }
+            let inv = 1.0 / (j + 1) as f64;
+            x[j + 1] = v[j] * inv;
+            z[j + 1] = if c == 0.0 {
+                x[j + 1]
+            } else {
+                (v[j] - c * znv) * inv
+            };
+            v[j + 1] = (force[j] + if j == 0 { u } else { 0.0 }) * inv;
+        }
+        jet.rate = jet.state[2];
+    }
+}
+
+impl<I: Input> Expand<4> for Ndbwmcm<I> {
+    const BASE: usize = 1;
+    const Z: usize = 2;
+    const RATE_IS_VELOCITY: bool = false;
+
+    fn expand(&self, y: &State<4>, sw: f64, u: f64, jet: &mut Jet<4>) {
+        let k = &self.k;
+        let (sy, sz) = (y[1].signum(), y[2].signum());
+        // Z' = Y' - c |Z|^n Y' in this branch (rate Y' = V + σ F).
+        let c = k.b * sz * sw + k.gamma;
+        let shared = c == 0.0 && y[2] == y[1];
+        let kc = 1.0 - k.kappa;
+        let Jet {
+            state: [r, yy, z, v],
+            force,
+            rate,
+            bases,
+            powers,
+        } = jet;
+        let mut pw = JetPowers::new(k, shared, c, bases, powers);
+        (r[0], yy[0], z[0], v[0]) = (y[0], y[1], y[2], y[3]);
+        for j in 0..=ORDER {
+            let (yp, zp) = pw.order(j, sy * yy[j], sz * z[j]);
+            force[j] = -k.kappa * sy * yp - kc * sz * zp;
+            rate[j] = v[j] + k.sigma * force[j];
+            if j == ORDER {
+                break;
+            }
+            let inv = 1.0 / (j + 1) as f64;
+            r[j + 1] = -k.sigma * force[j] * inv;
+            yy[j + 1] = rate[j] * inv;
+            z[j + 1] = if c == 0.0 {
+                yy[j + 1]
+            } else {
+                (rate[j] - c * pw.hysteresis_times(rate, j)) * inv
+            };
+            v[j + 1] = (force[j] + if j == 0 { u } else { 0.0 }) * inv;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Coefficients of `(1 + s)^e` by the binomial series.
+    fn binomial(e: f64) -> Series {
+        let mut c = [0.0; ORDER + 1];
+        c[0] = 1.0;
+        for k in 1..=ORDER {
+            c[k] = c[k - 1] * (e - (k - 1) as f64) / k as f64;
+        }
+        c
+    }
+
+    #[test]
+    fn power_recurrence_gives_the_binomial_series() {
+        let mut b = Base::ZERO;
+        b.set(0, 1.0);
+        b.set(1, 1.0);
+        for e in [1.0, 1.75, 2.62, 2.93, 0.5] {
+            let want = binomial(e);
+            let mut y = Power::ZERO;
+            y.set(0, 1.0);
+            for (k, wk) in want.iter().enumerate().skip(1) {
+                let yk = y.term(&b, e, k);
+                y.set(k, yk);
+                assert!((yk - wk).abs() <= 1e-14 * wk.abs().max(1e-3), "e {e} k {k}");
+            }
+            // (1 + s)^e (1 - s): coefficient k is want_k - want_{k-1}.
+            let mut w = [0.0; ORDER + 1];
+            (w[0], w[1]) = (1.0, -1.0);
+            for (k, pair) in want.windows(2).enumerate() {
+                let k = k + 1;
+                let got = y.times(&w, k);
+                let exact = pair[1] - pair[0];
+                assert!(
+                    (got - exact).abs() <= 1e-14 * exact.abs().max(1e-3),
+                    "e {e} k {k}"
+                );
+            }
+        }
+        // Two powers of one base in one pass: the same binomial series for both exponents.
+        let (e1, e2) = (2.93, 2.62);
+        let (w1, w2) = (binomial(e1), binomial(e2));
+        let (mut y, mut u) = (Power::ZERO, Power::ZERO);
+        (y.r[ORDER], u.r[ORDER]) = (1.0, 1.0);
+        for k in 1..=ORDER {
+            let (yk, uk) = Power::terms(&y, &u, &b, (e1, e2), k);
+            y.set(k, yk);
+            u.set(k, uk);
+            for (got, want) in [(yk, w1[k]), (uk, w2[k])] {
+                assert!((got - want).abs() <= 1e-14 * want.abs().max(1e-3), "k {k}");
+            }
+        }
+    }
+}
