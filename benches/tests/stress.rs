@@ -83,3 +83,16 @@ fn stress_sample_with_the_series_path() {
     }
     assert!(finished > 100, "{finished} of 300 on the series path");
 }
+
+/// Case 69494 of seed 1 (SHCCM, n = 10, a strong pull): a step whose end the interpolant and
+/// the step's state put a rounding error apart on either side of V = 0 made event location
+/// scan an empty interval forever. It now ends in a class (here: the step size underflows).
+#[test]
+fn a_boundary_scan_at_the_end_of_a_step_terminates() {
+    let o = bwc_benches::stress::run(&sample(1, 69494));
+    assert!(
+        !matches!(o.class, Class::EnergyCreated(_) | Class::Other(_)),
+        "{:?}",
+        o.class
+    );
+}

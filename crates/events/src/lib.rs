@@ -446,8 +446,10 @@ impl<C, S> Locator<C, S> {
                         return Ok(Step::Event { t, y });
                     }
                     // A boundary crossed without entering the set. Unless a switching point
-                    // falls on the same instant, keep scanning the rest of the step.
-                    if switch.is_none_or(|(s, _)| b.hi < s.hi) {
+                    // falls on the same instant, keep scanning the rest of the step (if any is
+                    // left: at its end the interpolant and the step's state can differ by a
+                    // rounding error, which must not count as a crossing again).
+                    if switch.is_none_or(|(s, _)| b.hi < s.hi) && t < te {
                         ta = t;
                         ga = g;
                         sa = self.switches.values(t, &y);
