@@ -254,11 +254,11 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
     // Where the series hand over, the Runge-Kutta path starts from their state with their work.
     let (mut t0, mut y0) = (0.0, model.initial_state());
     let (mut done, mut series_steps) = (Stats::default(), 0);
+    sink(0.0, &y0);
     if sampling == Sampling::None && settings.series && settings.stiffness != Stiffness::Rosenbrock
     {
         match model.series_impact(settings) {
             Some(SeriesRun::Done(out)) => {
-                sink(0.0, &y0);
                 if let Some(t) = out.t_s {
                     sink(t, &State::<N>::from_fn(|i, _| out.state[i]));
                 }
@@ -302,7 +302,6 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
         },
     );
     let t_end = settings.t_max * ts;
-    sink(t0, &y0);
     let mut grid = GridSampler { sampling, next: 1 };
     // Once the input is constant, a state where the right-hand side vanishes is an equilibrium:
     // the contact has settled and will never end.

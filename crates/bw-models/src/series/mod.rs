@@ -223,13 +223,14 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
             series_steps,
         })
     };
-    // The force at the end of the last step, where this one starts (computed there already).
+    // The force where this step starts, if the last step computed it already (at its end, or
+    // zero at a located root).
     let mut force_here: Option<f64> = None;
     loop {
         let force = force_here.take().unwrap_or_else(|| model.force(&y));
         let velocity_now = velocity(&y);
         if force <= 0.0 && velocity_now >= 0.0 && t > 0.0 {
-            // Reached at the end of the last step.
+            // The separation, reached at the end of the last step or at its event.
             stats.events += 1;
             return Some(SeriesRun::Done(Impact {
                 t_s: Some(t),
@@ -241,10 +242,10 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
                 stats,
             }));
         }
-        if series_steps >= MAX_SERIES_STEPS || stats.accepted >= settings.max_steps {
-            return hand_over(t, &y, stats, series_steps);
-        }
-        if t >= settings.t_max {
+        if series_steps >= MAX_SERIES_STEPS
+            || stats.accepted >= settings.max_steps
+            || t >= settings.t_max
+        {
             return hand_over(t, &y, stats, series_steps);
         }
         if y[M::BASE] == 0.0 || y[M::Z] == 0.0 {
@@ -411,20 +412,10 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
                 }
             }
         }
-        // The separation F <= 0 <= V, checked at every event (at a located root of the force,
-        // F is zero to rounding, either sign).
-        let force_zero = event == Event::Force && velocity(&y) >= 0.0;
-        if force_zero || (model.force(&y) <= 0.0 && velocity(&y) >= 0.0) {
-            stats.events += 1;
-            return Some(SeriesRun::Done(Impact {
-                t_s: Some(t),
-                e: velocity(&y).max(0.0) / model.impact_speed(),
-                state: pad(&y),
-                settled_at: None,
-                stiff_from: None,
-                series_steps,
-                stats,
-            }));
+        // The separation F <= 0 <= V is checked where the next step starts; at a located root
+        // of the force, F is zero to rounding, either sign.
+        if event == Event::Force && velocity(&y) >= 0.0 {
+            force_here = Some(0.0);
         }
     }
 }
