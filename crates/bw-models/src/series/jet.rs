@@ -2,6 +2,7 @@
 //! about the start of a step, by the recurrences of the powers and Cauchy products.
 
 use super::ORDER;
+use crate::impact::Settings;
 use crate::input::Input;
 use crate::models::{CollisionModel, NdCoefficients, Ndbwmcm, Ndbwshccm};
 use crate::power::Pow;
@@ -61,6 +62,13 @@ pub(crate) trait Expand<const N: usize>: CollisionModel<N> {
     /// The Taylor coefficients of the solution through `y` in the branch where the rate has
     /// sign `rate_sign`, for the constant input `u`; `y[BASE]` and `y[Z]` are nonzero.
     fn expand(&self, y: &State<N>, rate_sign: f64, u: f64, jet: &mut Jet<N>);
+
+    /// The first step from contact under the constant input `u` where the model's loading has
+    /// a series of its own ([`super::contact`]), as the time and state where it ends; `None`
+    /// where it has none (the explicit method's start step then leaves contact).
+    fn contact_step(&self, _u: f64, _settings: &Settings) -> Option<(f64, State<N>)> {
+        None
+    }
 }
 
 /// `Σ_j p_j q_j` over the common length, in four lanes.
@@ -112,19 +120,19 @@ fn dot2(a: &[f64], b: &[f64], q: &[f64]) -> (f64, f64) {
 }
 
 /// The base `b` of a power: its coefficients and the coefficients times their index.
-struct Base {
-    c: Series,
+pub(super) struct Base {
+    pub(super) c: Series,
     kc: Series,
 }
 
 impl Base {
-    const ZERO: Self = Self {
+    pub(super) const ZERO: Self = Self {
         c: [0.0; ORDER + 1],
         kc: [0.0; ORDER + 1],
     };
 
     #[inline(always)]
-    fn set(&mut self, k: usize, v: f64) {
+    pub(super) fn set(&mut self, k: usize, v: f64) {
         self.c[k] = v;
         self.kc[k] = k as f64 * v;
     }
@@ -132,17 +140,17 @@ impl Base {
 
 /// A power `y = b^e` of a base, stored in reverse (`r[ORDER - k] = y_k`) so that the
 /// convolutions of the recurrence, `Σ_m w_m y_{k-m}`, are forward dot products.
-struct Power {
+pub(super) struct Power {
     r: Series,
 }
 
 impl Power {
-    const ZERO: Self = Self {
+    pub(super) const ZERO: Self = Self {
         r: [0.0; ORDER + 1],
     };
 
     #[inline(always)]
-    fn set(&mut self, k: usize, v: f64) {
+    pub(super) fn set(&mut self, k: usize, v: f64) {
         self.r[ORDER - k] = v;
     }
 
@@ -150,7 +158,7 @@ impl Power {
     /// `k b_0 y_k = e Σ_{m=1..k} m b_m y_{k-m} - Σ_{m=1..k} b_m (k-m) y_{k-m}
     /// = (e + 1) A - k B` with `A = Σ m b_m y_{k-m}`, `B = Σ b_m y_{k-m}` (one pass).
     #[inline(always)]
-    fn term(&self, b: &Base, e: f64, k: usize) -> f64 {
+    pub(super) fn term(&self, b: &Base, e: f64, k: usize) -> f64 {
         let w = ORDER + 1 - k;
         let (a, s) = dot2(&b.kc[1..=k], &b.c[1..=k], &self.r[w..]);
         ((e + 1.0) * a - k as f64 * s) / (k as f64 * b.c[0])
@@ -189,7 +197,7 @@ impl Power {
 
     /// Coefficient `k` of the product of this power and the series `w`.
     #[inline(always)]
-    fn times(&self, w: &Series, k: usize) -> f64 {
+    pub(super) fn times(&self, w: &Series, k: usize) -> f64 {
         dot(&w[..=k], &self.r[ORDER - k..])
     }
 }
@@ -290,6 +298,15 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
     const BASE: usize = 0;
     const Z: usize = 1;
     const RATE_IS_VELOCITY: bool = true;
+
+    fn contact_step(&self, u: f64, settings: &Settings) -> Option<(f64, State<3>)> {
+        // Loading with Γ = -B and no input is a Hunt-Crossley contact (Z = X).
+        if u != 0.0 || self.k.b + self.k.gamma != 0.0 {
+            return None;
+        }
+        let c = super::contact::hunt_crossley_step(self.k.p, self.k.sigma, settings)?;
+        Some((c.t, State::<3>::new(c.x, c.x, c.v)))
+    }
 
     fn expand(&self, y: &State<3>, sw: f64, u: f64, jet: &mut Jet<3>) {
         let k = &self.k;

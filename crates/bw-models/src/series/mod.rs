@@ -24,7 +24,10 @@
 //! so the explicit method of the settings takes over: it leaves each such point with one step
 //! (at [`START_TOLERANCE`] times the tolerances), and it integrates from the start of the step
 //! onto a zero of `Z` (or `X`, `Y`) and onto the separation, where one Newton step along `f`
-//! polishes the root.
+//! polishes the root. At contact, where the NDBWSHCCM loads as a Hunt-Crossley contact
+//! (`Γ = -B`, no input: every fit of the paper), a series in `s = T^(p+1)`, in which the
+//! solution is analytic, takes the first step instead (`series/contact.rs`): one step over most of the
+//! compression in place of the start step and the ramp after it.
 //!
 //! A contact that comes to rest is reported as settled, as on the Runge-Kutta path. Where this
 //! path cannot go on (a start step that meets an event, more than [`MAX_SERIES_STEPS`] steps,
@@ -39,6 +42,7 @@
 //! besides contacts that hover at zero force; STABILITY.md), which is why it is the default for
 //! CoR evaluations.
 
+mod contact;
 mod jet;
 
 use crate::impact::{at_rest, pad, Impact, Settings};
@@ -247,6 +251,19 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
             || t >= settings.t_max
         {
             return hand_over(t, &y, stats, series_steps);
+        }
+        if t == 0.0 && y == model.initial_state() {
+            if let Some((t1, y1)) = model.contact_step(u, settings) {
+                series_steps += 1;
+                stats.accepted += 1;
+                (t, y, h_last) = (t1, y1, t1);
+                if velocity(&y) == 0.0 {
+                    // It ended on the maximum compression.
+                    stats.events += 1;
+                    rate_class = -rate_class;
+                }
+                continue;
+            }
         }
         if y[M::BASE] == 0.0 || y[M::Z] == 0.0 {
             let (t_start, y_start, stats_start) = (t, y, stats);
