@@ -73,6 +73,15 @@ fn cor_evaluation(c: &mut Criterion) {
             },
         ),
         (
+            "bwc Taylor series (order 16) rtol 1e-8",
+            Settings {
+                rtol: 1e-8,
+                atol: 1e-10,
+                series: true,
+                ..Settings::default()
+            },
+        ),
+        (
             "bwc DOP853 rtol 1e-10, stops at kinks",
             Settings {
                 rtol: 1e-10,
