@@ -37,16 +37,23 @@ impl<const N: usize> Jet<N> {
     }
 
     /// The state and rate polynomials at `s` (Horner's scheme on all of them at once, so that
-    /// the dependency chains overlap; the force is evaluated from the state instead).
+    /// the dependency chains overlap).
     pub(super) fn at(&self, s: f64) -> ([f64; N], f64) {
-        let (mut y, mut r) = ([0.0; N], 0.0);
+        let (y, r, _) = self.with_force_at(s);
+        (y, r)
+    }
+
+    /// The state, rate and force polynomials at `s`, in one pass.
+    pub(super) fn with_force_at(&self, s: f64) -> ([f64; N], f64, f64) {
+        let (mut y, mut r, mut f) = ([0.0; N], 0.0, 0.0);
         for k in (0..=ORDER).rev() {
             for (yi, c) in y.iter_mut().zip(&self.state) {
                 *yi = *yi * s + c[k];
             }
             r = r * s + self.rate[k];
+            f = f * s + self.force[k];
         }
-        (y, r)
+        (y, r, f)
     }
 }
 
@@ -70,6 +77,18 @@ pub(crate) trait Expand<const N: usize>: CollisionModel<N> {
         None
     }
 }
+
+/// `1/k` for `k = 0 ..= ORDER + 1` (`INVERSE[0]` unused): the recurrences multiply by it, off the
+/// critical path, rather than divide on it.
+const INVERSE: [f64; ORDER + 2] = {
+    let mut t = [0.0; ORDER + 2];
+    let mut k = 1;
+    while k < ORDER + 2 {
+        t[k] = 1.0 / k as f64;
+        k += 1;
+    }
+    t
+};
 
 /// `Σ_j p_j q_j` over the common length, in four lanes.
 #[inline(always)]
@@ -119,22 +138,27 @@ fn dot2(a: &[f64], b: &[f64], q: &[f64]) -> (f64, f64) {
     )
 }
 
-/// The base `b` of a power: its coefficients and the coefficients times their index.
+/// The base `b` of a power: its coefficients, the coefficients times their index, and `1/b_0`.
 pub(super) struct Base {
     pub(super) c: Series,
     kc: Series,
+    inverse: f64,
 }
 
 impl Base {
     pub(super) const ZERO: Self = Self {
         c: [0.0; ORDER + 1],
         kc: [0.0; ORDER + 1],
+        inverse: 0.0,
     };
 
     #[inline(always)]
     pub(super) fn set(&mut self, k: usize, v: f64) {
         self.c[k] = v;
         self.kc[k] = k as f64 * v;
+        if k == 0 {
+            self.inverse = 1.0 / v;
+        }
     }
 }
 
@@ -161,7 +185,7 @@ impl Power {
     pub(super) fn term(&self, b: &Base, e: f64, k: usize) -> f64 {
         let w = ORDER + 1 - k;
         let (a, s) = dot2(&b.kc[1..=k], &b.c[1..=k], &self.r[w..]);
-        ((e + 1.0) * a - k as f64 * s) / (k as f64 * b.c[0])
+        ((e + 1.0) * a - k as f64 * s) * (INVERSE[k] * b.inverse)
     }
 
     /// Coefficients `k >= 1` of two powers `y = b^e1`, `u = b^e2` of one base, as
@@ -188,9 +212,9 @@ impl Power {
             a2[0] += kc[i] * ur[i];
             s2[0] += c[i] * ur[i];
         }
-        let (kf, b0) = (k as f64, b.c[0]);
+        let (kf, scale) = (k as f64, INVERSE[k] * b.inverse);
         let term = |a: [f64; 2], s: [f64; 2], e: f64| {
-            ((e + 1.0) * (a[0] + a[1]) - kf * (s[0] + s[1])) / (kf * b0)
+            ((e + 1.0) * (a[0] + a[1]) - kf * (s[0] + s[1])) * scale
         };
         (term(a1, s1, e1), term(a2, s2, e2))
     }
@@ -337,7 +361,7 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
             if j == ORDER {
                 break;
             }
-            let inv = 1.0 / (j + 1) as f64;
+            let inv = INVERSE[j + 1];
             x[j + 1] = v[j] * inv;
             z[j + 1] = if c == 0.0 {
                 x[j + 1]
@@ -378,7 +402,7 @@ impl<I: Input> Expand<4> for Ndbwmcm<I> {
             if j == ORDER {
                 break;
             }
-            let inv = 1.0 / (j + 1) as f64;
+            let inv = INVERSE[j + 1];
             r[j + 1] = -k.sigma * force[j] * inv;
             yy[j + 1] = rate[j] * inv;
             z[j + 1] = if c == 0.0 {
