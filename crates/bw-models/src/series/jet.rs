@@ -296,6 +296,93 @@ impl<'a> JetPowers<'a> {
         (dpj, zpj)
     }
 
+    /// Order `j >= 1` of the hysteretic branch (`|Z|^n` needed, `Z != D`): coefficient `j` of
+    /// `|D|^p`, `|Z|^p` from coefficient `j` of `|D|` and `|Z|`, and of `|D|^p w`, `|Z|^n w`,
+    /// with the eight sums of the three recurrences and the two products in one pass over
+    /// `m = 1 ..= j` (`Σ_m y_(j-m) w_m`; the term `y_j w_0` is added after).
+    #[inline(always)]
+    fn order_hysteretic(&mut self, j: usize, d_j: f64, z_j: f64, w: &Series) -> [f64; 4] {
+        let [d, z] = &mut *self.bases;
+        let [dp, zp, zn] = &mut *self.powers;
+        d.set(j, d_j);
+        z.set(j, z_j);
+        let at = ORDER + 1 - j;
+        let (kd, cd, kz, cz) = (&d.kc[1..=j], &d.c[1..=j], &z.kc[1..=j], &z.c[1..=j]);
+        let (yd, yn, yp) = (&dp.r[at..=ORDER], &zn.r[at..=ORDER], &zp.r[at..=ORDER]);
+        let wm = &w[1..=j];
+        let mut acc = [0.0; 8];
+        for m in 0..j {
+            acc[0] += kd[m] * yd[m];
+            acc[1] += cd[m] * yd[m];
+            acc[2] += kz[m] * yn[m];
+            acc[3] += cz[m] * yn[m];
+            acc[4] += kz[m] * yp[m];
+            acc[5] += cz[m] * yp[m];
+            acc[6] += yd[m] * wm[m];
+            acc[7] += yn[m] * wm[m];
+        }
+        let (jf, scale_d, scale_z) = (j as f64, INVERSE[j] * d.inverse, INVERSE[j] * z.inverse);
+        let (p, n) = (self.p.exponent(), self.n.exponent());
+        let dpj = ((p + 1.0) * acc[0] - jf * acc[1]) * scale_d;
+        let znj = ((n + 1.0) * acc[2] - jf * acc[3]) * scale_z;
+        let zpj = ((p + 1.0) * acc[4] - jf * acc[5]) * scale_z;
+        dp.set(j, dpj);
+        zn.set(j, znj);
+        zp.set(j, zpj);
+        [dpj, zpj, acc[6] + dpj * w[0], acc[7] + znj * w[0]]
+    }
+
+    /// Order `j >= 1` where the hysteresis bracket vanishes and `Z != D`: coefficient `j` of
+    /// `|D|^p`, `|Z|^p` and `|D|^p w`, the five sums in one pass as in
+    /// [`JetPowers::order_hysteretic`].
+    #[inline(always)]
+    fn order_elastic(&mut self, j: usize, d_j: f64, z_j: f64, w: &Series) -> [f64; 3] {
+        let [d, z] = &mut *self.bases;
+        let [dp, zp, _] = &mut *self.powers;
+        d.set(j, d_j);
+        z.set(j, z_j);
+        let at = ORDER + 1 - j;
+        let (kd, cd, kz, cz) = (&d.kc[1..=j], &d.c[1..=j], &z.kc[1..=j], &z.c[1..=j]);
+        let (yd, yp) = (&dp.r[at..=ORDER], &zp.r[at..=ORDER]);
+        let wm = &w[1..=j];
+        let mut acc = [0.0; 5];
+        for m in 0..j {
+            acc[0] += kd[m] * yd[m];
+            acc[1] += cd[m] * yd[m];
+            acc[2] += kz[m] * yp[m];
+            acc[3] += cz[m] * yp[m];
+            acc[4] += yd[m] * wm[m];
+        }
+        let (jf, p) = (j as f64, self.p.exponent());
+        let dpj = ((p + 1.0) * acc[0] - jf * acc[1]) * (INVERSE[j] * d.inverse);
+        let zpj = ((p + 1.0) * acc[2] - jf * acc[3]) * (INVERSE[j] * z.inverse);
+        dp.set(j, dpj);
+        zp.set(j, zpj);
+        [dpj, zpj, acc[4] + dpj * w[0]]
+    }
+
+    /// Order `j >= 1` while `Z = D` (then `|Z|^p = |D|^p`): coefficient `j` of `|D|^p` and of
+    /// `|D|^p w`, the three sums in one pass as in [`JetPowers::order_hysteretic`].
+    #[inline(always)]
+    fn order_shared(&mut self, j: usize, d_j: f64, w: &Series) -> [f64; 2] {
+        let [d, _] = &mut *self.bases;
+        let [dp, zp, _] = &mut *self.powers;
+        d.set(j, d_j);
+        let at = ORDER + 1 - j;
+        let (kd, cd, yd, wm) = (&d.kc[1..=j], &d.c[1..=j], &dp.r[at..=ORDER], &w[1..=j]);
+        let mut acc = [0.0; 3];
+        for m in 0..j {
+            acc[0] += kd[m] * yd[m];
+            acc[1] += cd[m] * yd[m];
+            acc[2] += yd[m] * wm[m];
+        }
+        let (jf, p) = (j as f64, self.p.exponent());
+        let dpj = ((p + 1.0) * acc[0] - jf * acc[1]) * (INVERSE[j] * d.inverse);
+        dp.set(j, dpj);
+        zp.set(j, dpj);
+        [dpj, acc[2] + dpj * w[0]]
+    }
+
     /// Coefficient `j` of `|D|^p w`.
     #[inline(always)]
     fn displacement_times(&self, w: &Series, j: usize) -> f64 {
@@ -350,12 +437,26 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
         let mut pw = JetPowers::new(k, shared, c, bases, powers);
         (x[0], z[0], v[0]) = (y[0], y[1], y[2]);
         for j in 0..=ORDER {
-            let (xp, zp) = pw.order(j, sx * x[j], sz * z[j]);
-            // |X|^p V and |Z|^n V (the latter where the hysteresis needs it) in one pass.
-            let (xpv, znv) = if c == 0.0 || j == ORDER {
-                (pw.displacement_times(v, j), 0.0)
+            let (xp, zp, xpv, znv) = if j > 0 {
+                if shared {
+                    let [xp, xpv] = pw.order_shared(j, sx * x[j], v);
+                    (xp, xp, xpv, 0.0)
+                } else if c != 0.0 {
+                    let [xp, zp, xpv, znv] = pw.order_hysteretic(j, sx * x[j], sz * z[j], v);
+                    (xp, zp, xpv, znv)
+                } else {
+                    let [xp, zp, xpv] = pw.order_elastic(j, sx * x[j], sz * z[j], v);
+                    (xp, zp, xpv, 0.0)
+                }
             } else {
-                pw.both_times(v, j)
+                let (xp, zp) = pw.order(j, sx * x[j], sz * z[j]);
+                // |X|^p V and |Z|^n V (the latter where the hysteresis needs it) in one pass.
+                let (xpv, znv) = if c == 0.0 || j == ORDER {
+                    (pw.displacement_times(v, j), 0.0)
+                } else {
+                    pw.both_times(v, j)
+                };
+                (xp, zp, xpv, znv)
             };
             force[j] = -k.kappa * sx * xp - kc * sz * zp - k.sigma * xpv;
             if j == ORDER {
