@@ -23,8 +23,9 @@
 //! matter most the series converge slowest (a zero of a base is their radius of convergence),
 //! so the explicit method of the settings takes over: it leaves each such point with one step
 //! (at [`START_TOLERANCE`] times the tolerances), and it integrates from the start of the step
-//! onto a zero of `Z` (or `X`, `Y`) and onto the separation, where one Newton step along `f`
-//! polishes the root. At contact, where the NDBWSHCCM loads as a Hunt-Crossley contact
+//! onto a zero of `Z` (or `X`, `Y`) and onto a separation near one (the force can vanish where
+//! a base does), where one Newton step along `f` polishes the root; a separation away from the
+//! zeros of the bases is the root of the step's polynomials. At contact, where the NDBWSHCCM loads as a Hunt-Crossley contact
 //! (`Γ = -B`, no input: every fit of the paper), a series in `s = T^(p+1)`, in which the
 //! solution is analytic, takes the first step instead (`series/contact.rs`): one step over most of the
 //! compression in place of the start step and the ramp after it.
@@ -442,8 +443,20 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
                     y[N - 1] = 0.0;
                 }
             }
-            // A separation: the explicit method takes the state there (the force can vanish
-            // where a base does, at the radius of convergence of the series).
+            // A separation away from the zeros of the bases (each farther than the root from
+            // the step's start, by its slope): the series' state there.
+            Event::Force
+                if jet.at(s).0[N - 1] >= 0.0
+                    && [base, z].iter().all(|&i| {
+                        let (b, db) = eval_d(&jet.state[i], s);
+                        b.abs() > s * db.abs()
+                    }) =>
+            {
+                y = State::<N>::from(jet.at(s).0);
+                t += s;
+            }
+            // Otherwise the explicit method takes the state there (the force can vanish where
+            // a base does, at the radius of convergence of the series).
             Event::Force if jet.at(s).0[N - 1] >= 0.0 => {
                 let force = Target::Force;
                 let Some(next) = reach_root(model, settings, (t, &y), t + s, force, &mut stats)
