@@ -19,6 +19,10 @@
 //! [fit.pareto]                        # count: weights of a Pareto sweep over (J1, J2)
 //! ```
 
+mod loops;
+
+pub use loops::LoopFitConfig;
+
 use crate::scene::raw::{Num, RawInput, RawSolver};
 use crate::scene::{model_kind, signal, span, Ctx};
 use crate::signal::Signal;
@@ -36,44 +40,7 @@ use toml::Spanned;
 #[serde(deny_unknown_fields)]
 struct RawConfig {
     fit: Option<Vec<Spanned<RawFit>>>,
-    loop_fit: Option<Vec<Spanned<RawLoopFit>>>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawLoopFit {
-    name: Option<Spanned<String>>,
-    model: Option<Spanned<String>>,
-    m: Option<Num>,
-    loops: Option<Spanned<Vec<Spanned<RawLoopRef>>>>,
-    log: Option<Spanned<Vec<Spanned<String>>>>,
-    bounds: Option<Spanned<RawLaw<Pair>>>,
-    fixed: Option<Spanned<RawLaw<Num>>>,
-    params: Option<Spanned<RawLaw<Num>>>,
-    optimizer: Option<Spanned<RawOptimizer>>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawLoopRef {
-    data: Spanned<String>,
-    v0: Num,
-}
-
-/// Contact-law quantities (`g = gamma / beta` in bounds and fixed values; `gamma` in params).
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawLaw<T> {
-    k: Option<T>,
-    c: Option<T>,
-    n: Option<T>,
-    p: Option<T>,
-    alpha: Option<T>,
-    beta: Option<T>,
-    g: Option<T>,
-    gamma: Option<T>,
-    #[serde(rename = "A")]
-    a: Option<T>,
+    loop_fit: Option<Vec<Spanned<loops::RawLoopFit>>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -194,27 +161,6 @@ pub struct FitConfig {
     pub pareto: Option<usize>,
 }
 
-/// One validated hysteresis-loop fit.
-#[derive(Debug, Clone)]
-pub struct LoopFitConfig {
-    /// Name (unique in the config).
-    pub name: String,
-    /// The model.
-    pub kind: ModelKind,
-    /// Known mass (kg).
-    pub m: f64,
-    /// The measured loops.
-    pub loops: Vec<bwc_identify::Loop>,
-    /// The search space of the contact law.
-    pub space: bwc_identify::LawSpace,
-    /// Optimizer budget.
-    pub budget: Budget,
-    /// Seed.
-    pub seed: u64,
-    /// Contact law for `eval`, if given.
-    pub params: Option<bw_models::Physical>,
-}
-
 /// A validated config.
 #[derive(Debug, Clone)]
 pub struct Config {
@@ -287,7 +233,7 @@ impl Config {
         }
         let mut loops_out: Vec<LoopFitConfig> = Vec::new();
         for (i, f) in loop_fits.iter().enumerate() {
-            let fit = parse_loop_fit(&ctx, dir, f, i)?;
+            let fit = loops::parse_loop_fit(&ctx, dir, f, i)?;
             if out.iter().any(|o| o.name == fit.name)
                 || loops_out.iter().any(|o| o.name == fit.name)
             {
@@ -653,191 +599,6 @@ fn optimizer(
         budget,
         count(ctx, &r.seed, &key("seed"), 0, i64::MAX, index as i64)? as u64,
     ))
-}
-
-fn parse_loop_fit(
-    ctx: &Ctx,
-    dir: &Path,
-    f: &Spanned<RawLoopFit>,
-    index: usize,
-) -> Result<LoopFitConfig, CliError> {
-    use bwc_identify::{LawSpace, Loop, LAW_NAMES};
-    let t = f.span();
-    let r = f.get_ref();
-    let name = r.name.as_ref().map_or_else(
-        || format!("loop fit {}", index + 1),
-        |n| n.get_ref().clone(),
-    );
-    let kind = match &r.model {
-        Some(m) => model_kind(ctx, m, "[[loop_fit]].model")?,
-        None => {
-            return Err(ctx.invalid(
-                &t,
-                "[[loop_fit]].model",
-                "missing required key: \"shccm\" or \"mcm\"",
-            ))
-        }
-    };
-    let m = ctx.req(&r.m, &t, "[[loop_fit]].m")?;
-    if m <= 0.0 {
-        return Err(ctx.invalid(
-            &span(&r.m).unwrap_or(t.clone()),
-            "[[loop_fit]].m",
-            format!("{m} is not admissible: m > 0 (kg)"),
-        ));
-    }
-    let refs = r.loops.as_ref().ok_or_else(|| {
-        ctx.invalid(
-            &t,
-            "[[loop_fit]].loops",
-            "missing: [{ data = \"...csv\", v0 = ... }, ...]",
-        )
-    })?;
-    let mut loops = Vec::new();
-    for l in refs.get_ref() {
-        let lr = l.get_ref();
-        let v0 = ctx.num(&lr.v0, "[[loop_fit]].loops.v0")?;
-        loops.push(
-            Loop::load(&dir.join(lr.data.get_ref()), v0).map_err(|source| CliError::Identify {
-                path: ctx.path.to_owned(),
-                fit: name.clone(),
-                source,
-            })?,
-        );
-    }
-    if loops.is_empty() {
-        return Err(ctx.invalid(&refs.span(), "[[loop_fit]].loops", "no loops"));
-    }
-    let mut log = [false; 8];
-    if let Some(l) = &r.log {
-        for item in l.get_ref() {
-            match LAW_NAMES.iter().position(|n| n == item.get_ref()) {
-                Some(i) => log[i] = true,
-                None => {
-                    return Err(ctx.invalid(
-                        &item.span(),
-                        "[[loop_fit]].log",
-                        format!(
-                            "\"{}\" is not a contact-law quantity: use {}",
-                            item.get_ref(),
-                            LAW_NAMES.join(", ")
-                        ),
-                    ))
-                }
-            }
-        }
-    }
-    let empty_b = RawLaw {
-        k: None,
-        c: None,
-        n: None,
-        p: None,
-        alpha: None,
-        beta: None,
-        g: None,
-        gamma: None,
-        a: None,
-    };
-    let empty_v = RawLaw {
-        k: None,
-        c: None,
-        n: None,
-        p: None,
-        alpha: None,
-        beta: None,
-        g: None,
-        gamma: None,
-        a: None,
-    };
-    let b = r.bounds.as_ref().map_or(&empty_b, |b| b.get_ref());
-    let v = r.fixed.as_ref().map_or(&empty_v, |v| v.get_ref());
-    let bounds = [&b.k, &b.c, &b.n, &b.p, &b.alpha, &b.beta, &b.g, &b.a];
-    let fixed = [&v.k, &v.c, &v.n, &v.p, &v.alpha, &v.beta, &v.g, &v.a];
-    for (table, gamma) in [
-        ("[loop_fit.bounds]", span(&b.gamma)),
-        ("[loop_fit.fixed]", span(&v.gamma)),
-    ] {
-        if let Some(s) = gamma {
-            return Err(ctx.invalid(
-                &s,
-                format!("{table}.gamma"),
-                "give g = gamma / beta in [-1, 1] instead",
-            ));
-        }
-    }
-    let bounds_span = r.bounds.as_ref().map_or(t.clone(), |b| b.span());
-    let mut params = [Param::Fixed(1.0); 8];
-    for i in 0..8 {
-        let key = LAW_NAMES[i];
-        params[i] = param_of(ctx, "loop_fit", key, bounds[i], fixed[i], log[i])?.ok_or_else(|| {
-            ctx.invalid(&bounds_span, format!("[loop_fit.bounds].{key}"), format!("missing: give bounds for {key} in [loop_fit.bounds] or a value in [loop_fit.fixed]"))
-        })?;
-    }
-    let space = LawSpace::new(kind, params).map_err(|e| match e {
-        IdentifyError::Bounds {
-            name,
-            lo,
-            hi,
-            allowed,
-        } => {
-            let i = LAW_NAMES.iter().position(|n| *n == name).unwrap_or(0);
-            let (table, s) = if bounds[i].is_some() {
-                ("[loop_fit.bounds]", span(bounds[i]))
-            } else {
-                ("[loop_fit.fixed]", span(fixed[i]))
-            };
-            ctx.invalid(
-                &s.unwrap_or(t.clone()),
-                format!("{table}.{name}"),
-                format!("[{lo}, {hi}] is not admissible: {allowed}"),
-            )
-        }
-        other => ctx.invalid(&t, format!("[[loop_fit]] \"{name}\""), other.to_string()),
-    })?;
-    let params_eval = match &r.params {
-        None => None,
-        Some(p) => {
-            let s = p.span();
-            let q = p.get_ref();
-            let key = |k: &str| format!("[loop_fit.params].{k}");
-            let law = bw_models::Physical {
-                k: ctx.req(&q.k, &s, &key("k"))?,
-                c: ctx.req(&q.c, &s, &key("c"))?,
-                n: ctx.req(&q.n, &s, &key("n"))?,
-                p: ctx.req(&q.p, &s, &key("p"))?,
-                alpha: ctx.req(&q.alpha, &s, &key("alpha"))?,
-                beta: ctx.req(&q.beta, &s, &key("beta"))?,
-                gamma: ctx.req(&q.gamma, &s, &key("gamma"))?,
-                a: ctx.req(&q.a, &s, &key("A"))?,
-            };
-            bw_models::PhysicalParams::new(kind, law).map_err(|e| {
-                let span_of = |n: &str| match n {
-                    "k" => span(&q.k),
-                    "c" => span(&q.c),
-                    "n" => span(&q.n),
-                    "p" => span(&q.p),
-                    "alpha" => span(&q.alpha),
-                    "beta" => span(&q.beta),
-                    "gamma" => span(&q.gamma),
-                    "A" => span(&q.a),
-                    _ => None,
-                };
-                ctx.model_error(e, "[loop_fit.params]", span_of, &s)
-            })?;
-            Some(law)
-        }
-    };
-    let (budget, seed) = optimizer(ctx, &r.optimizer, "[loop_fit.optimizer]", index)?;
-    Ok(LoopFitConfig {
-        name,
-        kind,
-        m,
-        loops,
-        space,
-        budget,
-        seed,
-        params: params_eval,
-    })
 }
 
 /// A searchable quantity from `[<table>.bounds].key = [lo, hi]` or `[<table>.fixed].key`
