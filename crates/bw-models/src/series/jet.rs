@@ -188,37 +188,6 @@ impl Power {
         ((e + 1.0) * a - k as f64 * s) * (INVERSE[k] * b.inverse)
     }
 
-    /// Coefficients `k >= 1` of two powers `y = b^e1`, `u = b^e2` of one base, as
-    /// [`Power::term`] with one pass over the base for both.
-    #[inline(always)]
-    fn terms(y: &Power, u: &Power, b: &Base, (e1, e2): (f64, f64), k: usize) -> (f64, f64) {
-        let w = ORDER + 1 - k;
-        let (kc, c) = (&b.kc[1..=k], &b.c[1..=k]);
-        let (yr, ur) = (&y.r[w..], &u.r[w..]);
-        let (mut a1, mut s1, mut a2, mut s2) = ([0.0; 2], [0.0; 2], [0.0; 2], [0.0; 2]);
-        let whole = k - k % 2;
-        for i in (0..whole).step_by(2) {
-            for l in 0..2 {
-                a1[l] += kc[i + l] * yr[i + l];
-                s1[l] += c[i + l] * yr[i + l];
-                a2[l] += kc[i + l] * ur[i + l];
-                s2[l] += c[i + l] * ur[i + l];
-            }
-        }
-        if whole < k {
-            let i = whole;
-            a1[0] += kc[i] * yr[i];
-            s1[0] += c[i] * yr[i];
-            a2[0] += kc[i] * ur[i];
-            s2[0] += c[i] * ur[i];
-        }
-        let (kf, scale) = (k as f64, INVERSE[k] * b.inverse);
-        let term = |a: [f64; 2], s: [f64; 2], e: f64| {
-            ((e + 1.0) * (a[0] + a[1]) - kf * (s[0] + s[1])) * scale
-        };
-        (term(a1, s1, e1), term(a2, s2, e2))
-    }
-
     /// Coefficient `k` of the product of this power and the series `w`.
     #[inline(always)]
     pub(super) fn times(&self, w: &Series, k: usize) -> f64 {
@@ -259,41 +228,30 @@ impl<'a> JetPowers<'a> {
         }
     }
 
-    /// Coefficient `j` of `|D|^p` and `|Z|^p` from coefficient `j` of `|D|` and `|Z|` (the
-    /// lower ones were given before).
+    /// Coefficient 0 of `|D|^p` and `|Z|^p` (and of `|Z|^n` where the hysteresis needs it) from
+    /// `|D|` and `|Z|` at the step's start.
     #[inline(always)]
-    fn order(&mut self, j: usize, d_j: f64, z_j: f64) -> (f64, f64) {
+    fn start(&mut self, d0: f64, z0: f64) -> (f64, f64) {
         let [d, z] = &mut *self.bases;
         let [dp, zp, zn] = &mut *self.powers;
-        let of = |power: &Power, base: &Base, e: Pow| {
-            if j == 0 {
-                e.of_abs(base.c[0])
-            } else {
-                power.term(base, e.exponent(), j)
-            }
-        };
-        d.set(j, d_j);
-        let dpj = of(dp, d, self.p);
-        dp.set(j, dpj);
-        let zpj = if self.shared {
-            dpj
+        d.set(0, d0);
+        let dp0 = self.p.of_abs(d0);
+        dp.set(0, dp0);
+        let zp0 = if self.shared {
+            dp0
         } else {
-            z.set(j, z_j);
-            if !self.hysteretic {
-                of(zp, z, self.p)
-            } else if j == 0 {
+            z.set(0, z0);
+            if self.hysteretic {
                 // |Z|^n and |Z|^p of one base share its logarithm.
-                let mut powers = crate::power::Powers::of(z.c[0]);
+                let mut powers = crate::power::Powers::of(z0);
                 zn.set(0, powers.get(self.n));
                 powers.get(self.p)
             } else {
-                let (znj, zpj) = Power::terms(zn, zp, z, (self.n.exponent(), self.p.exponent()), j);
-                zn.set(j, znj);
-                zpj
+                self.p.of_abs(z0)
             }
         };
-        zp.set(j, zpj);
-        (dpj, zpj)
+        zp.set(0, zp0);
+        (dp0, zp0)
     }
 
     /// Order `j >= 1` of the hysteretic branch (`|Z|^n` needed, `Z != D`): coefficient `j` of
@@ -383,25 +341,10 @@ impl<'a> JetPowers<'a> {
         [dpj, acc[2] + dpj * w[0]]
     }
 
-    /// Coefficient `j` of `|D|^p w`.
+    /// Coefficient 0 of `|Z|^n`.
     #[inline(always)]
-    fn displacement_times(&self, w: &Series, j: usize) -> f64 {
-        self.powers[0].times(w, j)
-    }
-
-    /// Coefficients `j` of `|D|^p w` and `|Z|^n w`, in one pass over `w`.
-    #[inline(always)]
-    fn both_times(&self, w: &Series, j: usize) -> (f64, f64) {
-        let [dp, _, zn] = &*self.powers;
-        let at = ORDER - j;
-        let (a, b) = dot2(&dp.r[at..], &zn.r[at..], &w[..=j]);
-        (a, b)
-    }
-
-    /// Coefficient `j` of `|Z|^n w`.
-    #[inline(always)]
-    fn hysteresis_times(&self, w: &Series, j: usize) -> f64 {
-        self.powers[2].times(w, j)
+    fn hysteresis_leading(&self) -> f64 {
+        self.powers[2].r[ORDER]
     }
 }
 
@@ -449,14 +392,8 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
                     (xp, zp, xpv, 0.0)
                 }
             } else {
-                let (xp, zp) = pw.order(j, sx * x[j], sz * z[j]);
-                // |X|^p V and |Z|^n V (the latter where the hysteresis needs it) in one pass.
-                let (xpv, znv) = if c == 0.0 || j == ORDER {
-                    (pw.displacement_times(v, j), 0.0)
-                } else {
-                    pw.both_times(v, j)
-                };
-                (xp, zp, xpv, znv)
+                let (xp, zp) = pw.start(sx * x[0], sz * z[0]);
+                (xp, zp, xp * v[0], pw.hysteresis_leading() * v[0])
             };
             force[j] = -k.kappa * sx * xp - kc * sz * zp - k.sigma * xpv;
             if j == ORDER {
@@ -497,7 +434,22 @@ impl<I: Input> Expand<4> for Ndbwmcm<I> {
         let mut pw = JetPowers::new(k, shared, c, bases, powers);
         (r[0], yy[0], z[0], v[0]) = (y[0], y[1], y[2], y[3]);
         for j in 0..=ORDER {
-            let (yp, zp) = pw.order(j, sy * yy[j], sz * z[j]);
+            // The fused passes of the NDBWSHCCM (their products with the rate unused but for
+            // |Z|^n Y', whose term |Z|^n_0 Y'_j is added once Y'_j is known).
+            let (yp, zp, zn_rate) = if j == 0 {
+                let (yp, zp) = pw.start(sy * yy[0], sz * z[0]);
+                (yp, zp, 0.0)
+            } else if shared {
+                let [yp, _] = pw.order_shared(j, sy * yy[j], rate);
+                (yp, yp, 0.0)
+            } else if c != 0.0 {
+                rate[j] = 0.0;
+                let [yp, zp, _, zn_rate] = pw.order_hysteretic(j, sy * yy[j], sz * z[j], rate);
+                (yp, zp, zn_rate)
+            } else {
+                let [yp, zp, _] = pw.order_elastic(j, sy * yy[j], sz * z[j], rate);
+                (yp, zp, 0.0)
+            };
             force[j] = -k.kappa * sy * yp - kc * sz * zp;
             rate[j] = v[j] + k.sigma * force[j];
             if j == ORDER {
@@ -509,7 +461,8 @@ impl<I: Input> Expand<4> for Ndbwmcm<I> {
             z[j + 1] = if c == 0.0 {
                 yy[j + 1]
             } else {
-                (rate[j] - c * pw.hysteresis_times(rate, j)) * inv
+                // |Z|^n Y' at order j: the pass's sum and the term |Z|^n_0 Y'_j.
+                (rate[j] - c * (zn_rate + pw.hysteresis_leading() * rate[j])) * inv
             };
             v[j + 1] = (force[j] + if j == 0 { u } else { 0.0 }) * inv;
         }
@@ -557,18 +510,32 @@ mod tests {
                 );
             }
         }
-        // Two powers of one base in one pass: the same binomial series for both exponents.
-        let (e1, e2) = (2.93, 2.62);
-        let (w1, w2) = (binomial(e1), binomial(e2));
-        let (mut y, mut u) = (Power::ZERO, Power::ZERO);
-        (y.r[ORDER], u.r[ORDER]) = (1.0, 1.0);
+        // The fused pass of the hysteretic branch: |D|^p, |Z|^n, |Z|^p of D = Z = 1 + s are
+        // binomial series, and the products with w = (1, -1) are their differences.
+        let (p, n) = (2.62, 2.93);
+        let (bp, bn) = (binomial(p), binomial(n));
+        let (mut bases, mut powers) = (
+            [Base::ZERO, Base::ZERO],
+            [Power::ZERO, Power::ZERO, Power::ZERO],
+        );
+        let mut pw = JetPowers {
+            p: Pow::new(p),
+            n: Pow::new(n),
+            shared: false,
+            hysteretic: true,
+            bases: &mut bases,
+            powers: &mut powers,
+        };
+        let mut w = [0.0; ORDER + 1];
+        (w[0], w[1]) = (1.0, -1.0);
+        assert_eq!(pw.start(1.0, 1.0), (1.0, 1.0));
         for k in 1..=ORDER {
-            let (yk, uk) = Power::terms(&y, &u, &b, (e1, e2), k);
-            y.set(k, yk);
-            u.set(k, uk);
-            for (got, want) in [(yk, w1[k]), (uk, w2[k])] {
-                assert!((got - want).abs() <= 1e-14 * want.abs().max(1e-3), "k {k}");
-            }
+            let d_k = if k == 1 { 1.0 } else { 0.0 };
+            let [dp, zp, dpw, znw] = pw.order_hysteretic(k, d_k, d_k, &w);
+            let close = |got: f64, want: f64| (got - want).abs() <= 1e-14 * want.abs().max(1e-3);
+            assert!(close(dp, bp[k]) && close(zp, bp[k]), "k {k}");
+            assert!(close(dpw, bp[k] - bp[k - 1]), "k {k}");
+            assert!(close(znw, bn[k] - bn[k - 1]), "k {k}");
         }
     }
 }
