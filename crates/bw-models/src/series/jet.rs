@@ -254,16 +254,26 @@ impl<'a> JetPowers<'a> {
         (dp0, zp0)
     }
 
-    /// Order `j >= 1` of the hysteretic branch (`|Z|^n` needed, `Z != D`): coefficient `j` of
-    /// `|D|^p`, `|Z|^p` from coefficient `j` of `|D|` and `|Z|`, and of `|D|^p w`, `|Z|^n w`,
-    /// with the eight sums of the three recurrences and the two products in one pass over
-    /// `m = 1 ..= j` (`Σ_m y_(j-m) w_m`; the term `y_j w_0` is added after).
+    /// Order `j >= 1`: coefficient `j` of `|D|^p` and `|Z|^p` from coefficient `j` of `|D|` and
+    /// `|Z|`, and of the products `|D|^p w` and `|Z|^n w`, as `[|D|^p, |Z|^p, |D|^p w, |Z|^n w]`,
+    /// with all the sums of the recurrences and the products in one pass over `m = 1 ..= j`
+    /// (`Σ_m y_(j-m) w_m`; the term `y_j w_0` is added after). `OWN_Z`: `Z != D` (else
+    /// `|Z|^p = |D|^p`); `HYSTERETIC`: `|Z|^n` is needed (only with `OWN_Z`; else its
+    /// product is 0).
     #[inline(always)]
-    fn order_hysteretic(&mut self, j: usize, d_j: f64, z_j: f64, w: &Series) -> [f64; 4] {
+    fn order<const OWN_Z: bool, const HYSTERETIC: bool>(
+        &mut self,
+        j: usize,
+        d_j: f64,
+        z_j: f64,
+        w: &Series,
+    ) -> [f64; 4] {
         let [d, z] = &mut *self.bases;
         let [dp, zp, zn] = &mut *self.powers;
         d.set(j, d_j);
-        z.set(j, z_j);
+        if OWN_Z {
+            z.set(j, z_j);
+        }
         let at = ORDER + 1 - j;
         let (kd, cd, kz, cz) = (&d.kc[1..=j], &d.c[1..=j], &z.kc[1..=j], &z.c[1..=j]);
         let (yd, yn, yp) = (&dp.r[at..=ORDER], &zn.r[at..=ORDER], &zp.r[at..=ORDER]);
@@ -272,73 +282,37 @@ impl<'a> JetPowers<'a> {
         for m in 0..j {
             acc[0] += kd[m] * yd[m];
             acc[1] += cd[m] * yd[m];
-            acc[2] += kz[m] * yn[m];
-            acc[3] += cz[m] * yn[m];
-            acc[4] += kz[m] * yp[m];
-            acc[5] += cz[m] * yp[m];
+            if HYSTERETIC {
+                acc[2] += kz[m] * yn[m];
+                acc[3] += cz[m] * yn[m];
+            }
+            if OWN_Z {
+                acc[4] += kz[m] * yp[m];
+                acc[5] += cz[m] * yp[m];
+            }
             acc[6] += yd[m] * wm[m];
-            acc[7] += yn[m] * wm[m];
+            if HYSTERETIC {
+                acc[7] += yn[m] * wm[m];
+            }
         }
-        let (jf, scale_d, scale_z) = (j as f64, INVERSE[j] * d.inverse, INVERSE[j] * z.inverse);
-        let (p, n) = (self.p.exponent(), self.n.exponent());
+        let (jf, p) = (j as f64, self.p.exponent());
+        let (scale_d, scale_z) = (INVERSE[j] * d.inverse, INVERSE[j] * z.inverse);
         let dpj = ((p + 1.0) * acc[0] - jf * acc[1]) * scale_d;
-        let znj = ((n + 1.0) * acc[2] - jf * acc[3]) * scale_z;
-        let zpj = ((p + 1.0) * acc[4] - jf * acc[5]) * scale_z;
         dp.set(j, dpj);
-        zn.set(j, znj);
+        let zpj = if OWN_Z {
+            ((p + 1.0) * acc[4] - jf * acc[5]) * scale_z
+        } else {
+            dpj
+        };
         zp.set(j, zpj);
-        [dpj, zpj, acc[6] + dpj * w[0], acc[7] + znj * w[0]]
-    }
-
-    /// Order `j >= 1` where the hysteresis bracket vanishes and `Z != D`: coefficient `j` of
-    /// `|D|^p`, `|Z|^p` and `|D|^p w`, the five sums in one pass as in
-    /// [`JetPowers::order_hysteretic`].
-    #[inline(always)]
-    fn order_elastic(&mut self, j: usize, d_j: f64, z_j: f64, w: &Series) -> [f64; 3] {
-        let [d, z] = &mut *self.bases;
-        let [dp, zp, _] = &mut *self.powers;
-        d.set(j, d_j);
-        z.set(j, z_j);
-        let at = ORDER + 1 - j;
-        let (kd, cd, kz, cz) = (&d.kc[1..=j], &d.c[1..=j], &z.kc[1..=j], &z.c[1..=j]);
-        let (yd, yp) = (&dp.r[at..=ORDER], &zp.r[at..=ORDER]);
-        let wm = &w[1..=j];
-        let mut acc = [0.0; 5];
-        for m in 0..j {
-            acc[0] += kd[m] * yd[m];
-            acc[1] += cd[m] * yd[m];
-            acc[2] += kz[m] * yp[m];
-            acc[3] += cz[m] * yp[m];
-            acc[4] += yd[m] * wm[m];
-        }
-        let (jf, p) = (j as f64, self.p.exponent());
-        let dpj = ((p + 1.0) * acc[0] - jf * acc[1]) * (INVERSE[j] * d.inverse);
-        let zpj = ((p + 1.0) * acc[2] - jf * acc[3]) * (INVERSE[j] * z.inverse);
-        dp.set(j, dpj);
-        zp.set(j, zpj);
-        [dpj, zpj, acc[4] + dpj * w[0]]
-    }
-
-    /// Order `j >= 1` while `Z = D` (then `|Z|^p = |D|^p`): coefficient `j` of `|D|^p` and of
-    /// `|D|^p w`, the three sums in one pass as in [`JetPowers::order_hysteretic`].
-    #[inline(always)]
-    fn order_shared(&mut self, j: usize, d_j: f64, w: &Series) -> [f64; 2] {
-        let [d, _] = &mut *self.bases;
-        let [dp, zp, _] = &mut *self.powers;
-        d.set(j, d_j);
-        let at = ORDER + 1 - j;
-        let (kd, cd, yd, wm) = (&d.kc[1..=j], &d.c[1..=j], &dp.r[at..=ORDER], &w[1..=j]);
-        let mut acc = [0.0; 3];
-        for m in 0..j {
-            acc[0] += kd[m] * yd[m];
-            acc[1] += cd[m] * yd[m];
-            acc[2] += yd[m] * wm[m];
-        }
-        let (jf, p) = (j as f64, self.p.exponent());
-        let dpj = ((p + 1.0) * acc[0] - jf * acc[1]) * (INVERSE[j] * d.inverse);
-        dp.set(j, dpj);
-        zp.set(j, dpj);
-        [dpj, acc[2] + dpj * w[0]]
+        let znw = if HYSTERETIC {
+            let znj = ((self.n.exponent() + 1.0) * acc[2] - jf * acc[3]) * scale_z;
+            zn.set(j, znj);
+            acc[7] + znj * w[0]
+        } else {
+            0.0
+        };
+        [dpj, zpj, acc[6] + dpj * w[0], znw]
     }
 
     /// Coefficient 0 of `|Z|^n`.
@@ -380,20 +354,15 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
         let mut pw = JetPowers::new(k, shared, c, bases, powers);
         (x[0], z[0], v[0]) = (y[0], y[1], y[2]);
         for j in 0..=ORDER {
-            let (xp, zp, xpv, znv) = if j > 0 {
-                if shared {
-                    let [xp, xpv] = pw.order_shared(j, sx * x[j], v);
-                    (xp, xp, xpv, 0.0)
-                } else if c != 0.0 {
-                    let [xp, zp, xpv, znv] = pw.order_hysteretic(j, sx * x[j], sz * z[j], v);
-                    (xp, zp, xpv, znv)
-                } else {
-                    let [xp, zp, xpv] = pw.order_elastic(j, sx * x[j], sz * z[j], v);
-                    (xp, zp, xpv, 0.0)
-                }
-            } else {
+            let [xp, zp, xpv, znv] = if j == 0 {
                 let (xp, zp) = pw.start(sx * x[0], sz * z[0]);
-                (xp, zp, xp * v[0], pw.hysteresis_leading() * v[0])
+                [xp, zp, xp * v[0], pw.hysteresis_leading() * v[0]]
+            } else if shared {
+                pw.order::<false, false>(j, sx * x[j], 0.0, v)
+            } else if c != 0.0 {
+                pw.order::<true, true>(j, sx * x[j], sz * z[j], v)
+            } else {
+                pw.order::<true, false>(j, sx * x[j], sz * z[j], v)
             };
             force[j] = -k.kappa * sx * xp - kc * sz * zp - k.sigma * xpv;
             if j == ORDER {
@@ -434,21 +403,18 @@ impl<I: Input> Expand<4> for Ndbwmcm<I> {
         let mut pw = JetPowers::new(k, shared, c, bases, powers);
         (r[0], yy[0], z[0], v[0]) = (y[0], y[1], y[2], y[3]);
         for j in 0..=ORDER {
-            // The fused passes of the NDBWSHCCM (their products with the rate unused but for
-            // |Z|^n Y', whose term |Z|^n_0 Y'_j is added once Y'_j is known).
-            let (yp, zp, zn_rate) = if j == 0 {
+            // The passes of the NDBWSHCCM with w = Y' (the product with |Y|^p unused; that with
+            // |Z|^n taken with Y'_j = 0, its term |Z|^n_0 Y'_j added once Y'_j is known).
+            rate[j] = 0.0;
+            let [yp, zp, _, zn_rate] = if j == 0 {
                 let (yp, zp) = pw.start(sy * yy[0], sz * z[0]);
-                (yp, zp, 0.0)
+                [yp, zp, 0.0, 0.0]
             } else if shared {
-                let [yp, _] = pw.order_shared(j, sy * yy[j], rate);
-                (yp, yp, 0.0)
+                pw.order::<false, false>(j, sy * yy[j], 0.0, rate)
             } else if c != 0.0 {
-                rate[j] = 0.0;
-                let [yp, zp, _, zn_rate] = pw.order_hysteretic(j, sy * yy[j], sz * z[j], rate);
-                (yp, zp, zn_rate)
+                pw.order::<true, true>(j, sy * yy[j], sz * z[j], rate)
             } else {
-                let [yp, zp, _] = pw.order_elastic(j, sy * yy[j], sz * z[j], rate);
-                (yp, zp, 0.0)
+                pw.order::<true, false>(j, sy * yy[j], sz * z[j], rate)
             };
             force[j] = -k.kappa * sy * yp - kc * sz * zp;
             rate[j] = v[j] + k.sigma * force[j];
@@ -531,7 +497,7 @@ mod tests {
         assert_eq!(pw.start(1.0, 1.0), (1.0, 1.0));
         for k in 1..=ORDER {
             let d_k = if k == 1 { 1.0 } else { 0.0 };
-            let [dp, zp, dpw, znw] = pw.order_hysteretic(k, d_k, d_k, &w);
+            let [dp, zp, dpw, znw] = pw.order::<true, true>(k, d_k, d_k, &w);
             let close = |got: f64, want: f64| (got - want).abs() <= 1e-14 * want.abs().max(1e-3);
             assert!(close(dp, bp[k]) && close(zp, bp[k]), "k {k}");
             assert!(close(dpw, bp[k] - bp[k - 1]), "k {k}");
