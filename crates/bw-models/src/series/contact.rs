@@ -19,7 +19,7 @@
 //! compression), the step ends on that root.
 
 use super::jet::{Base, Power, Series};
-use super::{eval_d, root, ESTIMATE_TERMS, ORDER, TOLERANCE_SCALE};
+use super::{eval_d, jorba_zou, root, ORDER, TOLERANCE_SCALE};
 use crate::impact::Settings;
 use crate::power::Pow;
 
@@ -66,14 +66,8 @@ pub(crate) fn hunt_crossley_step(p: Pow, sigma: f64, settings: &Settings) -> Opt
     let (g, v) = coefficients(p, sigma);
     // |y|_inf is 1 at contact (V = -1) and stays about 1 in the compression.
     let tol = TOLERANCE_SCALE * (settings.atol + settings.rtol);
-    let lt = tol.log2();
-    let mut x = f64::INFINITY;
-    for k in ORDER + 1 - ESTIMATE_TERMS..=ORDER {
-        let c = g[k].abs().max(v[k].abs());
-        x = x.min((lt - c.log2()) / k as f64);
-    }
     let limit = settings.max_step.min(settings.t_max).powf(q);
-    let mut s = (0.9 * x.exp2()).min(limit);
+    let mut s = jorba_zou(tol, ORDER, |k| g[k].abs().max(v[k].abs())).min(limit);
     if !(s > 0.0 && s.is_finite()) || g.iter().chain(&v).any(|c| !c.is_finite()) {
         return None;
     }
@@ -91,7 +85,8 @@ pub(crate) fn hunt_crossley_step(p: Pow, sigma: f64, settings: &Settings) -> Opt
             break;
         }
         if vi <= vs {
-            (s, vs) = (s_prev, eval_d(&v, s_prev).0);
+            // vs is V at s_prev already.
+            s = s_prev;
             break;
         }
         (s_prev, vs) = (si, vi);

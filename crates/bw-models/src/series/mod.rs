@@ -182,15 +182,22 @@ fn step_tolerance<const N: usize>(y: &State<N>, settings: &Settings) -> f64 {
 /// `0.9 min_k ρ_k` over the last [`ESTIMATE_TERMS`] orders, `ρ_k = (tol / |c_k|_∞)^(1/k)` over the
 /// state and the force, with the local tolerance `tol` ([`step_tolerance`]).
 fn step_size<const N: usize>(jet: &Jet<N>, tol: f64) -> f64 {
-    let lt = coarse_log2(tol);
-    // One exp2 for the smallest (a zero coefficient gives an infinite ρ).
-    let mut x = f64::INFINITY;
-    for k in ORDER + 1 - ESTIMATE_TERMS..=ORDER {
-        let c = jet
-            .state
+    jorba_zou(tol, ORDER, |k| {
+        jet.state
             .iter()
             .chain([&jet.force])
-            .fold(0.0f64, |m, s| m.max(s[k].abs()));
+            .fold(0.0f64, |m, s| m.max(s[k].abs()))
+    })
+}
+
+/// `0.9 min_k (tol / c_k)^(1/k)` over the last [`ESTIMATE_TERMS`] orders up to `order`, for the
+/// largest coefficients `c_k` of a series (a zero coefficient gives an infinite `ρ_k`).
+fn jorba_zou(tol: f64, order: usize, largest: impl Fn(usize) -> f64) -> f64 {
+    let lt = coarse_log2(tol);
+    // One exp2 for the smallest.
+    let mut x = f64::INFINITY;
+    for k in order + 1 - ESTIMATE_TERMS..=order {
+        let c = largest(k);
         if c > 0.0 {
             x = x.min((lt - coarse_log2(c)) / k as f64);
         }
@@ -255,6 +262,17 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
     // The force where this step starts, if the last step computed it already (at its end, or
     // zero at a located root).
     let mut force_here: Option<f64> = None;
+    // The first step, from contact, where the model has a series for it.
+    if let Some((t1, y1)) = model.contact_step(u, settings) {
+        series_steps += 1;
+        stats.accepted += 1;
+        (t, y, h_last) = (t1, y1, t1);
+        if velocity(&y) == 0.0 {
+            // It ended on the maximum compression.
+            stats.events += 1;
+            rate_class = -rate_class;
+        }
+    }
     loop {
         let force = force_here.take().unwrap_or_else(|| model.force(&y));
         let velocity_now = velocity(&y);
@@ -276,19 +294,6 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
             || t >= settings.t_max
         {
             return hand_over(t, &y, stats, series_steps);
-        }
-        if t == 0.0 && y == model.initial_state() {
-            if let Some((t1, y1)) = model.contact_step(u, settings) {
-                series_steps += 1;
-                stats.accepted += 1;
-                (t, y, h_last) = (t1, y1, t1);
-                if velocity(&y) == 0.0 {
-                    // It ended on the maximum compression.
-                    stats.events += 1;
-                    rate_class = -rate_class;
-                }
-                continue;
-            }
         }
         if y[M::BASE] == 0.0 || y[M::Z] == 0.0 {
             let (t_start, y_start, stats_start) = (t, y, stats);
