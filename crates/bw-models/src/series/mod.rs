@@ -426,6 +426,7 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
                 return hand_over(t, &y, stats, series_steps);
             }
         }
+        let at_root = State::<N>::from(jet.at(s).0);
         match event {
             // A base vanishes at its root: there the series converge slowest (the root is their
             // radius of convergence), so the explicit method takes the state there.
@@ -442,37 +443,33 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
             Event::Rate => {
                 stats.events += 1;
                 rate_class = -rate_class;
-                y = State::<N>::from(jet.at(s).0);
-                t += s;
+                (t, y) = (t + s, at_root);
                 if M::RATE_IS_VELOCITY {
                     y[N - 1] = 0.0;
                 }
             }
-            // A separation away from the zeros of the bases (each farther than the root from
-            // the step's start, by its slope): the series' state there.
-            Event::Force
-                if jet.at(s).0[N - 1] >= 0.0
-                    && [base, z].iter().all(|&i| {
-                        let (b, db) = eval_d(&jet.state[i], s);
-                        b.abs() > s * db.abs()
-                    }) =>
-            {
-                y = State::<N>::from(jet.at(s).0);
-                t += s;
-            }
-            // Otherwise the explicit method takes the state there (the force can vanish where
-            // a base does, at the radius of convergence of the series).
-            Event::Force if jet.at(s).0[N - 1] >= 0.0 => {
-                let force = Target::Force;
-                let Some(next) = reach_root(model, settings, (t, &y), t + s, force, &mut stats)
-                else {
-                    return hand_over(t, &y, stats, series_steps);
-                };
-                (t, y) = next;
+            Event::Force if at_root[N - 1] >= 0.0 => {
+                // A separation near a zero of a base (one no farther from zero, by its slope,
+                // than the root from the step's start): the force can vanish with the base, at
+                // the radius of convergence of the series, so the explicit method takes the
+                // state there. Elsewhere the root of the step's polynomials is the state.
+                let near_a_base_zero = [base, z].iter().any(|&i| {
+                    let (b, db) = eval_d(&jet.state[i], s);
+                    b.abs() <= s * db.abs()
+                });
+                if near_a_base_zero {
+                    let force = Target::Force;
+                    let Some(next) = reach_root(model, settings, (t, &y), t + s, force, &mut stats)
+                    else {
+                        return hand_over(t, &y, stats, series_steps);
+                    };
+                    (t, y) = next;
+                } else {
+                    (t, y) = (t + s, at_root);
+                }
             }
             Event::Velocity | Event::Force => {
-                y = State::<N>::from(jet.at(s).0);
-                t += s;
+                (t, y) = (t + s, at_root);
                 if event == Event::Velocity {
                     y[N - 1] = 0.0;
                 }
