@@ -36,24 +36,49 @@ impl<const N: usize> Jet<N> {
         }
     }
 
-    /// The state and rate polynomials at `s` (Horner's scheme on all of them at once, so that
-    /// the dependency chains overlap).
+    /// The state and rate polynomials at `s`.
     pub(super) fn at(&self, s: f64) -> ([f64; N], f64) {
         let (y, r, _) = self.with_force_at(s);
         (y, r)
     }
 
-    /// The state, rate and force polynomials at `s`, in one pass.
+    /// The state, rate and force polynomials at `s` (Estrin's scheme: the state at a step's end
+    /// is on the critical path from one expansion to the next, and Estrin's tree is a third of
+    /// Horner's chain of dependent operations; -5 % time per CoR evaluation, BENCHMARKS.md).
     pub(super) fn with_force_at(&self, s: f64) -> ([f64; N], f64, f64) {
-        let (mut y, mut r, mut f) = ([0.0; N], 0.0, 0.0);
-        for k in (0..=ORDER).rev() {
-            for (yi, c) in y.iter_mut().zip(&self.state) {
-                *yi = *yi * s + c[k];
-            }
-            r = r * s + self.rate[k];
-            f = f * s + self.force[k];
-        }
-        (y, r, f)
+        let powers = EstrinPowers::of(s);
+        (
+            std::array::from_fn(|i| powers.eval(&self.state[i])),
+            powers.eval(&self.rate),
+            powers.eval(&self.force),
+        )
+    }
+}
+
+/// `s`, `s^2`, `s^4`, `s^8`, `s^16` for Estrin's scheme.
+#[derive(Clone, Copy)]
+struct EstrinPowers([f64; 5]);
+
+const _: () = assert!(ORDER == 16, "EstrinPowers::eval is written for order 16");
+
+impl EstrinPowers {
+    #[inline(always)]
+    fn of(s: f64) -> Self {
+        let s2 = s * s;
+        let s4 = s2 * s2;
+        let s8 = s4 * s4;
+        Self([s, s2, s4, s8, s8 * s8])
+    }
+
+    /// `Σ_(k <= 16) c_k s^k` by Estrin's scheme: pairs `c_2i + c_(2i+1) s`, then pairs of those
+    /// with `s^2`, `s^4`, `s^8`: a tree of depth 5 instead of Horner's chain of 16.
+    #[inline(always)]
+    fn eval(&self, c: &Series) -> f64 {
+        let [s, s2, s4, s8, s16] = self.0;
+        let q: [f64; 8] = std::array::from_fn(|i| c[2 * i] + c[2 * i + 1] * s);
+        let r: [f64; 4] = std::array::from_fn(|i| q[2 * i] + q[2 * i + 1] * s2);
+        let t = [r[0] + r[1] * s4, r[2] + r[3] * s4];
+        (t[0] + t[1] * s8) + c[16] * s16
     }
 }
 
@@ -279,22 +304,34 @@ impl<'a> JetPowers<'a> {
         let (yd, yn, yp) = (&dp.r[at..=ORDER], &zn.r[at..=ORDER], &zp.r[at..=ORDER]);
         let wm = &w[1..=j];
         let mut acc = [0.0; 8];
-        for m in 0..j {
-            acc[0] += kd[m] * yd[m];
-            acc[1] += cd[m] * yd[m];
-            if HYSTERETIC {
-                acc[2] += kz[m] * yn[m];
-                acc[3] += cz[m] * yn[m];
-            }
-            if OWN_Z {
-                acc[4] += kz[m] * yp[m];
-                acc[5] += cz[m] * yp[m];
-            }
-            acc[6] += yd[m] * wm[m];
-            if HYSTERETIC {
-                acc[7] += yn[m] * wm[m];
-            }
+        macro_rules! add {
+            ($m:expr) => {{
+                let m = $m;
+                acc[0] += kd[m] * yd[m];
+                acc[1] += cd[m] * yd[m];
+                if HYSTERETIC {
+                    acc[2] += kz[m] * yn[m];
+                    acc[3] += cz[m] * yn[m];
+                }
+                if OWN_Z {
+                    acc[4] += kz[m] * yp[m];
+                    acc[5] += cz[m] * yp[m];
+                }
+                acc[6] += yd[m] * wm[m];
+                if HYSTERETIC {
+                    acc[7] += yn[m] * wm[m];
+                }
+            }};
         }
+        // The terms m = 0 (with y_(j-1)) and m = j - 1 (with b_j, w_j) read the coefficients
+        // computed last: they come last, so that the sums need not wait for them until the end.
+        for m in 1..j.saturating_sub(1) {
+            add!(m);
+        }
+        if j > 1 {
+            add!(j - 1);
+        }
+        add!(0);
         let (jf, p) = (j as f64, self.p.exponent());
         let (scale_d, scale_z) = (INVERSE[j] * d.inverse, INVERSE[j] * z.inverse);
         let dpj = ((p + 1.0) * acc[0] - jf * acc[1]) * scale_d;
@@ -447,6 +484,25 @@ mod tests {
             c[k] = c[k - 1] * (e - (k - 1) as f64) / k as f64;
         }
         c
+    }
+
+    #[test]
+    fn estrin_sums_the_geometric_series() {
+        // Σ_(k<=16) s^k = (1 - s^17) / (1 - s), and the coefficients k (its derivative times s).
+        let ones = [1.0; ORDER + 1];
+        let ks: Series = std::array::from_fn(|k| k as f64);
+        for s in [-1.3, -0.5, 0.0, 1e-3, 0.25, 0.9, 2.0] {
+            let p = EstrinPowers::of(s);
+            let geometric = if s == 0.0 {
+                1.0
+            } else {
+                (1.0 - s.powi(17)) / (1.0 - s)
+            };
+            let scale: f64 = (0..=ORDER).map(|k| s.abs().powi(k as i32)).sum();
+            assert!((p.eval(&ones) - geometric).abs() <= 8.0 * f64::EPSILON * scale);
+            let derivative: f64 = (1..=ORDER).map(|k| k as f64 * s.powi(k as i32)).sum();
+            assert!((p.eval(&ks) - derivative).abs() <= 64.0 * f64::EPSILON * scale);
+        }
     }
 
     #[test]
