@@ -17,7 +17,8 @@ pub(crate) struct Jet<const N: usize> {
     pub(super) state: [Series; N],
     /// The contact force `F`.
     pub(super) force: Series,
-    /// The rate across the hysteretic element (`V` or `Y'`), whose sign picks the branch.
+    /// The rate across the hysteretic element, whose sign picks the branch: `Y'` of the
+    /// NDBWMCM (the NDBWSHCCM's rate is its velocity, `state[2]`, and leaves this unused).
     pub(super) rate: Series,
     /// Scratch of [`Expand::expand`], kept between steps: the bases of the powers and the
     /// powers (each expansion writes every coefficient it reads).
@@ -36,22 +37,28 @@ impl<const N: usize> Jet<N> {
         }
     }
 
-    /// The state and rate polynomials at `s`.
-    pub(super) fn at(&self, s: f64) -> ([f64; N], f64) {
-        let (y, r, _) = self.with_force_at(s);
-        (y, r)
+    /// The state polynomials at `s`.
+    pub(super) fn state_at(&self, s: f64) -> [f64; N] {
+        let powers = EstrinPowers::of(s);
+        std::array::from_fn(|i| powers.eval(&self.state[i]))
     }
 
-    /// The state, rate and force polynomials at `s` (Estrin's scheme: the state at a step's end
+    /// The state, rate and force polynomials at `s`, the rate taken from the state where it is
+    /// the velocity (Estrin's scheme: the state at a step's end
     /// is on the critical path from one expansion to the next, and Estrin's tree is a third of
     /// Horner's chain of dependent operations; -5 % time per CoR evaluation, BENCHMARKS.md).
-    pub(super) fn with_force_at(&self, s: f64) -> ([f64; N], f64, f64) {
+    pub(super) fn with_force_at<const RATE_IS_VELOCITY: bool>(
+        &self,
+        s: f64,
+    ) -> ([f64; N], f64, f64) {
         let powers = EstrinPowers::of(s);
-        (
-            std::array::from_fn(|i| powers.eval(&self.state[i])),
-            powers.eval(&self.rate),
-            powers.eval(&self.force),
-        )
+        let y: [f64; N] = std::array::from_fn(|i| powers.eval(&self.state[i]));
+        let rate = if RATE_IS_VELOCITY {
+            y[N - 1]
+        } else {
+            powers.eval(&self.rate)
+        };
+        (y, rate, powers.eval(&self.force))
     }
 }
 
@@ -414,7 +421,6 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
             };
             v[j + 1] = (force[j] + if j == 0 { u } else { 0.0 }) * inv;
         }
-        jet.rate = jet.state[2];
     }
 }
 

@@ -354,7 +354,11 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
         // (error about the tolerance) has the sign of the force.
         let sure = FORCE_MARGIN * tol;
         let values = |s: f64| {
-            let (ys, rate, series_force) = jet.with_force_at(s);
+            let (ys, rate, series_force) = if M::RATE_IS_VELOCITY {
+                jet.with_force_at::<true>(s)
+            } else {
+                jet.with_force_at::<false>(s)
+            };
             let force = if series_force.abs() > sure {
                 series_force
             } else {
@@ -365,6 +369,7 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
         let series_of = |event: Event| match event {
             Event::Force => &jet.force,
             Event::Velocity => &jet.state[N - 1],
+            Event::Rate if M::RATE_IS_VELOCITY => &jet.state[N - 1],
             Event::Rate => &jet.rate,
             Event::Z => &jet.state[z],
             Event::Base => &jet.state[base],
@@ -426,7 +431,7 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
                 return hand_over(t, &y, stats, series_steps);
             }
         }
-        let at_root = State::<N>::from(jet.at(s).0);
+        let at_root = State::<N>::from(jet.state_at(s));
         match event {
             // A base vanishes at its root: there the series converge slowest (the root is their
             // radius of convergence), so the explicit method takes the state there.
