@@ -102,7 +102,7 @@ pub(crate) struct NdCoefficients {
 impl NdCoefficients {
     /// `(d/ds |s|^(p-1) s, d/dz ż)` pieces: `p |s|^(p-1)`.
     #[inline]
-    fn dpow_p(&self, s: f64) -> f64 {
+    pub(crate) fn dpow_p(&self, s: f64) -> f64 {
         self.p.exponent() * self.pm1.of_abs(s.abs())
     }
 
