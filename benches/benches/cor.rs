@@ -2,7 +2,8 @@
 //! bwc's default settings (the Taylor-series path, `Settings::series`), the Runge-Kutta path
 //! (DOP853 with stops at the kinks, `series = false`), DOP853 stepping over the kinks, the paper's setup in bwc
 //! (DOP853, max_step 1e-2), and the `ode_solvers` crate's DOP853 on the same right-hand side
-//! (no event location: it stops at the end of the first step where F <= 0 <= v).
+//! (no event location: it stops at the end of the first step where F <= 0 <= v); then the
+//! NDBWMCM at its DSS (1) fit (default, series at rtol 1e-8, DOP853 stepping over the kinks).
 //! `cargo bench -p bwc-benches --bench cor`
 
 use bw_models::{CollisionModel, ModelKind, Ndbwshccm, Settings};
@@ -140,6 +141,53 @@ fn cor_evaluation(c: &mut Criterion) {
     c.bench_function("ndbwshccm_rhs_dss1", |b| {
         b.iter(|| bwc_ode::System::rhs(&model, 0.0, std::hint::black_box(&y)))
     });
+    // The NDBWMCM at its DSS (1) fit, same speed: the default, the series at rtol 1e-8 and
+    // DOP853 stepping over the kinks at the rtol where it meets about the series' error.
+    let mcm = cor::dss1(ModelKind::Mcm);
+    let tight = Settings {
+        rtol: 1e-14,
+        atol: 1e-16,
+        series: false,
+        ..Settings::default()
+    };
+    let reference = cor::evaluate(&mcm, v0, &tight).unwrap().e;
+    let mut group = c.benchmark_group("mcm_dss1_v0_2");
+    for (name, s) in [
+        (
+            "bwc default (Taylor series, rtol 1e-11)",
+            Settings::default(),
+        ),
+        (
+            "bwc Taylor series rtol 1e-8",
+            Settings {
+                rtol: 1e-8,
+                atol: 1e-10,
+                ..Settings::default()
+            },
+        ),
+        (
+            "bwc DOP853 rtol 1e-10, stepping over kinks",
+            Settings {
+                method: &DOP853,
+                rtol: 1e-10,
+                atol: 1e-12,
+                stop_at_kinks: false,
+                series: false,
+                ..Settings::default()
+            },
+        ),
+    ] {
+        let out = cor::evaluate(&mcm, v0, &s).unwrap();
+        eprintln!(
+            "NDBWMCM {name}: {} RHS evaluations, {} steps ({} series), |e - e_ref| = {:.2e}",
+            out.stats.rhs_evals,
+            out.stats.accepted + out.stats.rejected,
+            out.series_steps,
+            (out.e - reference).abs()
+        );
+        group.bench_function(name, |b| b.iter(|| cor::evaluate(&mcm, v0, &s).unwrap()));
+    }
+    group.finish();
 }
 
 criterion_group!(benches, cor_evaluation);
