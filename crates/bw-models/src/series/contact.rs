@@ -87,14 +87,14 @@ pub(crate) fn hunt_crossley_step(
     for i in 1..=SAMPLES {
         let si = s * i as f64 / SAMPLES as f64;
         let vi = eval_d(&v, si).0;
-        if vi >= 0.0 && short {
-            s = s_prev;
-            break;
-        }
         if vi >= 0.0 {
-            // The maximum compression: end on it.
-            let d = root(|d| eval_d(&v, s_prev + d), si - s_prev, -1);
-            (s, vs) = (s_prev + d, 0.0);
+            // The maximum compression: end on it (or, `short`, at the sample before it).
+            if short {
+                s = s_prev;
+            } else {
+                let d = root(|d| eval_d(&v, s_prev + d), si - s_prev, -1);
+                (s, vs) = (s_prev + d, 0.0);
+            }
             break;
         }
         if vi <= vs {

@@ -37,22 +37,25 @@ impl<const N: usize> Jet<N> {
         }
     }
 
-    /// The state polynomials at `s`.
+    /// The state polynomials at `s` (Estrin's scheme: the state at a step's end is on the
+    /// critical path from one expansion to the next, and Estrin's tree is a third of Horner's
+    /// chain of dependent operations; -5 % time per CoR evaluation, BENCHMARKS.md).
     pub(super) fn state_at(&self, s: f64) -> [f64; N] {
-        let powers = EstrinPowers::of(s);
+        self.state_by(&EstrinPowers::of(s))
+    }
+
+    fn state_by(&self, powers: &EstrinPowers) -> [f64; N] {
         std::array::from_fn(|i| powers.eval(&self.state[i]))
     }
 
     /// The state, rate and force polynomials at `s`, the rate taken from the state where it is
-    /// the velocity (Estrin's scheme: the state at a step's end
-    /// is on the critical path from one expansion to the next, and Estrin's tree is a third of
-    /// Horner's chain of dependent operations; -5 % time per CoR evaluation, BENCHMARKS.md).
+    /// the velocity.
     pub(super) fn with_force_at<const RATE_IS_VELOCITY: bool>(
         &self,
         s: f64,
     ) -> ([f64; N], f64, f64) {
         let powers = EstrinPowers::of(s);
-        let y: [f64; N] = std::array::from_fn(|i| powers.eval(&self.state[i]));
+        let y = self.state_by(&powers);
         let rate = if RATE_IS_VELOCITY {
             y[N - 1]
         } else {
@@ -359,6 +362,18 @@ impl<'a> JetPowers<'a> {
         [dpj, zpj, acc[6] + dpj * w[0], znw]
     }
 
+    /// [`JetPowers::order`] in this expansion's branch (`z_j` unused while `Z = D`).
+    #[inline(always)]
+    fn order_in_branch(&mut self, j: usize, d_j: f64, z_j: f64, w: &Series) -> [f64; 4] {
+        if self.shared {
+            self.order::<false, false>(j, d_j, 0.0, w)
+        } else if self.hysteretic {
+            self.order::<true, true>(j, d_j, z_j, w)
+        } else {
+            self.order::<true, false>(j, d_j, z_j, w)
+        }
+    }
+
     /// Coefficient 0 of `|Z|^n`.
     #[inline(always)]
     fn hysteresis_leading(&self) -> f64 {
@@ -401,12 +416,8 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
             let [xp, zp, xpv, znv] = if j == 0 {
                 let (xp, zp) = pw.start(sx * x[0], sz * z[0]);
                 [xp, zp, xp * v[0], pw.hysteresis_leading() * v[0]]
-            } else if shared {
-                pw.order::<false, false>(j, sx * x[j], 0.0, v)
-            } else if c != 0.0 {
-                pw.order::<true, true>(j, sx * x[j], sz * z[j], v)
             } else {
-                pw.order::<true, false>(j, sx * x[j], sz * z[j], v)
+                pw.order_in_branch(j, sx * x[j], sz * z[j], v)
             };
             force[j] = -k.kappa * sx * xp - kc * sz * zp - k.sigma * xpv;
             if j == ORDER {
@@ -475,12 +486,8 @@ impl<I: Input> Expand<4> for Ndbwmcm<I> {
             let [yp, zp, _, zn_rate] = if j == 0 {
                 let (yp, zp) = pw.start(sy * yy[0], sz * z[0]);
                 [yp, zp, 0.0, 0.0]
-            } else if shared {
-                pw.order::<false, false>(j, sy * yy[j], 0.0, rate)
-            } else if c != 0.0 {
-                pw.order::<true, true>(j, sy * yy[j], sz * z[j], rate)
             } else {
-                pw.order::<true, false>(j, sy * yy[j], sz * z[j], rate)
+                pw.order_in_branch(j, sy * yy[j], sz * z[j], rate)
             };
             force[j] = -k.kappa * sy * yp - kc * sz * zp;
             rate[j] = v[j] + k.sigma * force[j];
