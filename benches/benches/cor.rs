@@ -6,10 +6,11 @@
 //! NDBWMCM at its DSS (1) fit (default, series at rtol 1e-8, DOP853 stepping over the kinks).
 //! `cargo bench -p bwc-benches --bench cor`
 
-use bw_models::{CollisionModel, ModelKind, Ndbwshccm, Settings};
+use bw_models::{BaseMap, CollisionModel, ModelKind, Ndbwshccm, Settings};
 use bwc_benches::cor;
 use bwc_ode::DOP853;
-use criterion::{criterion_group, criterion_main, Criterion};
+use criterion::measurement::WallTime;
+use criterion::{criterion_group, criterion_main, BenchmarkGroup, Criterion};
 use ode_solvers::{Dop853, System, Vector3};
 
 struct Peer<'a>(&'a Ndbwshccm<bw_models::input::Zero>);
@@ -37,99 +38,80 @@ fn peer(model: &Ndbwshccm<bw_models::input::Zero>) -> (f64, u32) {
     (s.y_out().last().expect("output")[2], stats.num_eval)
 }
 
+/// The default settings at `rtol` (atol = rtol / 100): the Taylor series for CoR evaluations.
+fn at(rtol: f64) -> Settings {
+    Settings {
+        rtol,
+        atol: rtol / 100.0,
+        ..Settings::default()
+    }
+}
+
+/// DOP853 at `rtol`, stopping at the kinks or stepping over them.
+fn dop853(rtol: f64, stop_at_kinks: bool) -> Settings {
+    Settings {
+        method: &DOP853,
+        stop_at_kinks,
+        series: false,
+        ..at(rtol)
+    }
+}
+
+/// One benchmark group of CoR evaluations at `v0` on `map`, one row per setting, each first
+/// printed with its work and its error against a Runge-Kutta run at rtol 1e-14; the group is
+/// returned open for more rows. Returns the reference `e` too.
+fn rows<'a>(
+    c: &'a mut Criterion,
+    group: &str,
+    map: &'a BaseMap,
+    v0: f64,
+    settings: Vec<(&str, Settings)>,
+) -> (BenchmarkGroup<'a, WallTime>, f64) {
+    let reference = cor::evaluate(map, v0, &dop853(1e-14, true)).unwrap().e;
+    let mut g = c.benchmark_group(group);
+    for (name, s) in settings {
+        let out = cor::evaluate(map, v0, &s).unwrap();
+        eprintln!(
+            "{group} {name}: {} RHS evaluations, {} steps ({} series), |e - e_ref| = {:.2e}",
+            out.stats.rhs_evals,
+            out.stats.accepted + out.stats.rejected,
+            out.series_steps,
+            (out.e - reference).abs()
+        );
+        g.bench_function(name, |b| b.iter(|| cor::evaluate(map, v0, &s).unwrap()));
+    }
+    (g, reference)
+}
+
 fn cor_evaluation(c: &mut Criterion) {
-    let map = cor::dss1(ModelKind::Shccm);
     let v0 = 2.0;
-    let reference = cor::evaluate(
-        &map,
-        v0,
-        &Settings {
-            rtol: 1e-14,
-            atol: 1e-16,
-            series: false,
-            ..Settings::default()
-        },
-    )
-    .unwrap()
-    .e;
-    let settings = [
+    let map = cor::dss1(ModelKind::Shccm);
+    let settings = vec![
         (
             "bwc default (Taylor series, order 16, rtol 1e-11)",
             Settings::default(),
         ),
         (
             "bwc DOP853 rtol 1e-11, stops at kinks (series = false)",
-            Settings {
-                series: false,
-                ..Settings::default()
-            },
+            dop853(1e-11, true),
         ),
-        (
-            "bwc Taylor series (order 16) rtol 1e-9",
-            Settings {
-                rtol: 1e-9,
-                atol: 1e-11,
-                series: true,
-                ..Settings::default()
-            },
-        ),
-        (
-            "bwc Taylor series (order 16) rtol 1e-8",
-            Settings {
-                rtol: 1e-8,
-                atol: 1e-10,
-                series: true,
-                ..Settings::default()
-            },
-        ),
-        (
-            "bwc DOP853 rtol 1e-10, stops at kinks",
-            Settings {
-                rtol: 1e-10,
-                atol: 1e-12,
-                series: false,
-                ..Settings::default()
-            },
-        ),
+        ("bwc Taylor series (order 16) rtol 1e-9", at(1e-9)),
+        ("bwc Taylor series (order 16) rtol 1e-8", at(1e-8)),
+        ("bwc DOP853 rtol 1e-10, stops at kinks", dop853(1e-10, true)),
         (
             "bwc DOP853 rtol 1e-11, stepping over kinks",
-            Settings {
-                method: &DOP853,
-                rtol: 1e-11,
-                atol: 1e-13,
-                stop_at_kinks: false,
-                series: false,
-                ..Settings::default()
-            },
+            dop853(1e-11, false),
         ),
         (
             "bwc DOP853 rtol 1e-10, stepping over kinks",
-            Settings {
-                method: &DOP853,
-                rtol: 1e-10,
-                atol: 1e-12,
-                stop_at_kinks: false,
-                series: false,
-                ..Settings::default()
-            },
+            dop853(1e-10, false),
         ),
         (
             "bwc paper setup (DOP853, rtol 1e-10, max_step 1e-2)",
             Settings::paper(),
         ),
     ];
-    let mut group = c.benchmark_group("cor_dss1_v0_2");
-    for (name, s) in settings {
-        let out = cor::evaluate(&map, v0, &s).unwrap();
-        eprintln!(
-            "{name}: {} RHS evaluations, {} steps ({} series), |e - e_ref| = {:.2e}",
-            out.stats.rhs_evals,
-            out.stats.accepted + out.stats.rejected,
-            out.series_steps,
-            (out.e - reference).abs()
-        );
-        group.bench_function(name, |b| b.iter(|| cor::evaluate(&map, v0, &s).unwrap()));
-    }
+    let (mut group, reference) = rows(c, "cor_dss1_v0_2", &map, v0, settings);
     let (nd, _) = map.at(v0).unwrap();
     let model = Ndbwshccm::new(&nd, bw_models::input::Zero).unwrap();
     let (e, evals) = peer(&model);
@@ -141,53 +123,20 @@ fn cor_evaluation(c: &mut Criterion) {
     c.bench_function("ndbwshccm_rhs_dss1", |b| {
         b.iter(|| bwc_ode::System::rhs(&model, 0.0, std::hint::black_box(&y)))
     });
-    // The NDBWMCM at its DSS (1) fit, same speed: the default, the series at rtol 1e-8 and
-    // DOP853 stepping over the kinks at the rtol where it meets about the series' error.
+    // The NDBWMCM at its DSS (1) fit, same speed.
     let mcm = cor::dss1(ModelKind::Mcm);
-    let tight = Settings {
-        rtol: 1e-14,
-        atol: 1e-16,
-        series: false,
-        ..Settings::default()
-    };
-    let reference = cor::evaluate(&mcm, v0, &tight).unwrap().e;
-    let mut group = c.benchmark_group("mcm_dss1_v0_2");
-    for (name, s) in [
+    let settings = vec![
         (
             "bwc default (Taylor series, rtol 1e-11)",
             Settings::default(),
         ),
-        (
-            "bwc Taylor series rtol 1e-8",
-            Settings {
-                rtol: 1e-8,
-                atol: 1e-10,
-                ..Settings::default()
-            },
-        ),
+        ("bwc Taylor series rtol 1e-8", at(1e-8)),
         (
             "bwc DOP853 rtol 1e-10, stepping over kinks",
-            Settings {
-                method: &DOP853,
-                rtol: 1e-10,
-                atol: 1e-12,
-                stop_at_kinks: false,
-                series: false,
-                ..Settings::default()
-            },
+            dop853(1e-10, false),
         ),
-    ] {
-        let out = cor::evaluate(&mcm, v0, &s).unwrap();
-        eprintln!(
-            "NDBWMCM {name}: {} RHS evaluations, {} steps ({} series), |e - e_ref| = {:.2e}",
-            out.stats.rhs_evals,
-            out.stats.accepted + out.stats.rejected,
-            out.series_steps,
-            (out.e - reference).abs()
-        );
-        group.bench_function(name, |b| b.iter(|| cor::evaluate(&mcm, v0, &s).unwrap()));
-    }
-    group.finish();
+    ];
+    rows(c, "mcm_dss1_v0_2", &mcm, v0, settings).0.finish();
 }
 
 criterion_group!(benches, cor_evaluation);
