@@ -17,6 +17,12 @@
 //! A run that fails (the stiff case at loose tolerances can exceed the step limit) is reported
 //! as a `failed` row (empty fields in the CSV) and left out of the plots.
 //!
+//! At the end of the table, the issue's RHS-evaluation target (">= 2x fewer RHS evaluations than
+//! plain DOP853 stepping over the kinks, at equal error") row by row: the work of each run with
+//! stops at the kinks (its RHS evaluations) and of each series run (its time over the time of
+//! one right-hand side measured in the same run, which undercounts the series), plain DOP853's
+//! evaluations at the same error (interpolated log-log between its rows) and their ratio.
+//!
 //! Side by side in the same run: the paper's setup in SciPy (benches/scipy_cor.py, skipped with a
 //! message when python3 is absent). Writes `cor.csv` and SVG plots into the directory given as
 //! the first argument (default `target/work-precision`).
@@ -25,11 +31,12 @@
 
 use bw_models::input::Zero;
 use bw_models::{
-    impact, impact_at, BaseMap, BaseParams, Impact, ModelKind, Ndbwshccm, Nondim, NondimParams,
-    Settings, Stiffness,
+    impact, impact_at, BaseMap, BaseParams, Impact, ModelKind, Ndbwmcm, Ndbwshccm, Nondim,
+    NondimParams, Settings, State, Stiffness,
 };
 use bwc_benches::{cor, median_seconds};
 use bwc_cli::plot::{chart, Series, SeriesLabelPosition};
+use bwc_ode::System;
 use bwc_ode::{tableau, DOP853, VERN7};
 use std::fmt::Write as _;
 
@@ -38,6 +45,83 @@ type Case = (
     Box<dyn Fn(&Settings) -> Result<Vec<Impact>, String>>,
     Vec<(Option<f64>, Option<f64>)>,
 );
+
+/// One row of the report.
+struct Row {
+    method: String,
+    kinks: bool,
+    rtol: f64,
+    err: f64,
+    evals: u64,
+    time_us: f64,
+}
+
+/// Median time of one right-hand side (ns) of the NDBWSHCCM and the NDBWMCM at Table 3's DSS (1),
+/// v0 = 2 m/s, at a state in the unloading.
+fn rhs_times() -> [f64; 2] {
+    let per = |f: &mut dyn FnMut()| {
+        median_seconds(|| {
+            for _ in 0..1000 {
+                f();
+            }
+        }) * 1e6
+    };
+    let shccm = Ndbwshccm::new(&cor::dss1(ModelKind::Shccm).at(2.0).unwrap().0, Zero).unwrap();
+    let mcm = Ndbwmcm::new(&cor::dss1(ModelKind::Mcm).at(2.0).unwrap().0, Zero).unwrap();
+    let (y3, y4) = (
+        State::<3>::new(-0.8, -0.7, 0.3),
+        State::<4>::new(0.0, -0.8, -0.7, 0.3),
+    );
+    [
+        per(&mut || {
+            std::hint::black_box(shccm.rhs(0.0, std::hint::black_box(&y3)));
+        }),
+        per(&mut || {
+            std::hint::black_box(mcm.rhs(0.0, std::hint::black_box(&y4)));
+        }),
+    ]
+}
+
+/// Plain DOP853's evaluations at error `err`, interpolated log-log between the first two of
+/// its rows (in the order of the tolerances) whose errors bracket it.
+fn plain_at(plain: &[&Row], err: f64) -> Option<f64> {
+    plain.windows(2).find_map(|w| {
+        let (a, b) = (w[0], w[1]);
+        let (hi, lo) = (a.err.max(b.err), a.err.min(b.err));
+        (err <= hi && err >= lo && hi > lo).then(|| {
+            let f = (err.ln() - a.err.ln()) / (b.err.ln() - a.err.ln());
+            ((a.evals as f64).ln() + f * ((b.evals as f64).ln() - (a.evals as f64).ln())).exp()
+        })
+    })
+}
+
+/// The lines of the RHS-evaluation target for one case: each row with stops at the kinks and
+/// each series row, its work (evaluations; the series' time over `rhs_ns`), plain DOP853's
+/// evaluations at its error and their ratio.
+fn rhs_target(name: &str, rows: &[Row], rhs_ns: f64) -> String {
+    let plain: Vec<&Row> = rows
+        .iter()
+        .filter(|r| r.method == "DOP853" && !r.kinks)
+        .collect();
+    let mut out = String::new();
+    for r in rows.iter().filter(|r| r.kinks) {
+        let work = if r.method == "Taylor16" {
+            r.time_us * 1e3 / rhs_ns
+        } else {
+            r.evals as f64
+        };
+        let (plain_evals, ratio) = match plain_at(&plain, r.err) {
+            Some(p) => (format!("{p:.0}"), format!("{:.2}", p / work)),
+            None => ("-".into(), "-".into()),
+        };
+        let _ = writeln!(
+            out,
+            "{name:<18} {:<9} {:>7.0e} {:>10.2e} {:>8.0} {plain_evals:>8} {ratio:>6}",
+            r.method, r.rtol, r.err, work
+        );
+    }
+    out
+}
 
 fn main() {
     let out = std::path::PathBuf::from(
@@ -153,12 +237,17 @@ fn main() {
         vec![(Some(stiff_ref.e), stiff_ref.t_s)],
     ));
 
+    // One right-hand side of each model at DSS (1), mid-impact, timed in this run: the unit in
+    // which the series rows' work is counted for the RHS-evaluation target.
+    let rhs_ns = rhs_times();
+    let mut target = String::new();
     let mut csv = String::from("case,method,kinks,rtol,err_e,err_Ts,rhs_evals,time_us,steps\n");
     println!(
         "{:<18} {:<9} {:<6} {:>7} {:>10} {:>10} {:>8} {:>9} {:>6}",
         "case", "method", "kinks", "rtol", "err_e", "err_Ts", "evals", "time_us", "steps"
     );
     for (name, run, refs) in &cases {
+        let mut rows: Vec<Row> = Vec::new();
         let mut by_evals = Vec::new();
         let mut by_time = Vec::new();
         // Explicit methods alone, or (on the stiff case) switching to RODAS4; RODAS4 throughout.
@@ -238,6 +327,14 @@ fn main() {
                         "{name},{method},{kinks},{rtol:e},{ee:e},{et:e},{evals},{:.3},{steps}",
                         secs * 1e6
                     );
+                    rows.push(Row {
+                        method: method.clone(),
+                        kinks,
+                        rtol,
+                        err,
+                        evals,
+                        time_us: secs * 1e6,
+                    });
                     pe.push((evals as f64, err.log10()));
                     pt.push(((secs * 1e6).log10(), err.log10()));
                 }
@@ -283,7 +380,25 @@ fn main() {
             .unwrap(),
         )
         .unwrap();
+        let rhs = if name.starts_with("mcm") {
+            rhs_ns[1]
+        } else {
+            rhs_ns[0]
+        };
+        target.push_str(&rhs_target(name, &rows, rhs));
     }
+    println!(
+        "\n# RHS-evaluation target (>= 2x fewer than plain DOP853 at equal error): the work of \
+         each row with stops and of each series row (its time over one RHS evaluation timed in \
+         this run: NDBWSHCCM {:.1} ns, NDBWMCM {:.1} ns) against plain DOP853's evaluations at \
+         the same error (log-log interpolation between its rows; - outside their range)",
+        rhs_ns[0], rhs_ns[1]
+    );
+    println!(
+        "{:<18} {:<9} {:>7} {:>10} {:>8} {:>8} {:>6}",
+        "case", "method", "rtol", "error", "work", "plain", "ratio"
+    );
+    print!("{target}");
     std::fs::write(out.join("cor.csv"), csv).unwrap();
 
     // The paper's setup in SciPy, on the SHCCM case.
