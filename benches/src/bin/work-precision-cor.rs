@@ -20,8 +20,9 @@
 //! At the end of the table, the issue's RHS-evaluation target (">= 2x fewer RHS evaluations than
 //! plain DOP853 stepping over the kinks, at equal error") row by row: the work of each run with
 //! stops at the kinks (its RHS evaluations) and of each series run (its time over the time of
-//! one right-hand side measured in the same run, which undercounts the series), plain DOP853's
-//! evaluations at the same error (interpolated log-log between its rows) and their ratio.
+//! one right-hand side measured in the same run: conservative, as it charges the series for all
+//! its work and the Runge-Kutta runs only for their evaluations), plain DOP853's evaluations at
+//! the same error (interpolated log-log between its rows) and their ratio.
 //!
 //! Side by side in the same run: the paper's setup in SciPy (benches/scipy_cor.py, skipped with a
 //! message when python3 is absent). Writes `cor.csv` and SVG plots into the directory given as
