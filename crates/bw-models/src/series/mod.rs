@@ -518,9 +518,14 @@ enum Target {
     Force,
 }
 
+/// Largest step along `f` onto a root after [`reach_root`]'s Runge-Kutta run, as a fraction of
+/// that run's span.
+const NEWTON_SPAN: f64 = 1e-2;
+
 /// From `start`, the explicit method of the settings up to `t1`, where the series put a root of
-/// `target`; then one Newton step along `f` onto the root (declined unless it is tiny: an
-/// ill-conditioned root is left to the Runge-Kutta path).
+/// `target`; then one Newton step along `f` onto the root (declined unless it is tiny, or small
+/// against the span and accurate by an estimate of its error: an ill-conditioned root is left
+/// to the Runge-Kutta path).
 fn reach_root<M: CollisionModel<N>, const N: usize>(
     model: &M,
     settings: &Settings,
@@ -547,11 +552,27 @@ fn reach_root<M: CollisionModel<N>, const N: usize>(
             -model.force(&y) / slope
         }
     };
+    // The error of the step along f, about dt^2 |y''| / 2, is below 1e-12 |y''| (t1 - t0)^2
+    // where dt is tiny. At loose tolerances the Runge-Kutta end is off the root by about its
+    // tolerance: there the error is estimated from the change of f over the step and kept below
+    // START_TOLERANCE times the local tolerance. A step that is not small against the span
+    // (a root where the target's slope is small, ill-conditioned) is left to the Runge-Kutta
+    // path.
     let tiny = dt.abs() <= 1e-6 * (t1 - t0);
     if !tiny {
-        return None;
+        // False for a NaN step (a force that vanishes with its slope).
+        let small = dt.abs() <= NEWTON_SPAN * (t1 - t0);
+        if !small {
+            return None;
+        }
+        let f1 = model.rhs(t1 + dt, &(y + f * dt));
+        stats.rhs_evals += 1;
+        let error = ((f1 - f) * (0.5 * dt)).amax();
+        let accurate = error <= START_TOLERANCE * (settings.atol + settings.rtol * y.amax());
+        if !accurate {
+            return None;
+        }
     }
-    // The error of this step, about dt^2 |y''| / 2, is below 1e-12 |y''| (t1 - t0)^2.
     y += f * dt;
     if let Target::Component(i) = target {
         y[i] = 0.0;
