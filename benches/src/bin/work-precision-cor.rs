@@ -20,9 +20,12 @@
 //! At the end of the table, the issue's RHS-evaluation target (">= 2x fewer RHS evaluations than
 //! plain DOP853 stepping over the kinks, at equal error") row by row: the work of each run with
 //! stops at the kinks (its RHS evaluations) and of each series run (its time over the time of
-//! one right-hand side measured in the same run: conservative, as it charges the series for all
-//! its work and the Runge-Kutta runs only for their evaluations), plain DOP853's evaluations at
-//! the same error (interpolated log-log between its rows) and their ratio.
+//! one right-hand side of the case's model measured right after it, as the machine's speed
+//! drifts within a run: conservative, as it charges the series for all its work and the
+//! Runge-Kutta runs only for their evaluations), plain DOP853's evaluations at the same error
+//! (interpolated log-log between its rows) and their ratio; and beside it the ratio in time
+//! (plain DOP853's time at the same error over the row's time), which does not depend on how
+//! fast a lone right-hand side runs against the rest of the code on the day.
 //!
 //! Side by side in the same run: the paper's setup in SciPy (benches/scipy_cor.py, skipped with a
 //! message when python3 is absent). Writes `cor.csv` and SVG plots into the directory given as
@@ -55,10 +58,14 @@ struct Row {
     err: f64,
     evals: u64,
     time_us: f64,
+    /// Time of one right-hand side of the case's model, measured right after this row's runs
+    /// (ns; series rows only).
+    rhs_ns: f64,
 }
 
 /// Median time of one right-hand side (ns) of the NDBWSHCCM and the NDBWMCM at Table 3's DSS (1),
-/// v0 = 2 m/s, at a state in the unloading.
+/// v0 = 2 m/s, at a state in the unloading. Measured next to each series row: the machine's
+/// speed drifts by up to 20 % within a run.
 fn rhs_times() -> [f64; 2] {
     let per = |f: &mut dyn FnMut()| {
         median_seconds(|| {
@@ -83,23 +90,24 @@ fn rhs_times() -> [f64; 2] {
     ]
 }
 
-/// Plain DOP853's evaluations at error `err`, interpolated log-log between the first two of
-/// its rows (in the order of the tolerances) whose errors bracket it.
-fn plain_at(plain: &[&Row], err: f64) -> Option<f64> {
+/// Plain DOP853's `value` (evaluations or time) at error `err`, interpolated log-log between the
+/// first two of its rows (in the order of the tolerances) whose errors bracket it.
+fn plain_at(plain: &[&Row], err: f64, value: impl Fn(&Row) -> f64) -> Option<f64> {
     plain.windows(2).find_map(|w| {
         let (a, b) = (w[0], w[1]);
         let (hi, lo) = (a.err.max(b.err), a.err.min(b.err));
         (err <= hi && err >= lo && hi > lo).then(|| {
             let f = (err.ln() - a.err.ln()) / (b.err.ln() - a.err.ln());
-            ((a.evals as f64).ln() + f * ((b.evals as f64).ln() - (a.evals as f64).ln())).exp()
+            (value(a).ln() + f * (value(b).ln() - value(a).ln())).exp()
         })
     })
 }
 
 /// The lines of the RHS-evaluation target for one case: each row with stops at the kinks and
-/// each series row, its work (evaluations; the series' time over `rhs_ns`), plain DOP853's
-/// evaluations at its error and their ratio.
-fn rhs_target(name: &str, rows: &[Row], rhs_ns: f64) -> String {
+/// each series row, its work (evaluations; the series' time over the time of one right-hand
+/// side measured next to it), plain DOP853's evaluations at its error and their ratio, and the
+/// ratio of plain DOP853's time at that error to the row's time.
+fn rhs_target(name: &str, rows: &[Row]) -> String {
     let plain: Vec<&Row> = rows
         .iter()
         .filter(|r| r.method == "DOP853" && !r.kinks)
@@ -107,17 +115,29 @@ fn rhs_target(name: &str, rows: &[Row], rhs_ns: f64) -> String {
     let mut out = String::new();
     for r in rows.iter().filter(|r| r.kinks) {
         let work = if r.method == "Taylor16" {
-            r.time_us * 1e3 / rhs_ns
+            r.time_us * 1e3 / r.rhs_ns
         } else {
             r.evals as f64
         };
-        let (plain_evals, ratio) = match plain_at(&plain, r.err) {
-            Some(p) => (format!("{p:.0}"), format!("{:.2}", p / work)),
-            None => ("-".into(), "-".into()),
+        let evals = plain_at(&plain, r.err, |p| p.evals as f64);
+        let time = plain_at(&plain, r.err, |p| p.time_us);
+        let (plain_evals, ratio, time_ratio) = match (evals, time) {
+            (Some(e), Some(t)) => (
+                format!("{e:.0}"),
+                format!("{:.2}", e / work),
+                format!("{:.2}", t / r.time_us),
+            ),
+            _ => ("-".into(), "-".into(), "-".into()),
+        };
+        let rhs = if r.rhs_ns.is_nan() {
+            String::new()
+        } else {
+            format!("{:.1}", r.rhs_ns)
         };
         let _ = writeln!(
             out,
-            "{name:<18} {:<9} {:>7.0e} {:>10.2e} {:>8.0} {plain_evals:>8} {ratio:>6}",
+            "{name:<18} {:<9} {:>7.0e} {:>10.2e} {:>8.0} {plain_evals:>8} {ratio:>6} {rhs:>7} \
+             {time_ratio:>6}",
             r.method, r.rtol, r.err, work
         );
     }
@@ -238,9 +258,6 @@ fn main() {
         vec![(Some(stiff_ref.e), stiff_ref.t_s)],
     ));
 
-    // One right-hand side of each model at DSS (1), mid-impact, timed in this run: the unit in
-    // which the series rows' work is counted for the RHS-evaluation target.
-    let rhs_ns = rhs_times();
     let mut target = String::new();
     let mut csv = String::from("case,method,kinks,rtol,err_e,err_Ts,rhs_evals,time_us,steps\n");
     println!(
@@ -312,6 +329,13 @@ fn main() {
                     let secs = median_seconds(|| {
                         let _ = std::hint::black_box(run(&s));
                     });
+                    // One right-hand side of the case's model, timed next to the series' runs:
+                    // the unit of their work for the RHS-evaluation target.
+                    let rhs_ns = if series {
+                        rhs_times()[usize::from(name.starts_with("mcm"))]
+                    } else {
+                        f64::NAN
+                    };
                     let err = ee.max(et).max(1e-17);
                     println!(
                         "{name:<18} {method:<9} {:<6} {:>7.0e} {:>10.2e} {:>10.2e} {:>8} {:>9.1} {:>6}",
@@ -335,6 +359,7 @@ fn main() {
                         err,
                         evals,
                         time_us: secs * 1e6,
+                        rhs_ns,
                     });
                     pe.push((evals as f64, err.log10()));
                     pt.push(((secs * 1e6).log10(), err.log10()));
@@ -381,23 +406,18 @@ fn main() {
             .unwrap(),
         )
         .unwrap();
-        let rhs = if name.starts_with("mcm") {
-            rhs_ns[1]
-        } else {
-            rhs_ns[0]
-        };
-        target.push_str(&rhs_target(name, &rows, rhs));
+        target.push_str(&rhs_target(name, &rows));
     }
     println!(
         "\n# RHS-evaluation target (>= 2x fewer than plain DOP853 at equal error): the work of \
-         each row with stops and of each series row (its time over one RHS evaluation timed in \
-         this run: NDBWSHCCM {:.1} ns, NDBWMCM {:.1} ns) against plain DOP853's evaluations at \
-         the same error (log-log interpolation between its rows; - outside their range)",
-        rhs_ns[0], rhs_ns[1]
+         each row with stops and of each series row (its time over one RHS evaluation of the \
+         case's model, DSS (1), timed next to it; rhs_ns) against plain DOP853's evaluations \
+         at the same error (log-log interpolation between its rows; - outside their range); \
+         in_time: plain DOP853's time at the same error over the row's time"
     );
     println!(
-        "{:<18} {:<9} {:>7} {:>10} {:>8} {:>8} {:>6}",
-        "case", "method", "rtol", "error", "work", "plain", "ratio"
+        "{:<18} {:<9} {:>7} {:>10} {:>8} {:>8} {:>6} {:>7} {:>6}",
+        "case", "method", "rtol", "error", "work", "plain", "ratio", "rhs_ns", "in_time"
     );
     print!("{target}");
     std::fs::write(out.join("cor.csv"), csv).unwrap();
