@@ -40,8 +40,7 @@ use bw_models::{
 };
 use bwc_benches::{cor, median_seconds};
 use bwc_cli::plot::{chart, Series, SeriesLabelPosition};
-use bwc_ode::System;
-use bwc_ode::{tableau, DOP853, VERN7};
+use bwc_ode::{tableau, System, DOP853, VERN7};
 use std::fmt::Write as _;
 
 type Case = (
@@ -60,34 +59,37 @@ struct Row {
     time_us: f64,
     /// Time of one right-hand side of the case's model, measured right after this row's runs
     /// (ns; series rows only).
-    rhs_ns: f64,
+    rhs_ns: Option<f64>,
 }
 
-/// Median time of one right-hand side (ns) of the NDBWSHCCM and the NDBWMCM at Table 3's DSS (1),
-/// v0 = 2 m/s, at a state in the unloading. Measured next to each series row: the machine's
-/// speed drifts by up to 20 % within a run.
-fn rhs_times() -> [f64; 2] {
-    let per = |f: &mut dyn FnMut()| {
+/// Median time of one right-hand side (ns) of the model `kind` at Table 3's DSS (1), v0 = 2 m/s,
+/// at a state in the unloading. Measured next to each series row: the machine's speed drifts by
+/// up to 20 % within a run.
+fn rhs_time(kind: ModelKind) -> f64 {
+    let (params, _) = cor::dss1(kind).at(2.0).unwrap();
+    let per = |f: &dyn Fn()| {
         median_seconds(|| {
             for _ in 0..1000 {
                 f();
             }
         }) * 1e6
     };
-    let shccm = Ndbwshccm::new(&cor::dss1(ModelKind::Shccm).at(2.0).unwrap().0, Zero).unwrap();
-    let mcm = Ndbwmcm::new(&cor::dss1(ModelKind::Mcm).at(2.0).unwrap().0, Zero).unwrap();
-    let (y3, y4) = (
-        State::<3>::new(-0.8, -0.7, 0.3),
-        State::<4>::new(0.0, -0.8, -0.7, 0.3),
-    );
-    [
-        per(&mut || {
-            std::hint::black_box(shccm.rhs(0.0, std::hint::black_box(&y3)));
-        }),
-        per(&mut || {
-            std::hint::black_box(mcm.rhs(0.0, std::hint::black_box(&y4)));
-        }),
-    ]
+    match kind {
+        ModelKind::Shccm => {
+            let model = Ndbwshccm::new(&params, Zero).unwrap();
+            let y = State::<3>::new(-0.8, -0.7, 0.3);
+            per(&|| {
+                std::hint::black_box(model.rhs(0.0, std::hint::black_box(&y)));
+            })
+        }
+        ModelKind::Mcm => {
+            let model = Ndbwmcm::new(&params, Zero).unwrap();
+            let y = State::<4>::new(0.0, -0.8, -0.7, 0.3);
+            per(&|| {
+                std::hint::black_box(model.rhs(0.0, std::hint::black_box(&y)));
+            })
+        }
+    }
 }
 
 /// Plain DOP853's `value` (evaluations or time) at error `err`, interpolated log-log between the
@@ -114,10 +116,9 @@ fn rhs_target(name: &str, rows: &[Row]) -> String {
         .collect();
     let mut out = String::new();
     for r in rows.iter().filter(|r| r.kinks) {
-        let work = if r.method == "Taylor16" {
-            r.time_us * 1e3 / r.rhs_ns
-        } else {
-            r.evals as f64
+        let work = match r.rhs_ns {
+            Some(rhs_ns) => r.time_us * 1e3 / rhs_ns,
+            None => r.evals as f64,
         };
         let evals = plain_at(&plain, r.err, |p| p.evals as f64);
         let time = plain_at(&plain, r.err, |p| p.time_us);
@@ -129,11 +130,7 @@ fn rhs_target(name: &str, rows: &[Row]) -> String {
             ),
             _ => ("-".into(), "-".into(), "-".into()),
         };
-        let rhs = if r.rhs_ns.is_nan() {
-            String::new()
-        } else {
-            format!("{:.1}", r.rhs_ns)
-        };
+        let rhs = r.rhs_ns.map_or(String::new(), |ns| format!("{ns:.1}"));
         let _ = writeln!(
             out,
             "{name:<18} {:<9} {:>7.0e} {:>10.2e} {:>8.0} {plain_evals:>8} {ratio:>6} {rhs:>7} \
@@ -331,11 +328,12 @@ fn main() {
                     });
                     // One right-hand side of the case's model, timed next to the series' runs:
                     // the unit of their work for the RHS-evaluation target.
-                    let rhs_ns = if series {
-                        rhs_times()[usize::from(name.starts_with("mcm"))]
+                    let kind = if name.starts_with("mcm") {
+                        ModelKind::Mcm
                     } else {
-                        f64::NAN
+                        ModelKind::Shccm
                     };
+                    let rhs_ns = series.then(|| rhs_time(kind));
                     let err = ee.max(et).max(1e-17);
                     println!(
                         "{name:<18} {method:<9} {:<6} {:>7.0e} {:>10.2e} {:>10.2e} {:>8} {:>9.1} {:>6}",
