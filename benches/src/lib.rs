@@ -47,21 +47,39 @@ pub fn arenstorf_period(tab: &'static Tableau, rtol: f64) -> (f64, u64) {
 
 /// Median wall time per call of `f` in seconds: batches of calls lasting about 20 ms each.
 pub fn median_seconds(mut f: impl FnMut()) -> f64 {
-    let start = Instant::now();
-    f();
-    let once = start.elapsed().as_secs_f64().max(1e-9);
-    let reps = ((0.02 / once) as usize).clamp(1, 1_000_000);
-    let mut samples: Vec<f64> = (0..7)
-        .map(|_| {
-            let s = Instant::now();
-            for _ in 0..reps {
-                f();
-            }
-            s.elapsed().as_secs_f64() / reps as f64
+    side_by_side(&mut [&mut f])[0]
+}
+
+/// Median wall time per call of each of `fs` in seconds, timed side by side: seven rounds, each
+/// a batch of calls (about 20 ms) of every closure in turn, so that a machine whose speed drifts
+/// during a run slows all of them alike and their ratios hold.
+pub fn side_by_side(fs: &mut [&mut dyn FnMut()]) -> Vec<f64> {
+    let reps: Vec<usize> = fs
+        .iter_mut()
+        .map(|f| {
+            let start = Instant::now();
+            f();
+            let once = start.elapsed().as_secs_f64().max(1e-9);
+            ((0.02 / once) as usize).clamp(1, 1_000_000)
         })
         .collect();
-    samples.sort_by(f64::total_cmp);
-    samples[samples.len() / 2]
+    let mut samples = vec![Vec::with_capacity(7); fs.len()];
+    for _ in 0..7 {
+        for ((f, &n), out) in fs.iter_mut().zip(&reps).zip(&mut samples) {
+            let s = Instant::now();
+            for _ in 0..n {
+                f();
+            }
+            out.push(s.elapsed().as_secs_f64() / n as f64);
+        }
+    }
+    samples
+        .into_iter()
+        .map(|mut s| {
+            s.sort_by(f64::total_cmp);
+            s[s.len() / 2]
+        })
+        .collect()
 }
 
 pub mod cor {

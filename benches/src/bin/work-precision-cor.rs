@@ -20,12 +20,14 @@
 //! At the end of the table, the issue's RHS-evaluation target (">= 2x fewer RHS evaluations than
 //! plain DOP853 stepping over the kinks, at equal error") row by row: the work of each run with
 //! stops at the kinks (its RHS evaluations) and of each series run (its time over the time of
-//! one right-hand side of the case's model measured right after it, as the machine's speed
-//! drifts within a run: conservative, as it charges the series for all its work and the
-//! Runge-Kutta runs only for their evaluations), plain DOP853's evaluations at the same error
-//! (interpolated log-log between its rows) and their ratio; and beside it the ratio in time
-//! (plain DOP853's time at the same error over the row's time), which does not depend on how
-//! fast a lone right-hand side runs against the rest of the code on the day.
+//! one right-hand side of the case's model: conservative, as it charges the series for all its
+//! work and the Runge-Kutta runs only for their evaluations), plain DOP853's evaluations at the
+//! same error (interpolated log-log between its runs) and their ratio; and beside it the ratio
+//! in time (plain DOP853's time at the same error over the row's time), which does not depend
+//! on how fast a lone right-hand side runs against the rest of the code on the day. Each row
+//! with stops is timed side by side (in turns, `side_by_side`) with the two plain DOP853 runs
+//! whose errors bracket its error and, for a series row, with the right-hand side, so that the
+//! machine's drift within a run cancels from both ratios.
 //!
 //! Side by side in the same run: the paper's setup in SciPy (benches/scipy_cor.py, skipped with a
 //! message when python3 is absent). Writes `cor.csv` and SVG plots into the directory given as
@@ -38,7 +40,7 @@ use bw_models::{
     impact, impact_at, BaseMap, BaseParams, Impact, ModelKind, Ndbwmcm, Ndbwshccm, Nondim,
     NondimParams, Settings, State, Stiffness,
 };
-use bwc_benches::{cor, median_seconds};
+use bwc_benches::{cor, side_by_side};
 use bwc_cli::plot::{chart, Series, SeriesLabelPosition};
 use bwc_ode::{tableau, System, DOP853, VERN7};
 use std::fmt::Write as _;
@@ -57,79 +59,110 @@ struct Row {
     err: f64,
     evals: u64,
     time_us: f64,
-    /// Time of one right-hand side of the case's model, measured right after this row's runs
-    /// (ns; series rows only).
+    /// Time of one right-hand side of the case's model, timed side by side with this row's
+    /// runs (ns; series rows only).
     rhs_ns: Option<f64>,
+    /// Plain DOP853's time at this row's error over the row's time, both timed side by side
+    /// (rows with stops whose error plain DOP853's rows bracket).
+    in_time: Option<f64>,
 }
 
-/// Median time of one right-hand side (ns) of the model `kind` at Table 3's DSS (1), v0 = 2 m/s,
-/// at a state in the unloading. Measured next to each series row: the machine's speed drifts by
-/// up to 20 % within a run.
-fn rhs_time(kind: ModelKind) -> f64 {
+/// A thousand right-hand sides of the model `kind` at Table 3's DSS (1), v0 = 2 m/s, at a state
+/// in the unloading: timed side by side with each series row (its seconds per call are the ns
+/// of one right-hand side), the unit of the series' work for the RHS-evaluation target.
+fn rhs_batch(kind: ModelKind) -> Box<dyn FnMut()> {
     let (params, _) = cor::dss1(kind).at(2.0).unwrap();
-    let per = |f: &dyn Fn()| {
-        median_seconds(|| {
-            for _ in 0..1000 {
-                f();
-            }
-        }) * 1e6
-    };
     match kind {
         ModelKind::Shccm => {
             let model = Ndbwshccm::new(&params, Zero).unwrap();
             let y = State::<3>::new(-0.8, -0.7, 0.3);
-            per(&|| {
-                std::hint::black_box(model.rhs(0.0, std::hint::black_box(&y)));
+            Box::new(move || {
+                for _ in 0..1000 {
+                    std::hint::black_box(model.rhs(0.0, std::hint::black_box(&y)));
+                }
             })
         }
         ModelKind::Mcm => {
             let model = Ndbwmcm::new(&params, Zero).unwrap();
             let y = State::<4>::new(0.0, -0.8, -0.7, 0.3);
-            per(&|| {
-                std::hint::black_box(model.rhs(0.0, std::hint::black_box(&y)));
+            Box::new(move || {
+                for _ in 0..1000 {
+                    std::hint::black_box(model.rhs(0.0, std::hint::black_box(&y)));
+                }
             })
         }
     }
 }
 
-/// Plain DOP853's `value` (evaluations or time) at error `err`, interpolated log-log between the
-/// first two of its rows (in the order of the tolerances) whose errors bracket it.
-fn plain_at(plain: &[&Row], err: f64, value: impl Fn(&Row) -> f64) -> Option<f64> {
+/// Plain DOP853 (stepping over the kinks) at one tolerance: the baseline of the RHS-evaluation
+/// target.
+struct Plain {
+    rtol: f64,
+    err: f64,
+    evals: u64,
+}
+
+/// Plain DOP853's settings at `rtol` (atol = rtol / 100, as every row).
+fn plain_dop853(rtol: f64) -> Settings {
+    Settings {
+        method: &DOP853,
+        rtol,
+        atol: rtol * 1e-2,
+        stop_at_kinks: false,
+        stiffness: Stiffness::Ignore,
+        series: false,
+        ..Settings::default()
+    }
+}
+
+/// The largest errors in `e` and in `T_s` of a case's runs against its references.
+fn errors(outs: &[Impact], refs: &[(Option<f64>, Option<f64>)]) -> (f64, f64) {
+    let (mut ee, mut et) = (0.0f64, 0.0f64);
+    for (o, (e_ref, t_ref)) in outs.iter().zip(refs) {
+        if let Some(e) = e_ref {
+            ee = ee.max((o.e - e).abs());
+        }
+        if let (Some(t), Some(ts)) = (t_ref, o.t_s) {
+            et = et.max((ts - t).abs());
+        }
+    }
+    (ee, et)
+}
+
+/// The first two of plain DOP853's runs (in the order of the tolerances) whose errors bracket
+/// `err`, and where `err` lies between them on a log scale (0 at the first, 1 at the second).
+fn bracket(plain: &[Plain], err: f64) -> Option<(&Plain, &Plain, f64)> {
     plain.windows(2).find_map(|w| {
-        let (a, b) = (w[0], w[1]);
+        let (a, b) = (&w[0], &w[1]);
         let (hi, lo) = (a.err.max(b.err), a.err.min(b.err));
-        (err <= hi && err >= lo && hi > lo).then(|| {
-            let f = (err.ln() - a.err.ln()) / (b.err.ln() - a.err.ln());
-            (value(a).ln() + f * (value(b).ln() - value(a).ln())).exp()
-        })
+        (err <= hi && err >= lo && hi > lo)
+            .then(|| (a, b, (err.ln() - a.err.ln()) / (b.err.ln() - a.err.ln())))
     })
+}
+
+/// Log-log interpolation between `a` (at `f` = 0) and `b` (at `f` = 1).
+fn between(a: f64, b: f64, f: f64) -> f64 {
+    (a.ln() + f * (b.ln() - a.ln())).exp()
 }
 
 /// The lines of the RHS-evaluation target for one case: each row with stops at the kinks and
 /// each series row, its work (evaluations; the series' time over the time of one right-hand
-/// side measured next to it), plain DOP853's evaluations at its error and their ratio, and the
-/// ratio of plain DOP853's time at that error to the row's time.
-fn rhs_target(name: &str, rows: &[Row]) -> String {
-    let plain: Vec<&Row> = rows
-        .iter()
-        .filter(|r| r.method == "DOP853" && !r.kinks)
-        .collect();
+/// side timed beside it), plain DOP853's evaluations at its error and their ratio, and the
+/// ratio of plain DOP853's time at that error to the row's time (timed side by side).
+fn rhs_target(name: &str, rows: &[Row], plain: &[Plain]) -> String {
     let mut out = String::new();
     for r in rows.iter().filter(|r| r.kinks) {
         let work = match r.rhs_ns {
             Some(rhs_ns) => r.time_us * 1e3 / rhs_ns,
             None => r.evals as f64,
         };
-        let evals = plain_at(&plain, r.err, |p| p.evals as f64);
-        let time = plain_at(&plain, r.err, |p| p.time_us);
-        let (plain_evals, ratio, time_ratio) = match (evals, time) {
-            (Some(e), Some(t)) => (
-                format!("{e:.0}"),
-                format!("{:.2}", e / work),
-                format!("{:.2}", t / r.time_us),
-            ),
-            _ => ("-".into(), "-".into(), "-".into()),
+        let evals =
+            bracket(plain, r.err).map(|(a, b, f)| between(a.evals as f64, b.evals as f64, f));
+        let (plain_evals, ratio) = match evals {
+            Some(e) => (format!("{e:.0}"), format!("{:.2}", e / work)),
+            None => ("-".into(), "-".into()),
         };
+        let time_ratio = r.in_time.map_or("-".into(), |t| format!("{t:.2}"));
         let rhs = r.rhs_ns.map_or(String::new(), |ns| format!("{ns:.1}"));
         let _ = writeln!(
             out,
@@ -271,6 +304,25 @@ fn main() {
         } else {
             Stiffness::Ignore
         };
+        // Plain DOP853 first (its rows come again in the table): each row with stops is timed
+        // beside the plain runs whose errors bracket its error. Not on the stiff case, where the
+        // explicit methods alone exhaust the step limit.
+        let plain: Vec<Plain> = if explicit == Stiffness::Ignore {
+            (4..=13)
+                .filter_map(|k| {
+                    let rtol = 10f64.powi(-k);
+                    let outs = run(&plain_dop853(rtol)).ok()?;
+                    let (ee, et) = errors(&outs, refs);
+                    Some(Plain {
+                        rtol,
+                        err: ee.max(et).max(1e-17),
+                        evals: outs.iter().map(|o| o.stats.rhs_evals).sum(),
+                    })
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         let methods = tableau::all()
             .map(|tab| (tab.name, tab, explicit, false))
             .into_iter()
@@ -309,32 +361,47 @@ fn main() {
                             continue;
                         }
                     };
-                    let (mut ee, mut et) = (0.0f64, 0.0f64);
-                    for (o, (e_ref, t_ref)) in outs.iter().zip(refs) {
-                        if let Some(e) = e_ref {
-                            ee = ee.max((o.e - e).abs());
-                        }
-                        if let (Some(t), Some(ts)) = (t_ref, o.t_s) {
-                            et = et.max((ts - t).abs());
-                        }
-                    }
+                    let (ee, et) = errors(&outs, refs);
                     let evals: u64 = outs.iter().map(|o| o.stats.rhs_evals).sum();
                     let steps: u64 = outs
                         .iter()
                         .map(|o| o.stats.accepted + o.stats.rejected)
                         .sum();
-                    let secs = median_seconds(|| {
-                        let _ = std::hint::black_box(run(&s));
-                    });
-                    // One right-hand side of the case's model, timed next to the series' runs:
-                    // the unit of their work for the RHS-evaluation target.
+                    let err = ee.max(et).max(1e-17);
+                    // A row with stops is timed side by side with the plain DOP853 runs that
+                    // bracket its error and, for the series, with one right-hand side of the
+                    // case's model (the unit of their work for the RHS-evaluation target).
+                    let bracketed = bracket(&plain, err)
+                        .filter(|_| kinks)
+                        .map(|(a, b, f)| (a.rtol, b.rtol, f));
                     let kind = if name.starts_with("mcm") {
                         ModelKind::Mcm
                     } else {
                         ModelKind::Shccm
                     };
-                    let rhs_ns = series.then(|| rhs_time(kind));
-                    let err = ee.max(et).max(1e-17);
+                    let mut this = || {
+                        let _ = std::hint::black_box(run(&s));
+                    };
+                    let mut fs: Vec<Box<dyn FnMut() + '_>> = vec![Box::new(&mut this)];
+                    if let Some((a, b, _)) = bracketed {
+                        for rtol in [a, b] {
+                            let plain = plain_dop853(rtol);
+                            fs.push(Box::new(move || {
+                                let _ = std::hint::black_box(run(&plain));
+                            }));
+                        }
+                    }
+                    if series {
+                        fs.push(rhs_batch(kind));
+                    }
+                    let mut refs: Vec<&mut dyn FnMut()> = fs
+                        .iter_mut()
+                        .map(|f| &mut **f as &mut dyn FnMut())
+                        .collect();
+                    let times = side_by_side(&mut refs);
+                    let secs = times[0];
+                    let in_time = bracketed.map(|(_, _, f)| between(times[1], times[2], f) / secs);
+                    let rhs_ns = series.then(|| times[times.len() - 1] * 1e6);
                     println!(
                         "{name:<18} {method:<9} {:<6} {:>7.0e} {:>10.2e} {:>10.2e} {:>8} {:>9.1} {:>6}",
                         kinks,
@@ -358,6 +425,7 @@ fn main() {
                         evals,
                         time_us: secs * 1e6,
                         rhs_ns,
+                        in_time,
                     });
                     pe.push((evals as f64, err.log10()));
                     pt.push(((secs * 1e6).log10(), err.log10()));
@@ -404,14 +472,15 @@ fn main() {
             .unwrap(),
         )
         .unwrap();
-        target.push_str(&rhs_target(name, &rows));
+        target.push_str(&rhs_target(name, &rows, &plain));
     }
     println!(
         "\n# RHS-evaluation target (>= 2x fewer than plain DOP853 at equal error): the work of \
          each row with stops and of each series row (its time over one RHS evaluation of the \
          case's model, DSS (1), timed next to it; rhs_ns) against plain DOP853's evaluations \
          at the same error (log-log interpolation between its rows; - outside their range); \
-         in_time: plain DOP853's time at the same error over the row's time"
+         in_time: plain DOP853's time at the same error over the row's time; each row timed \
+         side by side with the plain runs that bracket its error and the right-hand side"
     );
     println!(
         "{:<18} {:<9} {:>7} {:>10} {:>8} {:>8} {:>6} {:>7} {:>6}",
