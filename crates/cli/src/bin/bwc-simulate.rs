@@ -102,8 +102,13 @@ fn run(
     if json {
         bwc_cli::out!("{}", output::Summary::new(&runs).to_json());
     } else {
+        // The first column as wide as the longest label (named bases make long ones).
+        let width = runs
+            .iter()
+            .map(|r| r.label().chars().count())
+            .fold(24, usize::max);
         bwc_cli::out!(
-            "{:<24} {:>12} {:>16} {:>14} {:>10}",
+            "{:<width$} {:>12} {:>16} {:>14} {:>10}",
             "run",
             "e",
             "t_s",
@@ -116,7 +121,7 @@ fn run(
                 .map_or("no separation".to_string(), |t| format!("{t:.9e}"));
             let td = r.t_d.map_or("-".to_string(), |t| format!("{t:.6e}"));
             bwc_cli::out!(
-                "{:<24} {:>12.9} {:>16} {:>14} {:>10}",
+                "{:<width$} {:>12.9} {:>16} {:>14} {:>10}",
                 r.label(),
                 r.e,
                 ts,
