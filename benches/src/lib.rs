@@ -128,3 +128,26 @@ pub mod cor {
 }
 
 pub mod stress;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::Cell;
+
+    #[test]
+    fn side_by_side_times_every_closure_in_every_round() {
+        // A cheap and a dearer closure: each is called once to size its batch, then in seven
+        // rounds of batches; the medians come back in the closures' order.
+        let (cheap, dear) = (Cell::new(0u64), Cell::new(0u64));
+        let mut a = || cheap.set(cheap.get() + 1);
+        let mut b = || {
+            dear.set(dear.get() + 1);
+            std::thread::sleep(std::time::Duration::from_millis(2));
+        };
+        let times = side_by_side(&mut [&mut a, &mut b]);
+        assert_eq!(times.len(), 2);
+        assert!(dear.get() >= 8 && cheap.get() > dear.get());
+        // The sleeping closure takes at least its 2 ms per call.
+        assert!(times[1] >= 2e-3 && times[0] > 0.0 && times[0] < times[1]);
+    }
+}
