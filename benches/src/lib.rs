@@ -46,14 +46,14 @@ pub fn arenstorf_period(tab: &'static Tableau, rtol: f64) -> (f64, u64) {
 }
 
 /// Median wall time per call of `f` in seconds: batches of calls lasting about 20 ms each.
-pub fn median_seconds(mut f: impl FnMut()) -> f64 {
-    side_by_side(&mut [&mut f])[0]
+pub fn median_seconds(f: impl FnMut()) -> f64 {
+    side_by_side(&mut [Box::new(f)])[0]
 }
 
 /// Median wall time per call of each of `fs` in seconds, timed side by side: seven rounds, each
 /// a batch of calls (about 20 ms) of every closure in turn, so that a machine whose speed drifts
 /// during a run slows all of them alike and their ratios hold.
-pub fn side_by_side(fs: &mut [&mut dyn FnMut()]) -> Vec<f64> {
+pub fn side_by_side(fs: &mut [Box<dyn FnMut() + '_>]) -> Vec<f64> {
     let reps: Vec<usize> = fs
         .iter_mut()
         .map(|f| {
@@ -139,12 +139,13 @@ mod tests {
         // A cheap and a dearer closure: each is called once to size its batch, then in seven
         // rounds of batches; the medians come back in the closures' order.
         let (cheap, dear) = (Cell::new(0u64), Cell::new(0u64));
-        let mut a = || cheap.set(cheap.get() + 1);
-        let mut b = || {
-            dear.set(dear.get() + 1);
-            std::thread::sleep(std::time::Duration::from_millis(2));
-        };
-        let times = side_by_side(&mut [&mut a, &mut b]);
+        let times = side_by_side(&mut [
+            Box::new(|| cheap.set(cheap.get() + 1)),
+            Box::new(|| {
+                dear.set(dear.get() + 1);
+                std::thread::sleep(std::time::Duration::from_millis(2));
+            }),
+        ]);
         assert_eq!(times.len(), 2);
         assert!(dear.get() >= 8 && cheap.get() > dear.get());
         // The sleeping closure takes at least its 2 ms per call.

@@ -73,25 +73,24 @@ struct Row {
 fn rhs_batch(kind: ModelKind) -> Box<dyn FnMut()> {
     let (params, _) = cor::dss1(kind).at(2.0).unwrap();
     match kind {
-        ModelKind::Shccm => {
-            let model = Ndbwshccm::new(&params, Zero).unwrap();
-            let y = State::<3>::new(-0.8, -0.7, 0.3);
-            Box::new(move || {
-                for _ in 0..1000 {
-                    std::hint::black_box(model.rhs(0.0, std::hint::black_box(&y)));
-                }
-            })
-        }
-        ModelKind::Mcm => {
-            let model = Ndbwmcm::new(&params, Zero).unwrap();
-            let y = State::<4>::new(0.0, -0.8, -0.7, 0.3);
-            Box::new(move || {
-                for _ in 0..1000 {
-                    std::hint::black_box(model.rhs(0.0, std::hint::black_box(&y)));
-                }
-            })
-        }
+        ModelKind::Shccm => thousand(
+            Ndbwshccm::new(&params, Zero).unwrap(),
+            State::<3>::new(-0.8, -0.7, 0.3),
+        ),
+        ModelKind::Mcm => thousand(
+            Ndbwmcm::new(&params, Zero).unwrap(),
+            State::<4>::new(0.0, -0.8, -0.7, 0.3),
+        ),
     }
+}
+
+/// A thousand right-hand sides of `model` at `y`.
+fn thousand<const N: usize>(model: impl System<N> + 'static, y: State<N>) -> Box<dyn FnMut()> {
+    Box::new(move || {
+        for _ in 0..1000 {
+            std::hint::black_box(model.rhs(0.0, std::hint::black_box(&y)));
+        }
+    })
 }
 
 /// Plain DOP853 (stepping over the kinks) at one tolerance: the baseline of the RHS-evaluation
@@ -299,6 +298,12 @@ fn main() {
         let mut by_evals = Vec::new();
         let mut by_time = Vec::new();
         // Explicit methods alone, or (on the stiff case) switching to RODAS4; RODAS4 throughout.
+        // The model whose right-hand side is the unit of a series row's work.
+        let kind = if name.starts_with("mcm") {
+            ModelKind::Mcm
+        } else {
+            ModelKind::Shccm
+        };
         let explicit = if *name == "mcm_stiff" {
             Stiffness::Switch
         } else {
@@ -374,15 +379,9 @@ fn main() {
                     let bracketed = bracket(&plain, err)
                         .filter(|_| kinks)
                         .map(|(a, b, f)| (a.rtol, b.rtol, f));
-                    let kind = if name.starts_with("mcm") {
-                        ModelKind::Mcm
-                    } else {
-                        ModelKind::Shccm
-                    };
-                    let mut this = || {
+                    let mut fs: Vec<Box<dyn FnMut() + '_>> = vec![Box::new(|| {
                         let _ = std::hint::black_box(run(&s));
-                    };
-                    let mut fs: Vec<Box<dyn FnMut() + '_>> = vec![Box::new(&mut this)];
+                    })];
                     if let Some((a, b, _)) = bracketed {
                         for rtol in [a, b] {
                             let plain = plain_dop853(rtol);
@@ -394,11 +393,7 @@ fn main() {
                     if series {
                         fs.push(rhs_batch(kind));
                     }
-                    let mut refs: Vec<&mut dyn FnMut()> = fs
-                        .iter_mut()
-                        .map(|f| &mut **f as &mut dyn FnMut())
-                        .collect();
-                    let times = side_by_side(&mut refs);
+                    let times = side_by_side(&mut fs);
                     let secs = times[0];
                     let in_time = bracketed.map(|(_, _, f)| between(times[1], times[2], f) / secs);
                     let rhs_ns = series.then(|| times[times.len() - 1] * 1e6);

@@ -103,9 +103,10 @@ fn run(
         bwc_cli::out!("{}", output::Summary::new(&runs).to_json());
     } else {
         // The first column as wide as the longest label (named bases make long ones).
-        let width = runs
+        let labels: Vec<String> = runs.iter().map(|r| r.label()).collect();
+        let width = labels
             .iter()
-            .map(|r| r.label().chars().count())
+            .map(|l| l.chars().count())
             .fold(24, usize::max);
         bwc_cli::out!(
             "{:<width$} {:>12} {:>16} {:>14} {:>10}",
@@ -115,14 +116,14 @@ fn run(
             "t_d (s)",
             "rhs_evals"
         );
-        for r in &runs {
+        for (r, label) in runs.iter().zip(&labels) {
             let ts = r
                 .t_s
                 .map_or("no separation".to_string(), |t| format!("{t:.9e}"));
             let td = r.t_d.map_or("-".to_string(), |t| format!("{t:.6e}"));
             bwc_cli::out!(
                 "{:<width$} {:>12.9} {:>16} {:>14} {:>10}",
-                r.label(),
+                label,
                 r.e,
                 ts,
                 td,
