@@ -5,7 +5,7 @@ use crate::plot::{self, Series, SeriesLabelPosition};
 use crate::CliError;
 use bw_models::{BaseParams, Settings};
 use bwc_identify::{
-    analyse, fit, predict, Budget, Costs, Identifiability, Objective, Prediction, Weights,
+    analyse, fit, predict, Budget, Convergence, Costs, Identifiability, Objective, Prediction, Weights,
 };
 use serde_json::{json, Value};
 use std::path::Path;
@@ -45,6 +45,10 @@ pub struct FitReport {
     pub predictions: Vec<Prediction>,
     /// Identifiability at the optimum (runs only).
     pub identifiability: Option<Identifiability>,
+    /// How the search ended (runs only).
+    pub convergence: Option<Convergence>,
+    /// Free quantities on a bound of the search (runs only).
+    pub at_bound: Vec<&'static str>,
     /// Pareto front, if asked for.
     pub pareto: Vec<ParetoPoint>,
 }
@@ -96,8 +100,7 @@ pub fn run_fit(
         let budget = Budget {
             particles: (f.budget.particles / 4).max(8),
             iterations: f.budget.iterations / 4,
-            polish_iterations: f.budget.polish_iterations,
-            starts: 1,
+            ..f.budget.single()
         };
         for k in 0..count {
             let w = k as f64 / (count - 1) as f64;
@@ -135,6 +138,8 @@ pub fn run_fit(
         wall_s: clock.elapsed().as_secs_f64(),
         predictions,
         identifiability,
+        convergence: Some(result.convergence),
+        at_bound: result.at_bound,
         pareto,
     })
 }
@@ -167,6 +172,8 @@ pub fn eval_fit(config: &Path, f: &FitConfig) -> Result<FitReport, CliError> {
         wall_s: clock.elapsed().as_secs_f64(),
         predictions,
         identifiability: None,
+        convergence: None,
+        at_bound: Vec::new(),
         pareto: Vec::new(),
     })
 }
@@ -194,6 +201,10 @@ pub fn summary(reports: &[FitReport]) -> Value {
                     "condition": if id.condition.is_finite() { json!(id.condition) } else { Value::Null },
                     "weakest_direction": weakest,
                 });
+            }
+            if let Some(c) = &r.convergence {
+                v["convergence"] = json!({"starts": c.starts, "agreeing": c.agreeing, "evaluations": c.evaluations, "costs": c.costs});
+                v["at_bound"] = json!(r.at_bound);
             }
             if !r.pareto.is_empty() {
                 v["pareto"] = r.pareto.iter().map(|p| json!({"w": p.w, "J1": p.j1, "J2": p.j2, "params": params_json(&p.params, r.uses_input_scales)})).collect();

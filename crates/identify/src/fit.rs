@@ -9,40 +9,127 @@ use argmin::solver::particleswarm::ParticleSwarm;
 use bw_models::input::Input;
 use bw_models::BaseParams;
 use rand::SeedableRng;
+use rayon::prelude::*;
 use std::time::Instant;
 
-/// Optimizer budget.
+/// Optimizer budget and stopping rule of [`minimize`].
+///
+/// Each *start* is an independent particle swarm (its own seed) whose best point is polished by
+/// Nelder-Mead until a fresh simplex no longer improves it. Starts run in batches until `agree`
+/// of them end within `tolerance` (relative) of the best cost found, or `max_starts` have run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Budget {
-    /// Particles of the swarm.
+    /// Particles of each swarm.
     pub particles: usize,
-    /// Swarm iterations.
+    /// Swarm iterations per start.
     pub iterations: u64,
-    /// Nelder-Mead iterations per polish.
+    /// Nelder-Mead iterations per polishing round (a start polishes in up to
+    /// [`POLISH_ROUNDS`] rounds, each from a fresh simplex).
     pub polish_iterations: u64,
-    /// Independent swarm starts (each polished).
+    /// Independent starts run before the stopping rule is first checked.
     pub starts: usize,
+    /// Most independent starts.
+    pub max_starts: usize,
+    /// Starts that must agree with the best for the search to count as converged.
+    pub agree: usize,
+    /// Relative tolerance of that agreement: a start agrees when its cost is at most
+    /// `(1 + tolerance)` times the best.
+    pub tolerance: f64,
 }
+
+/// Most Nelder-Mead rounds per polish.
+pub const POLISH_ROUNDS: u64 = 4;
+
+/// Starts added per batch once the first `starts` have run.
+const BATCH: usize = 2;
 
 impl Default for Budget {
     fn default() -> Self {
         Self {
-            particles: 24,
-            iterations: 60,
-            polish_iterations: 600,
-            starts: 2,
+            particles: 20,
+            iterations: 30,
+            polish_iterations: 60,
+            starts: 4,
+            max_starts: 12,
+            agree: 3,
+            tolerance: 0.01,
         }
     }
 }
 
 impl Budget {
-    /// About how many cost evaluations the budget allows (for progress bars).
+    /// One start, no stopping rule: the budget of a local refinement from a known point.
+    pub fn single(self) -> Self {
+        Self {
+            starts: 1,
+            max_starts: 1,
+            agree: 1,
+            ..self
+        }
+    }
+
+    /// About how many cost evaluations the budget allows at most (for progress bars).
     pub fn evaluations(&self, dim: usize) -> u64 {
-        self.starts as u64
-            * (self.particles as u64 * (self.iterations + 1)
-                + self.polish_iterations * 2
-                + dim as u64
-                + 1)
+        self.max_starts.max(self.starts) as u64 * self.per_start(dim)
+    }
+
+    /// About how many cost evaluations one start takes.
+    pub fn per_start(&self, dim: usize) -> u64 {
+        self.particles as u64 * (self.iterations + 1) + self.polish_iterations * 2 + dim as u64 + 1
+    }
+
+    /// Checks that the budget can run.
+    ///
+    /// # Errors
+    /// [`IdentifyError::Optimizer`] naming the inadmissible setting.
+    pub fn validate(&self) -> Result<(), IdentifyError> {
+        let bad = |message: &str| {
+            Err(IdentifyError::Optimizer {
+                message: message.into(),
+            })
+        };
+        if self.particles < 2 {
+            return bad("need at least 2 particles");
+        }
+        if self.starts == 0 || self.agree == 0 {
+            return bad("need at least 1 start and agree >= 1");
+        }
+        if self.max_starts < self.starts {
+            return bad(&format!(
+                "max_starts = {} must be >= starts = {}",
+                self.max_starts, self.starts
+            ));
+        }
+        if self.agree > self.max_starts {
+            return bad(&format!(
+                "agree = {} must be <= max_starts = {}",
+                self.agree, self.max_starts
+            ));
+        }
+        if !(self.tolerance >= 0.0 && self.tolerance.is_finite()) {
+            return bad("the agreement tolerance must be finite and >= 0");
+        }
+        Ok(())
+    }
+}
+
+/// How the search ended: the evidence that it found the optimum in its bounds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Convergence {
+    /// Independent starts run.
+    pub starts: usize,
+    /// Starts whose cost is within the tolerance of the best (the best itself included).
+    pub agreeing: usize,
+    /// Cost evaluations of the whole search.
+    pub evaluations: u64,
+    /// The final cost of every start, in start order.
+    pub costs: Vec<f64>,
+}
+
+impl Convergence {
+    /// Whether at least two independent starts agree.
+    pub fn converged(&self) -> bool {
+        self.agreeing >= 2
     }
 }
 
@@ -63,6 +150,10 @@ pub struct FitResult {
     pub evaluations: u64,
     /// Wall-clock time (s).
     pub wall_s: f64,
+    /// How the search ended.
+    pub convergence: Convergence,
+    /// Free quantities on a bound of the search (see [`at_bound`]).
+    pub at_bound: Vec<&'static str>,
 }
 
 fn optimizer_error(e: argmin::core::Error) -> IdentifyError {
@@ -79,6 +170,13 @@ pub trait CubeProblem: Sync {
     fn cost_at(&self, s: &[f64]) -> f64;
     /// Cost evaluations so far.
     fn evaluations(&self) -> u64;
+    /// For a least-squares cost, the residuals at `s` whose sum of squares is
+    /// [`CubeProblem::cost_at`]; then the search polishes by Levenberg-Marquardt. `None` (the
+    /// default) polishes by Nelder-Mead alone.
+    fn residuals_at(&self, s: &[f64]) -> Option<Vec<f64>> {
+        let _ = s;
+        None
+    }
 }
 
 impl<I: Input + Sync> CubeProblem for Objective<'_, I> {
@@ -90,6 +188,9 @@ impl<I: Input + Sync> CubeProblem for Objective<'_, I> {
     }
     fn evaluations(&self) -> u64 {
         Objective::evaluations(self)
+    }
+    fn residuals_at(&self, s: &[f64]) -> Option<Vec<f64>> {
+        Some(self.residuals(s))
     }
 }
 
@@ -113,65 +214,182 @@ pub struct Minimum {
     pub cost: f64,
     /// Cost evaluations used.
     pub evaluations: u64,
+    /// How the search ended.
+    pub convergence: Convergence,
 }
 
-/// Minimises a cube problem: `budget.starts` particle swarms seeded from `seed`, each best
-/// point (and `start`, if given) polished by Nelder-Mead twice (the second time from a fresh
-/// simplex); the best wins. Deterministic for a seed, whatever the number of threads.
+/// Seed of start `k`: independent streams for every start of every fit.
+fn start_seed(seed: u64, k: usize) -> u64 {
+    seed ^ (k as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+}
+
+/// Minimises a cube problem: independent starts (a seeded particle swarm, then Nelder-Mead
+/// until a fresh simplex no longer helps) in batches until `budget.agree` of them agree with
+/// the best (see [`Budget`]), `start` (if given) polished too; the best point is then moved onto
+/// any bound it lies within 1e-3 of where that does not raise the cost. Deterministic for a
+/// seed, whatever the number of threads: each start depends only on its own seed, and the
+/// batches do not depend on the threads.
 ///
 /// # Errors
-/// [`IdentifyError::Optimizer`] for a degenerate budget or an optimizer failure.
+/// [`IdentifyError::Optimizer`] for an inadmissible budget or an optimizer failure.
 pub fn minimize<P: CubeProblem>(
     problem: &P,
     budget: &Budget,
     seed: u64,
     start: Option<&[f64]>,
 ) -> Result<Minimum, IdentifyError> {
+    budget.validate()?;
     let d = problem.dim();
-    if budget.particles < 2 || budget.starts == 0 {
-        return Err(IdentifyError::Optimizer {
-            message: "need at least 2 particles and 1 start".into(),
-        });
-    }
     let before = problem.evaluations();
     if d == 0 {
         let cost = problem.cost_at(&[]);
+        let evaluations = problem.evaluations() - before;
         return Ok(Minimum {
             point: Vec::new(),
             cost,
-            evaluations: problem.evaluations() - before,
+            evaluations,
+            convergence: Convergence {
+                starts: 1,
+                agreeing: 1,
+                evaluations,
+                costs: vec![cost],
+            },
         });
     }
-    let mut candidates: Vec<Vec<f64>> = start.map(|s| vec![s.to_vec()]).unwrap_or_default();
-    for k in 0..budget.starts {
-        let rng = rand::rngs::StdRng::seed_from_u64(
-            seed ^ (k as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15),
-        );
-        let swarm = ParticleSwarm::new((vec![0.0; d], vec![1.0; d]), budget.particles)
-            .with_rng_generator(rng);
-        let res = Executor::new(Cube(problem), swarm)
-            .configure(|s| s.max_iters(budget.iterations))
-            .run()
-            .map_err(optimizer_error)?;
-        if let Some(best) = res.state().get_best_param() {
-            candidates.push(best.position.clone());
+    let given = start
+        .map(|s| refine(problem, s.to_vec(), budget.polish_iterations))
+        .transpose()?;
+    let mut runs: Vec<(Vec<f64>, f64)> = Vec::new();
+    let agreeing = loop {
+        let k = runs.len();
+        let batch = if k == 0 { budget.starts } else { BATCH };
+        let batch = batch.min(budget.max_starts - k);
+        let new: Vec<_> = (k..k + batch)
+            .into_par_iter()
+            .map(|k| one_start(problem, budget, start_seed(seed, k)))
+            .collect::<Result<_, _>>()?;
+        runs.extend(new);
+        let best = best_cost(&runs, given.as_ref());
+        let agreeing = runs
+            .iter()
+            .filter(|(_, c)| *c <= best + budget.tolerance * best.abs())
+            .count();
+        if agreeing >= budget.agree || runs.len() >= budget.max_starts {
+            break agreeing;
         }
-    }
-    let mut best: Option<(Vec<f64>, f64)> = None;
-    for c in candidates {
-        // Simplices collapse prematurely in narrow valleys; a restart is cheap.
-        let (s, _) = polish(problem, c, budget.polish_iterations / 2)?;
-        let (s, cost) = polish(problem, s, budget.polish_iterations / 2)?;
-        if best.as_ref().is_none_or(|(_, bc)| cost < *bc) {
-            best = Some((s, cost));
-        }
-    }
-    let (point, cost) = best.expect("at least one candidate");
+    };
+    let costs: Vec<f64> = runs.iter().map(|(_, c)| *c).collect();
+    let (point, cost) = runs
+        .into_iter()
+        .chain(given)
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .expect("at least one start");
+    let (point, cost) = snap_to_bounds(problem, point, cost);
+    let evaluations = problem.evaluations() - before;
     Ok(Minimum {
-        point: point.iter().map(|x| x.clamp(0.0, 1.0)).collect(),
+        point,
         cost,
-        evaluations: problem.evaluations() - before,
+        evaluations,
+        convergence: Convergence {
+            starts: costs.len(),
+            agreeing,
+            evaluations,
+            costs,
+        },
     })
+}
+
+fn best_cost(runs: &[(Vec<f64>, f64)], given: Option<&(Vec<f64>, f64)>) -> f64 {
+    runs.iter()
+        .chain(given)
+        .map(|(_, c)| *c)
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// One independent start: a particle swarm seeded by `seed`, its best point refined.
+fn one_start<P: CubeProblem>(
+    problem: &P,
+    budget: &Budget,
+    seed: u64,
+) -> Result<(Vec<f64>, f64), IdentifyError> {
+    let d = problem.dim();
+    let rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let swarm =
+        ParticleSwarm::new((vec![0.0; d], vec![1.0; d]), budget.particles).with_rng_generator(rng);
+    let res = Executor::new(Cube(problem), swarm)
+        .configure(|s| s.max_iters(budget.iterations))
+        .run()
+        .map_err(optimizer_error)?;
+    let x = res
+        .state()
+        .get_best_param()
+        .map(|b| b.position.clone())
+        .unwrap_or_else(|| vec![0.5; d]);
+    refine(problem, x, budget.polish_iterations)
+}
+
+/// Local polish of `x`: Levenberg-Marquardt where the problem has residuals, then a
+/// Nelder-Mead round of `iterations` from a fresh simplex (which also escapes where the
+/// Levenberg-Marquardt steps stall); repeated while that round still gains more than 1e-9
+/// relative.
+fn refine<P: CubeProblem>(
+    problem: &P,
+    x: Vec<f64>,
+    iterations: u64,
+) -> Result<(Vec<f64>, f64), IdentifyError> {
+    let (mut x, mut cost) = (x.clone(), problem.cost_at(&x));
+    for _ in 0..POLISH_ROUNDS {
+        if let Some((y, c)) = crate::lm::polish(problem, &x, cost) {
+            if c < cost {
+                (x, cost) = (y, c);
+            }
+        }
+        let (y, c) = polish(problem, x.clone(), iterations)?;
+        let gain = cost - c;
+        if c < cost {
+            (x, cost) = (y, c);
+        }
+        if !(gain > 1e-9 * cost.abs()) {
+            break;
+        }
+    }
+    Ok((x.iter().map(|v| v.clamp(0.0, 1.0)).collect(), cost))
+}
+
+/// Moves coordinates within 1e-3 of a face of the cube onto it where the cost does not rise:
+/// Nelder-Mead approaches an optimum on a bound only asymptotically, and a parameter on its
+/// bound must be reported as such.
+fn snap_to_bounds<P: CubeProblem>(problem: &P, mut x: Vec<f64>, mut cost: f64) -> (Vec<f64>, f64) {
+    for j in 0..x.len() {
+        let face = if x[j] < 1e-3 {
+            0.0
+        } else if x[j] > 1.0 - 1e-3 {
+            1.0
+        } else {
+            continue;
+        };
+        if x[j] == face {
+            continue;
+        }
+        let mut y = x.clone();
+        y[j] = face;
+        let c = problem.cost_at(&y);
+        if c <= cost {
+            (x, cost) = (y, c);
+        }
+    }
+    (x, cost)
+}
+
+/// The free quantities whose value lies within 1e-6 (relative to the searched interval, on
+/// its scale) of a bound of a unit-cube point.
+pub fn at_bound(names: &[&'static str], point: &[f64]) -> Vec<&'static str> {
+    names
+        .iter()
+        .zip(point)
+        .filter(|(_, s)| **s <= 1e-6 || **s >= 1.0 - 1e-6)
+        .map(|(n, _)| *n)
+        .collect()
 }
 
 /// Fits base parameters: [`minimize`] the objective, then evaluate the optimum.
@@ -188,6 +406,7 @@ pub fn fit<I: Input + Sync>(
     let m = minimize(objective, budget, seed, start)?;
     let (predictions, costs) = objective.evaluate(&m.point)?;
     Ok(FitResult {
+        at_bound: at_bound(&objective.space().free_names(), &m.point),
         params: objective.space().decode(&m.point),
         point: m.point,
         costs,
@@ -195,6 +414,7 @@ pub fn fit<I: Input + Sync>(
         predictions,
         evaluations: m.evaluations,
         wall_s: clock.elapsed().as_secs_f64(),
+        convergence: m.convergence,
     })
 }
 

@@ -36,26 +36,8 @@ fn residuals<I: Input + Sync>(
     objective: &Objective<'_, I>,
     s: &[f64],
 ) -> Result<Vec<f64>, IdentifyError> {
-    let (pred, _) = objective.evaluate(s)?;
-    let data = objective.data();
-    let w = objective.weights();
-    let n1 = data.points.iter().filter(|p| p.e.is_some()).count().max(1) as f64;
-    let n2 = data
-        .points
-        .iter()
-        .filter(|p| p.t_d.is_some())
-        .count()
-        .max(1) as f64;
-    let mut r = Vec::new();
-    for (d, p) in data.points.iter().zip(&pred) {
-        if let (Some(e), true) = (d.e, w.j1 > 0.0) {
-            r.push((w.j1 / n1).sqrt() * (p.e - e));
-        }
-        if let (Some(t), true) = (d.t_d, w.j2 > 0.0) {
-            r.push((w.j2 / n2).sqrt() * (p.t_d - t));
-        }
-    }
-    Ok(r)
+    let (predictions, _) = objective.evaluate(s)?;
+    Ok(objective.weighted_residuals(&predictions))
 }
 
 /// The identifiability report at the point `s` of the unit cube (central differences with step

@@ -29,7 +29,7 @@
 //! let space = Space::new(ModelKind::Shccm, [Param::Fixed(1.0), Param::Fixed(-1.0), free(0.1, 0.9), free(0.0, 0.1),
 //!     Param::Fixed(1.5), Param::Fixed(1.5), Param::Fixed(1.0), Param::Fixed(1.0)], None)?;
 //! let objective = Objective::new(&space, &data, &Zero, Settings::default(), Weights { j1: 1.0, j2: 0.0 })?;
-//! let result = fit(&objective, &Budget { particles: 8, iterations: 10, polish_iterations: 200, starts: 1 }, 7, None)?;
+//! let result = fit(&objective, &Budget { particles: 8, iterations: 10, polish_iterations: 200, ..Budget::default() }.single(), 7, None)?;
 //! assert!((result.params.kappa - 0.6).abs() < 1e-4 && (result.params.sigma_b - 0.03).abs() < 1e-4);
 //! # Ok::<(), bwc_identify::IdentifyError>(())
 //! ```
@@ -38,12 +38,13 @@
 mod data;
 mod fit;
 mod identifiability;
+mod lm;
 mod loops;
 mod objective;
 mod space;
 
 pub use data::{Dataset, Point};
-pub use fit::{fit, minimize, Budget, CubeProblem, FitResult, Minimum};
+pub use fit::{at_bound, fit, minimize, Budget, Convergence, CubeProblem, FitResult, Minimum, POLISH_ROUNDS};
 pub use identifiability::{analyse, Identifiability};
 pub use loops::{loop_cost, Curve, LawSpace, Loop, LoopObjective, LAW_NAMES};
 pub use objective::{predict, Costs, Objective, Prediction, Weights, FAILED};

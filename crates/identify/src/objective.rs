@@ -23,7 +23,8 @@ pub struct Prediction {
 }
 
 /// `Θ_1` and `Θ_2` of base map `map` with physical input `u` at every point of `data`
-/// (evaluated in parallel; the result is in data order and independent of the thread count).
+/// (each distinct speed simulated once, in parallel; the result is in data order and
+/// independent of the thread count).
 ///
 /// # Errors
 /// The first [`ModelError`] of a failed simulation.
@@ -33,19 +34,26 @@ pub fn predict<I: Input + Sync>(
     data: &Dataset,
     settings: &Settings,
 ) -> Result<Vec<Prediction>, ModelError> {
-    data.points
+    let mut speeds: Vec<f64> = data.points.iter().map(|p| p.v0).collect();
+    speeds.sort_by(f64::total_cmp);
+    speeds.dedup();
+    let at: Vec<Prediction> = speeds
         .par_iter()
-        .map(|pt| {
-            let out = impact_at(map, u, pt.v0, settings)?;
-            let scale = map.time_scale(pt.v0);
+        .map(|&v0| {
+            let out = impact_at(map, u, v0, settings)?;
             Ok(Prediction {
-                v0: pt.v0,
+                v0,
                 e: out.e,
-                t_d: out.t_s.unwrap_or(settings.t_max) * scale,
+                t_d: out.t_s.unwrap_or(settings.t_max) * map.time_scale(v0),
                 separated: out.separated(),
             })
         })
-        .collect()
+        .collect::<Result<_, ModelError>>()?;
+    Ok(data
+        .points
+        .iter()
+        .map(|p| at[speeds.partition_point(|&v| v < p.v0)])
+        .collect())
 }
 
 /// The costs of predictions against data: `J1` over the points with a measured CoR, `J2` over
@@ -190,10 +198,29 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
         Ok((predictions, costs))
     }
 
-    /// The scalar cost at `s`: `w1 J1 + w2 J2`, plus a penalty `1 + 10 v` for a violation `v`
-    /// of the inequality constraint and `(s - clamp(s))²` outside the cube (Nelder-Mead is
-    /// unbounded); [`FAILED`] when a simulation fails. Always finite.
-    pub fn scalar(&self, s: &[f64]) -> f64 {
+    /// The weighted residuals of predictions: `sqrt(w1 / M1) (e_model - e)` for every point with
+    /// a CoR and `sqrt(w2 / M2) (t_d,model - t_d)` for every point with a duration (where the
+    /// weight is positive), in data order; their sum of squares is `w1 J1 + w2 J2`.
+    pub fn weighted_residuals(&self, predictions: &[Prediction]) -> Vec<f64> {
+        let w = self.weights;
+        let n1 = self.data.points.iter().filter(|p| p.e.is_some()).count().max(1) as f64;
+        let n2 = self.data.points.iter().filter(|p| p.t_d.is_some()).count().max(1) as f64;
+        let mut r = Vec::new();
+        for (d, p) in self.data.points.iter().zip(predictions) {
+            if let (Some(e), true) = (d.e, w.j1 > 0.0) {
+                r.push((w.j1 / n1).sqrt() * (p.e - e));
+            }
+            if let (Some(t), true) = (d.t_d, w.j2 > 0.0) {
+                r.push((w.j2 / n2).sqrt() * (p.t_d - t));
+            }
+        }
+        r
+    }
+
+    /// The residual vector at `s`: [`Objective::weighted_residuals`] followed by one penalty
+    /// entry, so that its sum of squares is [`Objective::scalar`]. A failed simulation gives
+    /// zero residuals and the penalty entry `sqrt(FAILED + penalty)`.
+    pub fn residuals(&self, s: &[f64]) -> Vec<f64> {
         self.evaluations.fetch_add(1, Ordering::Relaxed);
         if let Some(p) = self.progress {
             p();
@@ -201,11 +228,37 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
         let outside: f64 = s.iter().map(|x| (x - x.clamp(0.0, 1.0)).powi(2)).sum();
         let v = self.space.violation(&self.space.decode(s));
         let penalty = outside + if v > 0.0 { 1.0 + 10.0 * v } else { 0.0 };
+        let len = self.weighted_residual_count();
         match self.evaluate(s) {
-            Ok((_, c)) if c.weighted(self.weights).is_finite() => {
-                c.weighted(self.weights) + penalty
+            Ok((p, _)) => {
+                let mut r = self.weighted_residuals(&p);
+                if r.iter().all(|x| x.is_finite()) {
+                    r.push(penalty.sqrt());
+                    return r;
+                }
             }
-            _ => FAILED + penalty,
+            Err(_) => {}
         }
+        let mut r = vec![0.0; len];
+        r.push((FAILED + penalty).sqrt());
+        r
+    }
+
+    fn weighted_residual_count(&self) -> usize {
+        let w = self.weights;
+        self.data
+            .points
+            .iter()
+            .map(|d| {
+                usize::from(d.e.is_some() && w.j1 > 0.0) + usize::from(d.t_d.is_some() && w.j2 > 0.0)
+            })
+            .sum()
+    }
+
+    /// The scalar cost at `s`: `w1 J1 + w2 J2`, plus a penalty `1 + 10 v` for a violation `v`
+    /// of the inequality constraint and `(s - clamp(s))²` outside the cube (Nelder-Mead is
+    /// unbounded); [`FAILED`] when a simulation fails. Always finite.
+    pub fn scalar(&self, s: &[f64]) -> f64 {
+        self.residuals(s).iter().map(|x| x * x).sum()
     }
 }

@@ -77,8 +77,9 @@ fn recovers_known_parameters_with_input_and_durations() {
                 particles: 16,
                 iterations: 30,
                 polish_iterations: 800,
-                starts: 1,
-            },
+                ..Budget::default()
+            }
+            .single(),
             3,
             None,
         )
@@ -160,6 +161,9 @@ fn identical_results_for_any_thread_count() {
                         iterations: 8,
                         polish_iterations: 100,
                         starts: 2,
+                        max_starts: 4,
+                        agree: 2,
+                        ..Budget::default()
                     },
                     11,
                     None,
@@ -344,8 +348,9 @@ fn loop_fit_recovers_stiffness_and_damping() {
             particles: 8,
             iterations: 10,
             polish_iterations: 200,
-            starts: 1,
-        },
+            ..Budget::default()
+        }
+        .single(),
         5,
         None,
     )

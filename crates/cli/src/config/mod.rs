@@ -121,6 +121,9 @@ struct RawOptimizer {
     iterations: Option<Spanned<i64>>,
     polish: Option<Spanned<i64>>,
     starts: Option<Spanned<i64>>,
+    max_starts: Option<Spanned<i64>>,
+    agree: Option<Spanned<i64>>,
+    tolerance: Option<Num>,
     seed: Option<Spanned<i64>>,
 }
 
@@ -459,58 +462,7 @@ fn parse_fit(
     };
     let params_eval = r.params.as_ref().map(|p| point(p, "params")).transpose()?;
 
-    let o = r.optimizer.as_ref();
-    let empty_o = RawOptimizer {
-        particles: None,
-        iterations: None,
-        polish: None,
-        starts: None,
-        seed: None,
-    };
-    let or = o.map_or(&empty_o, |o| o.get_ref());
-    let d = Budget::default();
-    let budget = Budget {
-        particles: count(
-            ctx,
-            &or.particles,
-            "[fit.optimizer].particles",
-            2,
-            10_000,
-            d.particles as i64,
-        )? as usize,
-        iterations: count(
-            ctx,
-            &or.iterations,
-            "[fit.optimizer].iterations",
-            0,
-            1_000_000,
-            d.iterations as i64,
-        )? as u64,
-        polish_iterations: count(
-            ctx,
-            &or.polish,
-            "[fit.optimizer].polish",
-            0,
-            1_000_000,
-            d.polish_iterations as i64,
-        )? as u64,
-        starts: count(
-            ctx,
-            &or.starts,
-            "[fit.optimizer].starts",
-            1,
-            1_000,
-            d.starts as i64,
-        )? as usize,
-    };
-    let seed = count(
-        ctx,
-        &or.seed,
-        "[fit.optimizer].seed",
-        0,
-        i64::MAX,
-        index as i64,
-    )? as u64;
+    let (budget, seed) = optimizer(ctx, &r.optimizer, "[fit.optimizer]", index)?;
 
     let search = Settings {
         rtol: 1e-8,
@@ -563,37 +515,47 @@ fn optimizer(
         iterations: None,
         polish: None,
         starts: None,
+        max_starts: None,
+        agree: None,
+        tolerance: None,
         seed: None,
     };
     let r = o.as_ref().map_or(&empty, |o| o.get_ref());
     let d = Budget::default();
     let key = |k: &str| format!("{table}.{k}");
+    let n = |v: &Option<Spanned<i64>>, k: &str, min: i64, max: i64, default: usize| {
+        count(ctx, v, &key(k), min, max, default as i64).map(|x| x as usize)
+    };
+    let starts = n(&r.starts, "starts", 1, 1_000, d.starts)?;
+    // An explicit `starts` alone keeps the old meaning: exactly that many starts.
+    let max_default = if r.starts.is_some() && r.max_starts.is_none() {
+        starts
+    } else {
+        d.max_starts.max(starts)
+    };
+    let max_starts = n(&r.max_starts, "max_starts", starts as i64, 1_000, max_default)?;
+    let agree = n(&r.agree, "agree", 1, max_starts as i64, d.agree.min(max_starts))?;
+    let tolerance = match ctx.opt(&r.tolerance, &key("tolerance"))? {
+        None => d.tolerance,
+        Some(t) if (0.0..=1.0).contains(&t) => t,
+        Some(t) => {
+            let span = r.tolerance.as_ref().map(|x| x.span()).unwrap_or_default();
+            return Err(ctx.invalid(
+                &span,
+                key("tolerance"),
+                format!("{t} is not admissible: 0 <= tolerance <= 1 (relative)"),
+            ));
+        }
+    };
     let budget = Budget {
-        particles: count(
-            ctx,
-            &r.particles,
-            &key("particles"),
-            2,
-            10_000,
-            d.particles as i64,
-        )? as usize,
-        iterations: count(
-            ctx,
-            &r.iterations,
-            &key("iterations"),
-            0,
-            1_000_000,
-            d.iterations as i64,
-        )? as u64,
-        polish_iterations: count(
-            ctx,
-            &r.polish,
-            &key("polish"),
-            0,
-            1_000_000,
-            d.polish_iterations as i64,
-        )? as u64,
-        starts: count(ctx, &r.starts, &key("starts"), 1, 1_000, d.starts as i64)? as usize,
+        particles: n(&r.particles, "particles", 2, 10_000, d.particles)?,
+        iterations: n(&r.iterations, "iterations", 0, 1_000_000, d.iterations as usize)? as u64,
+        polish_iterations: n(&r.polish, "polish", 0, 1_000_000, d.polish_iterations as usize)?
+            as u64,
+        starts,
+        max_starts,
+        agree,
+        tolerance,
     };
     Ok((
         budget,
