@@ -96,3 +96,165 @@ pub fn chart(
     }
     Ok(svg)
 }
+
+/// Measured points of a fit chart: `(x, y, spread)`, the spread drawn as an error bar.
+pub type Measured = [(f64, f64, Option<f64>)];
+
+/// A model line with its confidence band: `(x, value, lower, upper)`.
+pub type Banded = [(f64, f64, f64, f64)];
+
+/// A fit chart: the data as markers (with error bars where they carry a spread), the model as
+/// a line with its confidence band shaded; a logarithmic x axis when `log_x`.
+///
+/// # Errors
+/// The drawing backend's message.
+#[allow(clippy::too_many_arguments)]
+pub fn fit_chart(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    data: (&str, &Measured),
+    model: (&str, &Banded),
+    band_label: &str,
+    log_x: bool,
+) -> Result<String, String> {
+    let finite = |v: f64| v.is_finite();
+    let xs = data
+        .1
+        .iter()
+        .map(|p| p.0)
+        .chain(model.1.iter().map(|p| p.0));
+    let ys = data
+        .1
+        .iter()
+        .flat_map(|p| {
+            let s = p.2.unwrap_or(0.0);
+            [p.1 - s, p.1 + s]
+        })
+        .chain(model.1.iter().flat_map(|p| [p.1, p.2, p.3]));
+    let range = |it: &mut dyn Iterator<Item = f64>| {
+        it.filter(|v| finite(*v))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                (a.min(v), b.max(v))
+            })
+    };
+    let (x0, x1) = range(&mut xs.filter(|x| !log_x || *x > 0.0));
+    let (y0, y1) = range(&mut ys.into_iter());
+    if !(x0.is_finite() && y0.is_finite()) {
+        return Err("nothing finite to draw".into());
+    }
+    let py = if y1 > y0 {
+        0.05 * (y1 - y0)
+    } else {
+        0.05 * y0.abs().max(1e-3)
+    };
+    let (y0, y1) = (y0 - py, y1 + py);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (900, 560)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let mut builder = ChartBuilder::on(&root);
+        builder
+            .caption(title, ("sans-serif", 24))
+            .margin(16)
+            .x_label_area_size(48)
+            .y_label_area_size(72);
+        macro_rules! draw {
+            ($chart:expr) => {{
+                let mut chart = $chart;
+                chart
+                    .configure_mesh()
+                    .x_desc(x_label)
+                    .y_desc(y_label)
+                    .draw()
+                    .map_err(|e| e.to_string())?;
+                let band_color = RGBColor(31, 119, 180);
+                let mut outline: Vec<(f64, f64)> = model
+                    .1
+                    .iter()
+                    .filter(|p| finite(p.2) && finite(p.3))
+                    .map(|p| (p.0, p.3))
+                    .collect();
+                let lower: Vec<(f64, f64)> = model
+                    .1
+                    .iter()
+                    .rev()
+                    .filter(|p| finite(p.2) && finite(p.3))
+                    .map(|p| (p.0, p.2))
+                    .collect();
+                if !band_label.is_empty() && !outline.is_empty() {
+                    outline.extend(lower);
+                    chart
+                        .draw_series(std::iter::once(Polygon::new(
+                            outline,
+                            band_color.mix(0.2).filled(),
+                        )))
+                        .map_err(|e| e.to_string())?
+                        .label(band_label)
+                        .legend(move |(x, y)| {
+                            Rectangle::new(
+                                [(x, y - 5), (x + 20, y + 5)],
+                                band_color.mix(0.2).filled(),
+                            )
+                        });
+                }
+                let line: Vec<(f64, f64)> = model
+                    .1
+                    .iter()
+                    .filter(|p| finite(p.1))
+                    .map(|p| (p.0, p.1))
+                    .collect();
+                chart
+                    .draw_series(LineSeries::new(line, band_color.stroke_width(2)))
+                    .map_err(|e| e.to_string())?
+                    .label(model.0)
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], band_color.stroke_width(2))
+                    });
+                let mark = RGBColor(214, 39, 40);
+                chart
+                    .draw_series(data.1.iter().filter_map(|p| {
+                        p.2.filter(|s| *s > 0.0).map(|s| {
+                            PathElement::new(
+                                vec![(p.0, p.1 - s), (p.0, p.1 + s)],
+                                mark.stroke_width(1),
+                            )
+                        })
+                    }))
+                    .map_err(|e| e.to_string())?;
+                chart
+                    .draw_series(
+                        data.1
+                            .iter()
+                            .map(|p| Circle::new((p.0, p.1), 3, mark.filled())),
+                    )
+                    .map_err(|e| e.to_string())?
+                    .label(data.0)
+                    .legend(move |(x, y)| Circle::new((x + 10, y), 3, mark.filled()));
+                chart
+                    .configure_series_labels()
+                    .position(SeriesLabelPosition::UpperRight)
+                    .background_style(WHITE.mix(0.8))
+                    .border_style(BLACK)
+                    .draw()
+                    .map_err(|e| e.to_string())?;
+            }};
+        }
+        if log_x {
+            draw!(builder
+                .build_cartesian_2d((x0 / 1.1..x1 * 1.1).log_scale(), y0..y1)
+                .map_err(|e| e.to_string())?);
+        } else {
+            let px = if x1 > x0 {
+                0.05 * (x1 - x0)
+            } else {
+                0.5 * x0.abs().max(1e-12)
+            };
+            draw!(builder
+                .build_cartesian_2d((x0 - px)..(x1 + px), y0..y1)
+                .map_err(|e| e.to_string())?);
+        }
+        root.present().map_err(|e| e.to_string())?;
+    }
+    Ok(svg)
+}

@@ -13,6 +13,9 @@ pub struct Point {
     pub e: Option<f64>,
     /// Contact duration (s), if measured.
     pub t_d: Option<f64>,
+    /// The CoR's spread at this point, if the data carry one (column `e_std`, a standard
+    /// deviation, or `e_spread`, a range): drawn as error bars, not used by the fit.
+    pub spread: Option<f64>,
 }
 
 /// A dataset: measurements with a common known input.
@@ -22,6 +25,8 @@ pub struct Dataset {
     pub path: PathBuf,
     /// The measurements, in file order.
     pub points: Vec<Point>,
+    /// Admissible but suspicious data, each naming its line (`path:line: ...`).
+    pub warnings: Vec<String>,
 }
 
 impl Dataset {
@@ -73,6 +78,8 @@ impl Dataset {
             )
         })?;
         let (e_col, td_col) = (col("e"), col("t_d"));
+        let spread_col = col("e_std").or_else(|| col("e_spread"));
+        let mut warnings = Vec::new();
         if e_col.is_none() && td_col.is_none() {
             return Err(err(
                 header_at,
@@ -112,7 +119,23 @@ impl Dataset {
                         format!("column `e`: {e} is not admissible: e >= 0"),
                     ));
                 }
+                if e == 0.0 {
+                    warnings.push(format!(
+                        "{}:{line}: e = 0 (no rebound): the models give e = 0 only when the bodies never separate",
+                        path.display()
+                    ));
+                }
+                if e > 1.0 {
+                    warnings.push(format!(
+                        "{}:{line}: e = {e} > 1 (energy gained): no model without input reaches it",
+                        path.display()
+                    ));
+                }
             }
+            let spread = spread_col
+                .filter(|&c| record.get(c).is_some_and(|s| !s.is_empty()))
+                .map(|c| field(c, headers.get(c).unwrap_or("e_std")))
+                .transpose()?;
             let t_d = td_col.map(|c| field(c, "t_d")).transpose()?;
             if let Some(t) = t_d {
                 if t <= 0.0 {
@@ -122,15 +145,46 @@ impl Dataset {
                     ));
                 }
             }
-            points.push(Point { v0, e, t_d });
+            points.push(Point { v0, e, t_d, spread });
         }
         if points.is_empty() {
             return Err(err(header_at, "the dataset has no data rows".into()));
         }
+        if points.len() == 1 {
+            warnings.push(format!(
+                "{}: a single data point: any parameters that fit it are optimal, and no \
+                 interval can be estimated",
+                path.display()
+            ));
+        } else if points.iter().all(|p| p.v0 == points[0].v0) {
+            warnings.push(format!(
+                "{}: every point is at v_0 = {} m/s: the data say nothing about other speeds",
+                path.display(),
+                points[0].v0
+            ));
+        }
         Ok(Self {
             path: path.to_owned(),
             points,
+            warnings,
         })
+    }
+
+    /// Points at `speeds` (m/s) with nothing measured: where to predict.
+    pub fn at_speeds(path: &Path, speeds: &[f64]) -> Self {
+        Self {
+            path: path.to_owned(),
+            points: speeds
+                .iter()
+                .map(|&v0| Point {
+                    v0,
+                    e: None,
+                    t_d: None,
+                    spread: None,
+                })
+                .collect(),
+            warnings: Vec::new(),
+        }
     }
 
     /// Whether any point has a measured duration.
@@ -161,12 +215,35 @@ mod tests {
             Point {
                 v0: 0.5,
                 e: Some(0.91),
-                t_d: None
+                t_d: None,
+                spread: Some(0.0)
             }
         );
         assert!(d.has_cor() && !d.has_durations());
         let d = Dataset::parse(Path::new("d.csv"), "v_0,e,t_d\n0.05,0.38,0.147\n").unwrap();
         assert_eq!(d.points[0].t_d, Some(0.147));
+    }
+
+    #[test]
+    fn suspicious_data_are_named_in_warnings() {
+        let d = Dataset::parse(Path::new("d.csv"), "v_0,e\n1,1.2\n2,0\n3,0.5\n").unwrap();
+        assert_eq!(d.warnings.len(), 2, "{:?}", d.warnings);
+        assert!(d.warnings[0].starts_with("d.csv:2:") && d.warnings[0].contains("> 1"));
+        assert!(d.warnings[1].starts_with("d.csv:3:") && d.warnings[1].contains("e = 0"));
+        let one = Dataset::parse(Path::new("d.csv"), "v_0,e\n1,0.5\n").unwrap();
+        assert!(
+            one.warnings[0].contains("single data point"),
+            "{:?}",
+            one.warnings
+        );
+        let same = Dataset::parse(Path::new("d.csv"), "v_0,e\n1,0.5\n1,0.6\n").unwrap();
+        assert!(
+            same.warnings[0].contains("every point is at v_0 = 1"),
+            "{:?}",
+            same.warnings
+        );
+        let spread = Dataset::parse(Path::new("d.csv"), "v_0,e,e_std\n1,0.5,0.01\n").unwrap();
+        assert_eq!(spread.points[0].spread, Some(0.01));
     }
 
     #[test]

@@ -9,9 +9,13 @@
 //! * [`Space`]: bounds, fixed values, `Γ_b = g B_b` with `g ∈ [-1, 1]`, and the Villegas
 //!   constraints `T_b = m U_b`, `(m/k) κ / T_b^(p+1) <= 1`;
 //! * [`Objective`]: the costs, evaluated in parallel over the data points;
-//! * [`fit`]: argmin's particle swarm (seeded, particles in parallel) then Nelder-Mead, from
-//!   several starts; identical results for any thread count;
+//! * [`fit`]: independent starts, each argmin's particle swarm (seeded, particles in parallel)
+//!   polished by Levenberg-Marquardt and Nelder-Mead, until several agree ([`Convergence`]);
+//!   optimum snapped onto the bounds it touches ([`at_bound`]); identical results for any
+//!   thread count;
 //! * [`analyse`]: singular values of the sensitivity matrix at the optimum (faer);
+//! * [`uncertainty`]: linearised 95 % intervals of the parameters and bands of `e(v0)`,
+//!   `t_d(v0)`, validated by the coverage studies of [`study`];
 //! * [`LoopObjective`]: hysteresis-loop fitting of the SI contact law with known mass.
 //!
 //! ```
@@ -35,6 +39,7 @@
 //! ```
 #![deny(missing_docs)]
 
+mod coverage;
 mod data;
 mod fit;
 mod identifiability;
@@ -42,13 +47,18 @@ mod lm;
 mod loops;
 mod objective;
 mod space;
+mod uncertainty;
 
+pub use coverage::{coverage, replicate, study, CoverageTask, Replicate};
 pub use data::{Dataset, Point};
-pub use fit::{at_bound, fit, minimize, Budget, Convergence, CubeProblem, FitResult, Minimum, POLISH_ROUNDS};
+pub use fit::{
+    at_bound, fit, minimize, Budget, Convergence, CubeProblem, FitResult, Minimum, POLISH_ROUNDS,
+};
 pub use identifiability::{analyse, Identifiability};
 pub use loops::{loop_cost, Curve, LawSpace, Loop, LoopObjective, LAW_NAMES};
 pub use objective::{predict, Costs, Objective, Prediction, Weights, FAILED};
 pub use space::{KnownMassStiffness, Param, Space, NAMES};
+pub use uncertainty::{uncertainty, BandPoint, Uncertainty, LEVEL};
 
 use std::path::PathBuf;
 

@@ -66,7 +66,9 @@ pub(crate) fn polish<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<(
             .collect();
         // Coordinates on a face whose gradient points out of the cube stay there.
         let free: Vec<usize> = (0..x.len())
-            .filter(|&j| !((x[j] <= 0.0 && gradient[j] > 0.0) || (x[j] >= 1.0 && gradient[j] < 0.0)))
+            .filter(|&j| {
+                !((x[j] <= 0.0 && gradient[j] > 0.0) || (x[j] >= 1.0 && gradient[j] < 0.0))
+            })
             .collect();
         if free.is_empty() {
             break;

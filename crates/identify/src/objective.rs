@@ -176,6 +176,16 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
         self.data
     }
 
+    /// The physical input `u(t)` (N).
+    pub fn input(&self) -> &I {
+        self.input
+    }
+
+    /// The solver settings of the simulations.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
     /// The weights.
     pub fn weights(&self) -> Weights {
         self.weights
@@ -203,8 +213,20 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
     /// weight is positive), in data order; their sum of squares is `w1 J1 + w2 J2`.
     pub fn weighted_residuals(&self, predictions: &[Prediction]) -> Vec<f64> {
         let w = self.weights;
-        let n1 = self.data.points.iter().filter(|p| p.e.is_some()).count().max(1) as f64;
-        let n2 = self.data.points.iter().filter(|p| p.t_d.is_some()).count().max(1) as f64;
+        let n1 = self
+            .data
+            .points
+            .iter()
+            .filter(|p| p.e.is_some())
+            .count()
+            .max(1) as f64;
+        let n2 = self
+            .data
+            .points
+            .iter()
+            .filter(|p| p.t_d.is_some())
+            .count()
+            .max(1) as f64;
         let mut r = Vec::new();
         for (d, p) in self.data.points.iter().zip(predictions) {
             if let (Some(e), true) = (d.e, w.j1 > 0.0) {
@@ -250,7 +272,8 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
             .points
             .iter()
             .map(|d| {
-                usize::from(d.e.is_some() && w.j1 > 0.0) + usize::from(d.t_d.is_some() && w.j2 > 0.0)
+                usize::from(d.e.is_some() && w.j1 > 0.0)
+                    + usize::from(d.t_d.is_some() && w.j2 > 0.0)
             })
             .sum()
     }

@@ -170,6 +170,14 @@ impl Space {
         self.free.iter().map(|&i| NAMES[i]).collect()
     }
 
+    /// The bounds `(lo, hi)` of quantity `i` (index into [`NAMES`]) if it is searched.
+    pub fn bounds(&self, i: usize) -> Option<(f64, f64)> {
+        match self.params.get(i)? {
+            Param::Free { lo, hi, .. } => Some((*lo, *hi)),
+            _ => None,
+        }
+    }
+
     /// The Villegas constraints, if any.
     pub fn known(&self) -> Option<KnownMassStiffness> {
         self.known

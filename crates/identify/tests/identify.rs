@@ -379,3 +379,144 @@ fn loop_fit_recovers_stiffness_and_damping() {
         "c = 0 for the MCM"
     );
 }
+
+/// The 95 % band of e(v0) contains the true curve about as often as it claims: a small seeded
+/// coverage study (12 replicates of 8 noisy points, kappa and sigma_b free). The full study
+/// (40 replicates on the baseball data's design) is `identify-coverage` in BENCHMARKS.md.
+#[test]
+fn band_covers_the_truth_in_a_small_study() {
+    use bwc_identify::{coverage, study, CoverageTask};
+    let free = |lo, hi, log| Param::Free { lo, hi, log };
+    let space = Space::new(
+        ModelKind::Shccm,
+        [
+            Param::Fixed(1.0),
+            Param::Fixed(-1.0),
+            free(0.1, 0.9, false),
+            free(1e-3, 0.3, true),
+            Param::Fixed(1.5),
+            Param::Fixed(1.5),
+            Param::Fixed(1.0),
+            Param::Fixed(1.0),
+        ],
+        None,
+    )
+    .unwrap();
+    let truth = BaseParams {
+        b_b: 1.0,
+        gamma_b: -1.0,
+        kappa: 0.6,
+        sigma_b: 0.03,
+        n: 1.5,
+        p: 1.5,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    let noise = 0.01;
+    let task = CoverageTask {
+        space,
+        truth,
+        speeds: vec![0.2, 0.4, 0.7, 1.0, 1.5, 2.2, 3.3, 5.0],
+        noise,
+        budget: Budget {
+            particles: 8,
+            iterations: 8,
+            polish_iterations: 60,
+            starts: 2,
+            max_starts: 4,
+            agree: 2,
+            ..Budget::default()
+        },
+        settings: Settings::default(),
+    };
+    let reps = study(&task, 1..13).unwrap();
+    assert!(reps.iter().all(|r| r.error.is_none()), "{reps:?}");
+    let c = coverage(&reps);
+    // 96 points of a calibrated 95 % band: 0.75 is far below what it gives, 1.0 with a band
+    // of sensible width is allowed.
+    assert!((0.75..=1.0).contains(&c), "coverage {c}");
+    let hw = reps.iter().map(|r| r.halfwidth).sum::<f64>() / reps.len() as f64;
+    // Two parameters from eight points of noise 0.01: the band is a fraction of the noise wide.
+    assert!(hw > 0.1 * noise && hw < 2.0 * noise, "half-width {hw}");
+    // Independent tasks: a replicate is a pure function of its seed.
+    assert_eq!(bwc_identify::replicate(&task, 5).unwrap(), reps[4]);
+}
+
+/// A truth outside the box puts the optimum on a bound: the search lands exactly on it, reports
+/// it, converges (several starts agree), and the interval of that parameter is withheld.
+#[test]
+fn optimum_on_a_bound_is_reported() {
+    let truth = BaseParams {
+        b_b: 1.0,
+        gamma_b: -1.0,
+        kappa: 0.6,
+        sigma_b: 0.05,
+        n: 1.5,
+        p: 1.5,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    let map = BaseMap::new(ModelKind::Shccm, truth).unwrap();
+    let mut csv = String::from("v_0,e\n");
+    for v0 in [0.2, 0.5, 1.0, 2.0, 4.0] {
+        let e = impact_at(&map, Zero, v0, &Settings::default()).unwrap().e;
+        csv += &format!("{v0},{e}\n");
+    }
+    let data = Dataset::parse(Path::new("bound.csv"), &csv).unwrap();
+    let free = |lo, hi| Param::Free { lo, hi, log: false };
+    // sigma_b's box ends at 0.04, below the truth's 0.05.
+    let space = Space::new(
+        ModelKind::Shccm,
+        [
+            Param::Fixed(1.0),
+            Param::Fixed(-1.0),
+            free(0.1, 0.9),
+            free(0.0, 0.04),
+            Param::Fixed(1.5),
+            Param::Fixed(1.5),
+            Param::Fixed(1.0),
+            Param::Fixed(1.0),
+        ],
+        None,
+    )
+    .unwrap();
+    let objective = Objective::new(
+        &space,
+        &data,
+        &Zero,
+        Settings::default(),
+        Weights { j1: 1.0, j2: 0.0 },
+    )
+    .unwrap();
+    let r = fit(
+        &objective,
+        &Budget {
+            particles: 8,
+            iterations: 8,
+            ..Budget::default()
+        },
+        3,
+        None,
+    )
+    .unwrap();
+    assert_eq!(r.at_bound, vec!["sigma_b"]);
+    assert_eq!(r.params.sigma_b, 0.04);
+    assert!(
+        r.convergence.agreeing >= 2 && r.convergence.starts >= 2,
+        "{:?}",
+        r.convergence
+    );
+    let u = uncertainty(&objective, &r.point, &r.at_bound).unwrap();
+    assert!(u.params.contains(&("sigma_b", None)), "{:?}", u.params);
+    let kappa = u
+        .params
+        .iter()
+        .find(|(n, _)| *n == "kappa")
+        .unwrap()
+        .1
+        .unwrap();
+    assert!(
+        kappa[0] < r.params.kappa && r.params.kappa < kappa[1],
+        "{kappa:?}"
+    );
+}

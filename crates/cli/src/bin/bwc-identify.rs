@@ -163,8 +163,11 @@ fn run(
             .install(work)?,
         None => work()?,
     };
+    for w in reports.iter().flat_map(|r| &r.warnings) {
+        eprintln!("bwc-identify: warning: {w}");
+    }
     if let Some(dir) = out {
-        let mut files = render(path, &config.fits, &reports, dir)?;
+        let mut files = render(&config.fits, &reports, dir)?;
         files[0].1 = (combined(&reports, &loop_reports).to_string() + "\n").into_bytes();
         for (f, r) in config.loop_fits.iter().zip(&loop_reports) {
             files.extend(render_loops(f, r, dir)?);
@@ -207,6 +210,33 @@ fn run(
                     id.weakest_names().join(" + ")
                 );
             }
+            if let Some(c) = &r.convergence {
+                bwc_cli::out!(
+                    "    search: {} of {} starts agree within {} %{}",
+                    c.agreeing,
+                    c.starts,
+                    config_tolerance(&config, &r.name) * 100.0,
+                    if r.at_bound.is_empty() {
+                        String::new()
+                    } else {
+                        format!("; on a bound: {}", r.at_bound.join(", "))
+                    }
+                );
+            }
+            if let Some(Ok(u)) = &r.uncertainty {
+                let iv: Vec<String> = u
+                    .params
+                    .iter()
+                    .map(|(n, i)| match i {
+                        Some([lo, hi]) => format!("{n} [{lo:.4}, {hi:.4}]"),
+                        None => format!("{n} on its bound"),
+                    })
+                    .collect();
+                bwc_cli::out!("    95 % intervals ({}): {}", u.method, iv.join(", "));
+            }
+            if let Some(s) = r.curve.first().and(predictions_summary(r)) {
+                bwc_cli::out!("    {s}");
+            }
         }
     }
     for r in &loop_reports {
@@ -228,6 +258,23 @@ fn run(
         );
     }
     Ok(())
+}
+
+/// The agreement tolerance of the fit named `name`.
+fn config_tolerance(config: &Config, name: &str) -> f64 {
+    config
+        .fits
+        .iter()
+        .find(|f| f.name == name)
+        .map_or(f64::NAN, |f| f.budget.tolerance)
+}
+
+/// The sentence of the JSON's `predictions.e.summary`, if there are intervals.
+fn predictions_summary(r: &FitReport) -> Option<String> {
+    let v = summary(std::slice::from_ref(r));
+    v["fits"][0]["predictions"]["e"]["summary"]
+        .as_str()
+        .map(String::from)
 }
 
 /// `{"fits": [...]}` with the base-parameter fits first, then the loop fits.

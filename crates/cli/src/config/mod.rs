@@ -533,8 +533,20 @@ fn optimizer(
     } else {
         d.max_starts.max(starts)
     };
-    let max_starts = n(&r.max_starts, "max_starts", starts as i64, 1_000, max_default)?;
-    let agree = n(&r.agree, "agree", 1, max_starts as i64, d.agree.min(max_starts))?;
+    let max_starts = n(
+        &r.max_starts,
+        "max_starts",
+        starts as i64,
+        1_000,
+        max_default,
+    )?;
+    let agree = n(
+        &r.agree,
+        "agree",
+        1,
+        max_starts as i64,
+        d.agree.min(max_starts),
+    )?;
     let tolerance = match ctx.opt(&r.tolerance, &key("tolerance"))? {
         None => d.tolerance,
         Some(t) if (0.0..=1.0).contains(&t) => t,
@@ -549,9 +561,20 @@ fn optimizer(
     };
     let budget = Budget {
         particles: n(&r.particles, "particles", 2, 10_000, d.particles)?,
-        iterations: n(&r.iterations, "iterations", 0, 1_000_000, d.iterations as usize)? as u64,
-        polish_iterations: n(&r.polish, "polish", 0, 1_000_000, d.polish_iterations as usize)?
-            as u64,
+        iterations: n(
+            &r.iterations,
+            "iterations",
+            0,
+            1_000_000,
+            d.iterations as usize,
+        )? as u64,
+        polish_iterations: n(
+            &r.polish,
+            "polish",
+            0,
+            1_000_000,
+            d.polish_iterations as usize,
+        )? as u64,
         starts,
         max_starts,
         agree,

@@ -1,0 +1,64 @@
+//! Does the default search find the optimum in its bounds? For every `[[fit]]` of the given
+//! configs: one reference search with a budget of at least 10x the default's evaluations
+//! (30 starts, no early stop, swarms of twice the particles and iterations), then the default
+//! search for seeds 1-5; prints each default J against the best J any run found.
+//!
+//! `cargo run --release -p bwc-benches --bin identify-convergence -- fixtures/*.toml`
+//! (loop fits are skipped).
+
+use bwc_cli::config::Config;
+use bwc_identify::{fit, Budget, Objective};
+use std::time::Instant;
+
+fn main() {
+    let paths: Vec<String> = std::env::args().skip(1).collect();
+    bwc_cli::out!(
+        "| fit | reference J (evals) | seed | J | J / best | starts agreeing | evals | wall s |"
+    );
+    bwc_cli::out!("|---|---|---|---|---|---|---|---|");
+    for path in paths {
+        let config = match Config::load(std::path::Path::new(&path)) {
+            Ok(c) => c,
+            Err(e) => {
+                eprintln!("{path}: {e}");
+                continue;
+            }
+        };
+        for f in &config.fits {
+            let objective = Objective::new(&f.space, &f.data, &f.input, f.settings, f.weights)
+                .expect("validated config");
+            let reference = Budget {
+                particles: 2 * f.budget.particles,
+                iterations: 2 * f.budget.iterations,
+                starts: 30,
+                max_starts: 30,
+                agree: 30,
+                ..f.budget
+            };
+            let r = fit(&objective, &reference, 0xC0FFEE ^ f.seed, None).expect("reference fit");
+            let runs: Vec<_> = (1..=5u64)
+                .map(|seed| {
+                    let clock = Instant::now();
+                    let o = Objective::new(&f.space, &f.data, &f.input, f.settings, f.weights)
+                        .expect("validated config");
+                    let m = fit(&o, &f.budget, seed ^ f.seed, None).expect("default fit");
+                    (seed, m, clock.elapsed().as_secs_f64())
+                })
+                .collect();
+            let best = runs.iter().map(|(_, m, _)| m.cost).fold(r.cost, f64::min);
+            for (seed, m, wall) in &runs {
+                bwc_cli::out!(
+                    "| {} | {:.5e} ({}) | {seed} | {:.5e} | {:.4} | {}/{} | {} | {wall:.2} |",
+                    f.name,
+                    r.cost,
+                    r.evaluations,
+                    m.cost,
+                    m.cost / best,
+                    m.convergence.agreeing,
+                    m.convergence.starts,
+                    m.evaluations
+                );
+            }
+        }
+    }
+}

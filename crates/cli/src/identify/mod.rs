@@ -1,0 +1,413 @@
+//! Runs and evaluates the fits of an identification config ([`run_fit`], [`eval_fit`],
+//! [`run_loop_fit`], [`eval_loop_fit`]); [`render`] turns their reports into JSON, CSV and SVG.
+
+mod render;
+
+pub use render::{loop_summary, render, render_loops, slug, summary};
+
+use crate::config::FitConfig;
+use crate::CliError;
+use bw_models::{BaseParams, Settings};
+use bwc_identify::{
+    analyse, fit, predict, uncertainty, BandPoint, Budget, Convergence, Costs, Dataset,
+    Identifiability, Objective, Prediction, Uncertainty, Weights,
+};
+use std::path::Path;
+use std::time::Instant;
+
+/// One point of a Pareto front.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParetoPoint {
+    /// Weight of the normalised `J1` (that of `J2` is `1 - w`).
+    pub w: f64,
+    /// `J1` at the optimum of this weight.
+    pub j1: f64,
+    /// `J2` at the optimum of this weight.
+    pub j2: f64,
+    /// The optimum.
+    pub params: BaseParams,
+}
+
+/// The result of one fit (or one evaluation).
+#[derive(Debug, Clone)]
+pub struct FitReport {
+    /// Fit name.
+    pub name: String,
+    /// `"shccm"` or `"mcm"`.
+    pub model: &'static str,
+    /// Base parameters.
+    pub params: BaseParams,
+    /// Whether `U_b`, `T_b` are meaningful (otherwise reported as null).
+    pub uses_input_scales: bool,
+    /// Costs at the default (accurate) solver settings.
+    pub costs: Costs,
+    /// Cost evaluations.
+    pub evaluations: u64,
+    /// Wall time (s).
+    pub wall_s: f64,
+    /// Model predictions at the data points.
+    pub predictions: Vec<Prediction>,
+    /// Identifiability at the optimum (runs only).
+    pub identifiability: Option<Identifiability>,
+    /// How the search ended (runs only).
+    pub convergence: Option<Convergence>,
+    /// Free quantities on a bound of the search (runs only).
+    pub at_bound: Vec<&'static str>,
+    /// Pareto front, if asked for.
+    pub pareto: Vec<ParetoPoint>,
+    /// Confidence intervals (runs only), or why there are none.
+    pub uncertainty: Option<Result<Uncertainty, String>>,
+    /// The model (with its band, where there are intervals) on a log grid from half the
+    /// slowest to twice the fastest measured speed.
+    pub curve: Vec<BandPoint>,
+    /// The band at the data points, in data order (empty without intervals).
+    pub band: Vec<BandPoint>,
+    /// Warnings about this fit: data, convergence, bounds, intervals.
+    pub warnings: Vec<String>,
+}
+
+/// Speeds of a report's model curve: 60 on a log grid from half the slowest to twice the
+/// fastest measured speed (the data's range and beyond, to show what the data do not cover).
+pub fn curve_speeds(data: &Dataset) -> Vec<f64> {
+    let (lo, hi) = data.points.iter().fold((f64::INFINITY, 0.0f64), |a, p| {
+        (a.0.min(p.v0), a.1.max(p.v0))
+    });
+    let (lo, hi) = (lo / 2.0, hi * 2.0);
+    (0..60)
+        .map(|i| lo * (hi / lo).powf(i as f64 / 59.0))
+        .collect()
+}
+
+/// The model `map` at `speeds` without a band (limits equal to the value).
+fn plain_curve(
+    f: &FitConfig,
+    map: &bw_models::BaseMap,
+    speeds: &[f64],
+) -> Result<Vec<BandPoint>, bw_models::ModelError> {
+    let grid = Dataset::at_speeds(&f.data.path, speeds);
+    Ok(predict(map, &f.input, &grid, &Settings::default())?
+        .iter()
+        .map(|p| BandPoint {
+            v0: p.v0,
+            e: [p.e; 3],
+            t_d: [p.t_d; 3],
+        })
+        .collect())
+}
+
+/// Warnings on how a search ended.
+fn search_warnings(
+    f: &FitConfig,
+    c: &Convergence,
+    at_bound: &[&str],
+    p: &BaseParams,
+) -> Vec<String> {
+    let mut w = Vec::new();
+    if c.agreeing < 2 {
+        w.push(format!(
+            "\"{}\": only {} of {} starts reached the best cost within {} %: the optimum may not \
+             be global; raise [fit.optimizer].max_starts or particles",
+            f.name,
+            c.agreeing,
+            c.starts,
+            f.budget.tolerance * 100.0
+        ));
+    }
+    for name in at_bound {
+        let i = bwc_identify::NAMES
+            .iter()
+            .position(|n| n == name)
+            .unwrap_or(0);
+        let value = [
+            p.b_b,
+            p.gamma_b / p.b_b.max(f64::MIN_POSITIVE),
+            p.kappa,
+            p.sigma_b,
+            p.n,
+            p.p,
+            p.u_b,
+            p.t_b,
+        ][i];
+        let (lo, hi) = f.space.bounds(i).unwrap_or((f64::NAN, f64::NAN));
+        let bound = if (value - lo).abs() <= (value - hi).abs() {
+            ("lower", lo)
+        } else {
+            ("upper", hi)
+        };
+        w.push(format!(
+            "\"{}\": {name} = {value} is on its {} bound {}: widen [fit.bounds].{name} if the model allows",
+            f.name, bound.0, bound.1
+        ));
+    }
+    w
+}
+
+fn fail<'a>(
+    path: &'a Path,
+    f: &'a FitConfig,
+) -> impl Fn(bwc_identify::IdentifyError) -> CliError + 'a {
+    let path = path.to_owned();
+    move |source| CliError::Identify {
+        path: path.clone(),
+        fit: f.name.clone(),
+        source,
+    }
+}
+
+/// Fits `f` from its bounds (seeded by `seed` combined with the fit's own seed).
+///
+/// # Errors
+/// [`CliError::Identify`] if the optimizer or a final evaluation fails.
+pub fn run_fit(
+    config: &Path,
+    f: &FitConfig,
+    seed: u64,
+    progress: &(dyn Fn() + Sync),
+) -> Result<FitReport, CliError> {
+    let clock = Instant::now();
+    let err = fail(config, f);
+    let objective = Objective::new(&f.space, &f.data, &f.input, f.settings, f.weights)
+        .map_err(&err)?
+        .with_progress(progress);
+    let result = fit(&objective, &f.budget, seed ^ f.seed, f.start.as_deref()).map_err(&err)?;
+    // Report the costs at the default (accurate) settings.
+    let exact = Objective::new(&f.space, &f.data, &f.input, Settings::default(), f.weights)
+        .map_err(&err)?;
+    let (predictions, costs) = exact.evaluate(&result.point).map_err(&err)?;
+    let identifiability = Some(analyse(&exact, &result.point).map_err(&err)?);
+    let mut warnings = f.data.warnings.clone();
+    warnings.extend(search_warnings(
+        f,
+        &result.convergence,
+        &result.at_bound,
+        &result.params,
+    ));
+    let speeds = curve_speeds(&f.data);
+    let data_speeds: Vec<f64> = f.data.points.iter().map(|p| p.v0).collect();
+    let (unc, curve, band) = match uncertainty(&exact, &result.point, &result.at_bound) {
+        Ok(u) => {
+            let curve = u.band(&exact, &speeds).map_err(&err)?;
+            let band = u.band(&exact, &data_speeds).map_err(&err)?;
+            (Ok(u), curve, band)
+        }
+        Err(e) => {
+            warnings.push(format!("\"{}\": no intervals: {e}", f.name));
+            let map = f.space.map(&result.params).map_err(&err)?;
+            let curve = plain_curve(f, &map, &speeds).map_err(|e| err(e.into()))?;
+            (Err(e.to_string()), curve, Vec::new())
+        }
+    };
+    let mut evaluations = result.evaluations;
+    let mut pareto = Vec::new();
+    if let Some(count) = f.pareto {
+        // Normalise each cost by the variance of its data so the weights are comparable.
+        let var = |xs: Vec<f64>| {
+            let m = xs.iter().sum::<f64>() / xs.len() as f64;
+            (xs.iter().map(|x| (x - m).powi(2)).sum::<f64>() / xs.len() as f64).max(1e-30)
+        };
+        let ve = var(f.data.points.iter().filter_map(|p| p.e).collect());
+        let vt = var(f.data.points.iter().filter_map(|p| p.t_d).collect());
+        // Each weight starts from the main optimum: a small swarm and the full polish suffice.
+        let budget = Budget {
+            particles: (f.budget.particles / 4).max(8),
+            iterations: f.budget.iterations / 4,
+            ..f.budget.single()
+        };
+        for k in 0..count {
+            let w = k as f64 / (count - 1) as f64;
+            let weights = Weights {
+                j1: w / ve,
+                j2: (1.0 - w) / vt,
+            };
+            let o = Objective::new(&f.space, &f.data, &f.input, f.settings, weights)
+                .map_err(&err)?
+                .with_progress(progress);
+            let r = fit(
+                &o,
+                &budget,
+                seed ^ f.seed ^ (k as u64 + 1),
+                Some(&result.point),
+            )
+            .map_err(&err)?;
+            evaluations += r.evaluations;
+            let (_, c) = exact.evaluate(&r.point).map_err(&err)?;
+            pareto.push(ParetoPoint {
+                w,
+                j1: c.j1.unwrap_or(f64::NAN),
+                j2: c.j2.unwrap_or(f64::NAN),
+                params: r.params,
+            });
+        }
+    }
+    Ok(FitReport {
+        name: f.name.clone(),
+        model: f.kind.name(),
+        params: result.params,
+        uses_input_scales: f.uses_input_scales,
+        costs,
+        evaluations,
+        wall_s: clock.elapsed().as_secs_f64(),
+        predictions,
+        identifiability,
+        convergence: Some(result.convergence),
+        at_bound: result.at_bound,
+        pareto,
+        uncertainty: Some(unc),
+        curve,
+        band,
+        warnings,
+    })
+}
+
+/// Evaluates the costs of `f` at its `[fit.params]`.
+///
+/// # Errors
+/// [`CliError::Invalid`] when the fit has no `[fit.params]`; [`CliError::Identify`] when a
+/// simulation fails.
+pub fn eval_fit(config: &Path, f: &FitConfig) -> Result<FitReport, CliError> {
+    let clock = Instant::now();
+    let err = fail(config, f);
+    let params = f.params.ok_or_else(|| CliError::Invalid {
+        path: config.to_owned(),
+        line: 1,
+        key: format!("[fit.params] of \"{}\"", f.name),
+        message: "missing: `eval` needs the parameters to evaluate".into(),
+    })?;
+    let map = f.space.map(&params).map_err(&err)?;
+    let predictions =
+        predict(&map, &f.input, &f.data, &Settings::default()).map_err(|e| err(e.into()))?;
+    let costs = Costs::of(&f.data, &predictions);
+    let curve = plain_curve(f, &map, &curve_speeds(&f.data)).map_err(|e| err(e.into()))?;
+    Ok(FitReport {
+        name: f.name.clone(),
+        model: f.kind.name(),
+        params,
+        uses_input_scales: f.uses_input_scales,
+        costs,
+        evaluations: 1,
+        wall_s: clock.elapsed().as_secs_f64(),
+        predictions,
+        identifiability: None,
+        convergence: None,
+        at_bound: Vec::new(),
+        pareto: Vec::new(),
+        uncertainty: None,
+        curve,
+        band: Vec::new(),
+        warnings: f.data.warnings.clone(),
+    })
+}
+
+/// The result of one loop fit (or evaluation).
+#[derive(Debug, Clone)]
+pub struct LoopReport {
+    /// Fit name.
+    pub name: String,
+    /// `"shccm"` or `"mcm"`.
+    pub model: &'static str,
+    /// The contact law (SI).
+    pub law: bw_models::Physical,
+    /// Loop cost at the law (see `bwc_identify::loop_cost`).
+    pub cost: f64,
+    /// Cost evaluations.
+    pub evaluations: u64,
+    /// Wall time (s).
+    pub wall_s: f64,
+    /// Simulated loops, one per measured loop.
+    pub curves: Vec<bwc_identify::Curve>,
+}
+
+/// Fits the contact law of a loop fit from its bounds.
+///
+/// # Errors
+/// [`CliError::Identify`] if the optimizer or the final evaluation fails.
+pub fn run_loop_fit(
+    config: &Path,
+    f: &crate::config::LoopFitConfig,
+    seed: u64,
+    progress: &(dyn Fn() + Sync),
+) -> Result<LoopReport, CliError> {
+    let clock = Instant::now();
+    let err = |source| CliError::Identify {
+        path: config.to_owned(),
+        fit: f.name.clone(),
+        source,
+    };
+    let objective = bwc_identify::LoopObjective::new(&f.space, &f.loops, f.m, Settings::default())
+        .map_err(err)?;
+    let counted = Counted {
+        inner: &objective,
+        progress,
+    };
+    let min = bwc_identify::minimize(&counted, &f.budget, seed ^ f.seed, None).map_err(err)?;
+    let (cost, curves) = objective.evaluate(&min.point).map_err(err)?;
+    Ok(LoopReport {
+        name: f.name.clone(),
+        model: f.kind.name(),
+        law: f.space.decode(&min.point),
+        cost,
+        evaluations: min.evaluations,
+        wall_s: clock.elapsed().as_secs_f64(),
+        curves,
+    })
+}
+
+/// Evaluates the loop cost at a loop fit's `[loop_fit.params]`.
+///
+/// # Errors
+/// [`CliError::Invalid`] without `[loop_fit.params]`; [`CliError::Identify`] when a simulation fails.
+pub fn eval_loop_fit(
+    config: &Path,
+    f: &crate::config::LoopFitConfig,
+) -> Result<LoopReport, CliError> {
+    let clock = Instant::now();
+    let law = f.params.ok_or_else(|| CliError::Invalid {
+        path: config.to_owned(),
+        line: 1,
+        key: format!("[loop_fit.params] of \"{}\"", f.name),
+        message: "missing: `eval` needs the parameters to evaluate".into(),
+    })?;
+    let err = |source| CliError::Identify {
+        path: config.to_owned(),
+        fit: f.name.clone(),
+        source,
+    };
+    let objective = bwc_identify::LoopObjective::new(&f.space, &f.loops, f.m, Settings::default())
+        .map_err(err)?;
+    let curves = objective.simulate(&law).map_err(err)?;
+    let cost = f
+        .loops
+        .iter()
+        .zip(&curves)
+        .map(|(l, c)| bwc_identify::loop_cost(l, c))
+        .sum::<f64>()
+        / f.loops.len() as f64;
+    Ok(LoopReport {
+        name: f.name.clone(),
+        model: f.kind.name(),
+        law,
+        cost,
+        evaluations: 1,
+        wall_s: clock.elapsed().as_secs_f64(),
+        curves,
+    })
+}
+
+/// Counts progress for a cube problem.
+struct Counted<'a, P> {
+    inner: &'a P,
+    progress: &'a (dyn Fn() + Sync),
+}
+
+impl<P: bwc_identify::CubeProblem> bwc_identify::CubeProblem for Counted<'_, P> {
+    fn dim(&self) -> usize {
+        self.inner.dim()
+    }
+    fn cost_at(&self, s: &[f64]) -> f64 {
+        (self.progress)();
+        self.inner.cost_at(s)
+    }
+    fn evaluations(&self) -> u64 {
+        self.inner.evaluations()
+    }
+}

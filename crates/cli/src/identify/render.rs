@@ -1,0 +1,401 @@
+//! The reports of [`super`] as JSON, CSV and SVG: pure formatting, no simulation.
+
+use super::{FitReport, LoopReport};
+use crate::config::{FitConfig, LoopFitConfig};
+use crate::plot::{self, Series, SeriesLabelPosition};
+use crate::CliError;
+use bw_models::BaseParams;
+use bwc_identify::{BandPoint, Uncertainty};
+use serde_json::{json, Value};
+use std::path::Path;
+
+fn params_json(p: &BaseParams, input_scales: bool) -> Value {
+    json!({
+        "B_b": p.b_b, "Gamma_b": p.gamma_b, "kappa": p.kappa, "sigma_b": p.sigma_b, "n": p.n, "p": p.p,
+        "U_b": input_scales.then_some(p.u_b), "T_b": input_scales.then_some(p.t_b),
+    })
+}
+
+/// The JSON summary `{"fits": [...]}` (key names are a fixed contract; keys may be added).
+pub fn summary(reports: &[FitReport]) -> Value {
+    let fits: Vec<Value> = reports
+        .iter()
+        .map(|r| {
+            let mut v = json!({
+                "name": r.name, "model": r.model, "params": params_json(&r.params, r.uses_input_scales),
+                "J1": r.costs.j1, "J2": r.costs.j2, "evaluations": r.evaluations, "wall_s": r.wall_s,
+            });
+            if let Some(id) = &r.identifiability {
+                let weakest: serde_json::Map<String, Value> = id.names.iter().zip(&id.weakest).map(|(n, w)| (n.to_string(), json!(w))).collect();
+                v["identifiability"] = json!({
+                    "singular_values": id.singular_values,
+                    "condition": if id.condition.is_finite() { json!(id.condition) } else { Value::Null },
+                    "weakest_direction": weakest,
+                });
+            }
+            if let Some(c) = &r.convergence {
+                v["convergence"] = json!({"starts": c.starts, "agreeing": c.agreeing, "evaluations": c.evaluations, "costs": c.costs});
+                v["at_bound"] = json!(r.at_bound);
+            }
+            match &r.uncertainty {
+                Some(Ok(u)) => {
+                    v["intervals"] = intervals_json(u);
+                    v["predictions"] = determined(r);
+                }
+                Some(Err(why)) => v["intervals"] = json!({"method": null, "error": why}),
+                None => {}
+            }
+            v["warnings"] = json!(r.warnings);
+            if !r.pareto.is_empty() {
+                v["pareto"] = r.pareto.iter().map(|p| json!({"w": p.w, "J1": p.j1, "J2": p.j2, "params": params_json(&p.params, r.uses_input_scales)})).collect();
+            }
+            v
+        })
+        .collect();
+    json!({ "fits": fits })
+}
+
+fn intervals_json(u: &Uncertainty) -> Value {
+    let params: serde_json::Map<String, Value> = u
+        .params
+        .iter()
+        .map(|(n, i)| (n.to_string(), json!(i)))
+        .collect();
+    json!({
+        "method": u.method, "level": u.level, "params": params, "clipped": u.clipped,
+        "sigma": u.sigma, "dof": u.dof, "rank": u.rank,
+    })
+}
+
+/// What the data pin down: the band's half-width of `e` (and `t_d`) inside the measured speed
+/// range and at half the slowest and twice the fastest speed, with a sentence saying so.
+fn determined(r: &FitReport) -> Value {
+    let (lo, hi) = r.predictions.iter().fold((f64::INFINITY, 0.0f64), |a, p| {
+        (a.0.min(p.v0), a.1.max(p.v0))
+    });
+    let half = |b: &BandPoint, q: usize| {
+        if q == 0 {
+            (b.e[2] - b.e[1]) / 2.0
+        } else {
+            (b.t_d[2] - b.t_d[1]) / 2.0
+        }
+    };
+    let quantity = |q: usize, unit: &str, name: &str| {
+        let inside: Vec<f64> = r
+            .curve
+            .iter()
+            .filter(|b| b.v0 >= lo * (1.0 - 1e-12) && b.v0 <= hi * (1.0 + 1e-12))
+            .map(|b| half(b, q))
+            .collect();
+        let max_inside = inside.iter().copied().fold(0.0, f64::max);
+        let (first, last) = (r.curve.first(), r.curve.last());
+        let below = first.map(|b| (b.v0, half(b, q)));
+        let above = last.map(|b| (b.v0, half(b, q)));
+        let sentence = format!(
+            "{name} is determined to +/-{max_inside:.2e}{unit} over the measured {lo:.2}-{hi:.2} m/s; +/-{:.2e}{unit} at {:.2} m/s and +/-{:.2e}{unit} at {:.2} m/s outside it",
+            below.map_or(f64::NAN, |b| b.1), below.map_or(f64::NAN, |b| b.0),
+            above.map_or(f64::NAN, |b| b.1), above.map_or(f64::NAN, |b| b.0),
+        );
+        json!({
+            "inside": {"v0": [lo, hi], "halfwidth_max": max_inside},
+            "below": below.map(|b| json!({"v0": b.0, "halfwidth": b.1})),
+            "above": above.map(|b| json!({"v0": b.0, "halfwidth": b.1})),
+            "summary": sentence,
+        })
+    };
+    let mut v = json!({ "e": quantity(0, "", "e") });
+    if r.uses_input_scales && r.costs.j2.is_some() {
+        v["t_d"] = quantity(1, " s", "t_d");
+    }
+    v
+}
+
+/// File-name stem of a fit: lowercase letters, digits and `_`.
+pub fn slug(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let s = s
+        .split('_')
+        .filter(|p| !p.is_empty())
+        .collect::<Vec<_>>()
+        .join("_");
+    if s.is_empty() {
+        "fit".into()
+    } else {
+        s
+    }
+}
+
+/// Renders `summary.json` and, per fit, a CSV of data vs model (with the band's limits where
+/// there are intervals) and SVG plots (CoR and duration against v0 with the band, the Pareto
+/// front).
+///
+/// # Errors
+/// [`CliError::Csv`] or [`CliError::Plot`] when rendering fails.
+pub fn render(
+    fits: &[FitConfig],
+    reports: &[FitReport],
+    out: &Path,
+) -> Result<Vec<(String, Vec<u8>)>, CliError> {
+    let mut files = vec![(
+        "summary.json".to_string(),
+        (summary(reports).to_string() + "\n").into_bytes(),
+    )];
+    for (f, r) in fits.iter().zip(reports) {
+        let stem = slug(&r.name);
+        files.push(data_csv(f, r, out, &format!("{stem}.csv"))?);
+        let perr = |name: &str| {
+            let path = out.join(name);
+            move |message: String| CliError::Plot { path, message }
+        };
+        let band_label = if r.band.is_empty() {
+            ""
+        } else {
+            "95 % confidence band"
+        };
+        let log_x = spans_decade(f);
+        if f.data.has_cor() {
+            let name = format!("{stem}_cor.svg");
+            let data: Vec<_> = f
+                .data
+                .points
+                .iter()
+                .filter_map(|p| p.e.map(|e| (p.v0, e, p.spread)))
+                .collect();
+            let model: Vec<_> = r
+                .curve
+                .iter()
+                .map(|c| (c.v0, c.e[0], c.e[1], c.e[2]))
+                .collect();
+            let label = format!("{} (J1 = {:.2e})", r.model, r.costs.j1.unwrap_or(f64::NAN));
+            let svg = plot::fit_chart(
+                &format!("{}: coefficient of restitution", r.name),
+                "impact speed v0 (m/s)",
+                "coefficient of restitution e (-)",
+                ("measured", &data),
+                (&label, &model),
+                band_label,
+                log_x,
+            )
+            .map_err(perr(&name))?;
+            files.push((name, svg.into_bytes()));
+        }
+        if f.data.has_durations() && r.uses_input_scales {
+            let name = format!("{stem}_t_d.svg");
+            let data: Vec<_> = f
+                .data
+                .points
+                .iter()
+                .filter_map(|p| p.t_d.map(|t| (p.v0, t, None)))
+                .collect();
+            let model: Vec<_> = r
+                .curve
+                .iter()
+                .map(|c| (c.v0, c.t_d[0], c.t_d[1], c.t_d[2]))
+                .collect();
+            let label = format!(
+                "{} (J2 = {:.2e} s^2)",
+                r.model,
+                r.costs.j2.unwrap_or(f64::NAN)
+            );
+            let svg = plot::fit_chart(
+                &format!("{}: contact duration", r.name),
+                "impact speed v0 (m/s)",
+                "contact duration t_d (s)",
+                ("measured", &data),
+                (&label, &model),
+                band_label,
+                log_x,
+            )
+            .map_err(perr(&name))?;
+            files.push((name, svg.into_bytes()));
+        }
+        if !r.pareto.is_empty() {
+            files.extend(pareto_files(r, out, &stem)?);
+        }
+    }
+    Ok(files)
+}
+
+/// Whether the data's speeds span more than a factor of 3 (then v0 is drawn on a log axis).
+fn spans_decade(f: &FitConfig) -> bool {
+    let (lo, hi) = f.data.points.iter().fold((f64::INFINITY, 0.0f64), |a, p| {
+        (a.0.min(p.v0), a.1.max(p.v0))
+    });
+    hi > 3.0 * lo
+}
+
+/// `<stem>.csv`: v_0, e, e_model, t_d, t_d_model, and the band's e_lo, e_hi, t_d_lo, t_d_hi.
+fn data_csv(
+    f: &FitConfig,
+    r: &FitReport,
+    out: &Path,
+    name: &str,
+) -> Result<(String, Vec<u8>), CliError> {
+    let cerr = |source| CliError::Csv {
+        path: out.join(name),
+        source,
+    };
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record([
+        "v_0",
+        "e",
+        "e_model",
+        "t_d",
+        "t_d_model",
+        "e_lo",
+        "e_hi",
+        "t_d_lo",
+        "t_d_hi",
+    ])
+    .map_err(cerr)?;
+    let o = |x: Option<f64>| x.map(|v| v.to_string()).unwrap_or_default();
+    for (i, (d, p)) in f.data.points.iter().zip(&r.predictions).enumerate() {
+        let b = r.band.get(i);
+        let td = r.uses_input_scales;
+        w.write_record([
+            d.v0.to_string(),
+            o(d.e),
+            p.e.to_string(),
+            o(d.t_d),
+            o(td.then_some(p.t_d)),
+            o(b.map(|b| b.e[1])),
+            o(b.map(|b| b.e[2])),
+            o(b.filter(|_| td).map(|b| b.t_d[1])),
+            o(b.filter(|_| td).map(|b| b.t_d[2])),
+        ])
+        .map_err(cerr)?;
+    }
+    Ok((name.to_string(), w.into_inner().expect("in-memory writer")))
+}
+
+/// `<stem>_pareto.csv` and `<stem>_pareto.svg`.
+fn pareto_files(r: &FitReport, out: &Path, stem: &str) -> Result<Vec<(String, Vec<u8>)>, CliError> {
+    let name = format!("{stem}_pareto.csv");
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let rows = std::iter::once(
+        [
+            "w", "J1", "J2", "B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "U_b", "T_b",
+        ]
+        .map(String::from),
+    )
+    .chain(r.pareto.iter().map(|p| {
+        let q = p.params;
+        [
+            p.w, p.j1, p.j2, q.b_b, q.gamma_b, q.kappa, q.sigma_b, q.n, q.p, q.u_b, q.t_b,
+        ]
+        .map(|x| x.to_string())
+    }));
+    for row in rows {
+        w.write_record(&row).map_err(|source| CliError::Csv {
+            path: out.join(&name),
+            source,
+        })?;
+    }
+    let svg_name = format!("{stem}_pareto.svg");
+    let series = [Series {
+        label: "Pareto front".into(),
+        points: r.pareto.iter().map(|p| (p.j1, p.j2)).collect(),
+    }];
+    let svg = plot::chart(
+        &format!("{}: Pareto front", r.name),
+        "J1",
+        "J2 (s^2)",
+        &series,
+        true,
+        SeriesLabelPosition::UpperRight,
+    )
+    .map_err(|message| CliError::Plot {
+        path: out.join(&svg_name),
+        message,
+    })?;
+    Ok(vec![
+        (name, w.into_inner().expect("in-memory writer")),
+        (svg_name, svg.into_bytes()),
+    ])
+}
+
+/// JSON entries of loop fits (in `"fits"` after the base-parameter fits).
+pub fn loop_summary(reports: &[LoopReport]) -> Vec<Value> {
+    reports
+        .iter()
+        .map(|r| {
+            let l = r.law;
+            json!({
+                "name": r.name, "model": r.model, "kind": "loops",
+                "params": {"k": l.k, "c": l.c, "n": l.n, "p": l.p, "alpha": l.alpha, "beta": l.beta, "gamma": l.gamma, "A": l.a},
+                "cost": r.cost, "J1": null, "J2": null, "evaluations": r.evaluations, "wall_s": r.wall_s,
+            })
+        })
+        .collect()
+}
+
+/// Renders a loop fit: `<name>_loops.csv` (v_0, source, x, F) and `<name>_loops.svg`.
+///
+/// # Errors
+/// [`CliError::Csv`] or [`CliError::Plot`] when rendering fails.
+pub fn render_loops(
+    f: &LoopFitConfig,
+    r: &LoopReport,
+    out: &Path,
+) -> Result<Vec<(String, Vec<u8>)>, CliError> {
+    let stem = slug(&r.name);
+    let csv_name = format!("{stem}_loops.csv");
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let cerr = |source| CliError::Csv {
+        path: out.join(&csv_name),
+        source,
+    };
+    w.write_record(["v_0", "source", "x", "F"]).map_err(cerr)?;
+    let mut series = Vec::new();
+    for (l, c) in f.loops.iter().zip(&r.curves) {
+        let data: Vec<(f64, f64)> = l.x.iter().copied().zip(l.f.iter().copied()).collect();
+        for (source, points) in [("data", &data), ("model", c)] {
+            for (x, force) in points {
+                w.write_record([
+                    l.v0.to_string(),
+                    source.into(),
+                    x.to_string(),
+                    force.to_string(),
+                ])
+                .map_err(|source| CliError::Csv {
+                    path: out.join(&csv_name),
+                    source,
+                })?;
+            }
+        }
+        series.push(Series {
+            label: format!("data, v0 = {} m/s", l.v0),
+            points: l.x.iter().zip(&l.f).map(|(x, f)| (-x * 1e3, *f)).collect(),
+        });
+        series.push(Series {
+            label: format!("{}, v0 = {} m/s", r.model, l.v0),
+            points: c.iter().map(|(x, f)| (-x * 1e3, *f)).collect(),
+        });
+    }
+    let svg_name = format!("{stem}_loops.svg");
+    let svg = plot::chart(
+        &format!("{}: loops (cost {:.2e})", r.name, r.cost),
+        "|x| (mm)",
+        "F (N)",
+        &series,
+        false,
+        SeriesLabelPosition::UpperLeft,
+    )
+    .map_err(|message| CliError::Plot {
+        path: out.join(&svg_name),
+        message,
+    })?;
+    Ok(vec![
+        (csv_name, w.into_inner().expect("in-memory writer")),
+        (svg_name, svg.into_bytes()),
+    ])
+}

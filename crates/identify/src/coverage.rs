@@ -1,0 +1,134 @@
+//! Coverage studies: does the 95 % band of [`crate::Uncertainty`] contain the true `e(v0)` as
+//! often as it claims? Each replicate is an independent task, a pure function of its
+//! [`CoverageTask`] and its seed: synthetic CoR data from known parameters plus Gaussian noise,
+//! a fit from the bounds, the band at the data speeds, and how many of its points contain the
+//! truth. Replicates run in parallel with rayon and give identical results on any thread count
+//! or machine, so a study can be spread over a cluster one replicate per task.
+
+use crate::data::{Dataset, Point};
+use crate::fit::{fit, Budget};
+use crate::objective::{Objective, Weights};
+use crate::space::Space;
+use crate::uncertainty::uncertainty;
+use crate::IdentifyError;
+use bw_models::input::Zero;
+use bw_models::{impact_at, BaseParams, Settings};
+use rand::SeedableRng;
+use rand_distr::{Distribution, Normal};
+use rayon::prelude::*;
+use std::path::Path;
+
+/// One coverage study: the truth, where it is measured, how noisily, and how it is fitted.
+#[derive(Debug, Clone)]
+pub struct CoverageTask {
+    /// The search space of the fits (its model is the truth's model).
+    pub space: Space,
+    /// The true base parameters (`u = 0`).
+    pub truth: BaseParams,
+    /// Impact speeds of the synthetic data (m/s); repeats allowed.
+    pub speeds: Vec<f64>,
+    /// Standard deviation of the Gaussian noise added to `e`.
+    pub noise: f64,
+    /// The fits' budget.
+    pub budget: Budget,
+    /// Solver settings of the fits' search.
+    pub settings: Settings,
+}
+
+/// The outcome of one replicate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Replicate {
+    /// Its seed.
+    pub seed: u64,
+    /// Data points whose band contains the true `e` (0 when there are no intervals).
+    pub covered: usize,
+    /// Data points.
+    pub points: usize,
+    /// Mean half-width of the band over the data points (NaN without intervals).
+    pub halfwidth: f64,
+    /// `J1` of the fit.
+    pub j1: f64,
+    /// Why there are no intervals, if there are none.
+    pub error: Option<String>,
+}
+
+/// Runs replicate `seed` of `task`.
+///
+/// # Errors
+/// [`IdentifyError::Model`] if the truth cannot be simulated; fit failures as [`fit`].
+pub fn replicate(task: &CoverageTask, seed: u64) -> Result<Replicate, IdentifyError> {
+    let map = task.space.map(&task.truth)?;
+    let settings = Settings::default();
+    let truth: Vec<f64> = task
+        .speeds
+        .iter()
+        .map(|&v0| impact_at(&map, Zero, v0, &settings).map(|o| o.e))
+        .collect::<Result<_, _>>()?;
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let normal = Normal::new(0.0, task.noise).map_err(|e| IdentifyError::Objectives {
+        reason: format!("noise {}: {e}", task.noise),
+    })?;
+    let data = Dataset {
+        path: Path::new(&format!("synthetic-{seed}.csv")).to_owned(),
+        points: task
+            .speeds
+            .iter()
+            .zip(&truth)
+            .map(|(&v0, &e)| Point {
+                v0,
+                e: Some(e + normal.sample(&mut rng)),
+                t_d: None,
+                spread: None,
+            })
+            .collect(),
+        warnings: Vec::new(),
+    };
+    let weights = Weights { j1: 1.0, j2: 0.0 };
+    let search = Objective::new(&task.space, &data, &Zero, task.settings, weights)?;
+    let result = fit(&search, &task.budget, seed, None)?;
+    let exact = Objective::new(&task.space, &data, &Zero, settings, weights)?;
+    let j1 = result.costs.j1.unwrap_or(f64::NAN);
+    let points = task.speeds.len();
+    let band = uncertainty(&exact, &result.point, &result.at_bound)
+        .and_then(|u| u.band(&exact, &task.speeds));
+    Ok(match band {
+        Ok(band) => Replicate {
+            seed,
+            covered: band
+                .iter()
+                .zip(&truth)
+                .filter(|(b, t)| b.e[1] <= **t && **t <= b.e[2])
+                .count(),
+            points,
+            halfwidth: band.iter().map(|b| (b.e[2] - b.e[1]) / 2.0).sum::<f64>() / points as f64,
+            j1,
+            error: None,
+        },
+        Err(e) => Replicate {
+            seed,
+            covered: 0,
+            points,
+            halfwidth: f64::NAN,
+            j1,
+            error: Some(e.to_string()),
+        },
+    })
+}
+
+/// Runs replicates `seeds` of `task` in parallel (results in seed order).
+///
+/// # Errors
+/// The first replicate's error, in seed order.
+pub fn study(
+    task: &CoverageTask,
+    seeds: std::ops::Range<u64>,
+) -> Result<Vec<Replicate>, IdentifyError> {
+    seeds.into_par_iter().map(|s| replicate(task, s)).collect()
+}
+
+/// The fraction of all data points, over `replicates`, whose band contains the truth.
+pub fn coverage(replicates: &[Replicate]) -> f64 {
+    let covered: usize = replicates.iter().map(|r| r.covered).sum();
+    let points: usize = replicates.iter().map(|r| r.points).sum();
+    covered as f64 / points.max(1) as f64
+}

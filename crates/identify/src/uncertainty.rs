@@ -1,0 +1,309 @@
+//! Confidence intervals of the identified parameters and confidence bands of the predicted
+//! `e(v0)` and `t_d(v0)`, by linearisation at the optimum (the delta method).
+//!
+//! Model: each weighted residual (see [`Objective::weighted_residuals`]) is the model's error
+//! plus independent noise of one variance `σ²`, so that the weights must make the CoR and
+//! duration residuals equally noisy when both are fitted. With `G` the `M × k` sensitivity of
+//! the weighted residuals to the `k` free cube coordinates not on a bound (central
+//! differences), its singular values `s_i` and right singular vectors `v_i`, the parameters'
+//! covariance is `C = σ̂² Σ_{s_i > 1e-6 s_1} v_i v_iᵀ / s_i²` with `σ̂² = Σ r² / (M - r)` and
+//! `r` the number of singular values kept. Directions the data do not determine (dropped
+//! singular values) are left out: a prediction that depends on them gets a band that is too
+//! narrow, which is why the band is validated by simulation (`BENCHMARKS.md`, coverage). A
+//! prediction `q` (a parameter, `e(v0)`, `t_d(v0)`) gets `q ± t_{0.975, M-r} sqrt(∇qᵀ C ∇q)`;
+//! a parameter's interval is taken on its search scale (logarithmic where searched so) and
+//! clipped to its bounds. Parameters on a bound are held there and get no interval.
+
+use crate::data::Dataset;
+use crate::objective::{predict, Objective, Prediction};
+use crate::space::NAMES;
+use crate::IdentifyError;
+use bw_models::input::Input;
+use statrs::distribution::{ContinuousCDF, StudentsT};
+
+/// Confidence level of intervals and bands.
+pub const LEVEL: f64 = 0.95;
+/// Step of the central differences on the unit cube.
+const H: f64 = 1e-4;
+/// Singular values below this fraction of the largest are taken as undetermined directions.
+const RANK_TOLERANCE: f64 = 1e-6;
+
+/// Parameter intervals, and what is needed to put a band on any prediction.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Uncertainty {
+    /// How the intervals were computed.
+    pub method: &'static str,
+    /// Confidence level.
+    pub level: f64,
+    /// Residual standard deviation `σ̂` (in the units of the weighted residuals; the CoR's
+    /// units for a CoR-only fit with weight 1).
+    pub sigma: f64,
+    /// Residual degrees of freedom `M - r`.
+    pub dof: usize,
+    /// Parameter combinations the data determine (`r`).
+    pub rank: usize,
+    /// Per base parameter (`B_b`, `Gamma_b`, `kappa`, `sigma_b`, `n`, `p`, `U_b`, `T_b`) that is
+    /// free: its interval, or `None` when it lies on a bound.
+    pub params: Vec<(&'static str, Option<[f64; 2]>)>,
+    /// Parameters whose interval reaches a bound of the search (the data do not bound them).
+    pub clipped: Vec<&'static str>,
+    point: Vec<f64>,
+    /// Covariance in cube coordinates (all free coordinates; zero where held on a bound).
+    covariance: Vec<Vec<f64>>,
+    quantile: f64,
+}
+
+/// A band point: the prediction at `v0` with its lower and upper confidence limits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BandPoint {
+    /// Impact speed (m/s).
+    pub v0: f64,
+    /// Predicted CoR and its limits.
+    pub e: [f64; 3],
+    /// Predicted duration (s) and its limits.
+    pub t_d: [f64; 3],
+}
+
+/// Central-difference columns of `f` at `s` over the coordinates `free` (one-sided at faces).
+fn columns(
+    s: &[f64],
+    free: &[usize],
+    f: &dyn Fn(&[f64]) -> Result<Vec<f64>, IdentifyError>,
+) -> Result<Vec<Vec<f64>>, IdentifyError> {
+    free.iter()
+        .map(|&j| {
+            let (mut lo, mut hi) = (s.to_vec(), s.to_vec());
+            hi[j] = (s[j] + H).min(1.0);
+            lo[j] = (s[j] - H).max(0.0);
+            let (a, b) = (f(&hi)?, f(&lo)?);
+            let step = hi[j] - lo[j];
+            Ok(a.iter().zip(&b).map(|(x, y)| (x - y) / step).collect())
+        })
+        .collect()
+}
+
+/// Linearised intervals at the optimum `s` of `objective` (evaluated with its settings).
+/// `at_bound` names the free quantities held on a bound.
+///
+/// # Errors
+/// [`IdentifyError::Model`] when a simulation fails; [`IdentifyError::Objectives`] when there
+/// are no more data points than determined parameter combinations (no residual degrees of
+/// freedom to estimate the noise from).
+pub fn uncertainty<I: Input + Sync>(
+    objective: &Objective<'_, I>,
+    s: &[f64],
+    at_bound: &[&'static str],
+) -> Result<Uncertainty, IdentifyError> {
+    let space = objective.space();
+    let names = space.free_names();
+    let free: Vec<usize> = (0..s.len())
+        .filter(|&j| !at_bound.contains(&names[j]))
+        .collect();
+    let (predictions, _) = objective.evaluate(s)?;
+    let r = objective.weighted_residuals(&predictions);
+    let residuals = |x: &[f64]| -> Result<Vec<f64>, IdentifyError> {
+        let (p, _) = objective.evaluate(x)?;
+        Ok(objective.weighted_residuals(&p))
+    };
+    let g = columns(s, &free, &residuals)?;
+    let m = r.len();
+    let (rank, inverse) = pseudo_inverse(&g, m)?;
+    if m <= rank {
+        return Err(IdentifyError::Objectives {
+            reason: format!(
+                "{m} data values for {rank} determined parameter combinations: no residual \
+                 degrees of freedom to estimate the noise (intervals need more data points)"
+            ),
+        });
+    }
+    let dof = m - rank;
+    let rss: f64 = r.iter().map(|x| x * x).sum();
+    let sigma = (rss / dof as f64).sqrt();
+    let mut covariance = vec![vec![0.0; s.len()]; s.len()];
+    for (a, &i) in free.iter().enumerate() {
+        for (b, &j) in free.iter().enumerate() {
+            covariance[i][j] = sigma * sigma * inverse[a][b];
+        }
+    }
+    let quantile = StudentsT::new(0.0, 1.0, dof as f64)
+        .map_err(|e| IdentifyError::Objectives {
+            reason: format!("Student-t with {dof} degrees of freedom: {e}"),
+        })?
+        .inverse_cdf(0.5 + LEVEL / 2.0);
+    let mut u = Uncertainty {
+        method: "linearised (delta method), Student-t",
+        level: LEVEL,
+        sigma,
+        dof,
+        rank,
+        params: Vec::new(),
+        clipped: Vec::new(),
+        point: s.to_vec(),
+        covariance,
+        quantile,
+    };
+    u.parameter_intervals(objective, &names, at_bound);
+    Ok(u)
+}
+
+/// Rank and pseudo-inverse of `GᵀG` (columns `g`, `m` rows), dropping small singular values.
+fn pseudo_inverse(g: &[Vec<f64>], m: usize) -> Result<(usize, Vec<Vec<f64>>), IdentifyError> {
+    let k = g.len();
+    if k == 0 || m == 0 {
+        return Ok((0, vec![vec![0.0; k]; k]));
+    }
+    let jac = faer::Mat::<f64>::from_fn(m, k, |i, j| g[j][i]);
+    let svd = jac.thin_svd().map_err(|e| IdentifyError::Optimizer {
+        message: format!("SVD of the sensitivity matrix: {e:?}"),
+    })?;
+    let sv: Vec<f64> = (0..k.min(m)).map(|i| svd.S().column_vector()[i]).collect();
+    let largest = sv.iter().copied().fold(0.0, f64::max);
+    let mut inverse = vec![vec![0.0; k]; k];
+    let mut rank = 0;
+    for (c, &si) in sv.iter().enumerate() {
+        if !(si > RANK_TOLERANCE * largest) {
+            continue;
+        }
+        rank += 1;
+        for (a, row) in inverse.iter_mut().enumerate() {
+            for (b, x) in row.iter_mut().enumerate() {
+                *x += svd.V()[(a, c)] * svd.V()[(b, c)] / (si * si);
+            }
+        }
+    }
+    Ok((rank, inverse))
+}
+
+impl Uncertainty {
+    /// Standard deviation of a linear functional `∇q` of the cube coordinates.
+    fn sd(&self, grad: &[f64]) -> f64 {
+        let mut v = 0.0;
+        for (i, gi) in grad.iter().enumerate() {
+            for (j, gj) in grad.iter().enumerate() {
+                v += gi * self.covariance[i][j] * gj;
+            }
+        }
+        v.max(0.0).sqrt()
+    }
+
+    fn parameter_intervals<I: Input + Sync>(
+        &mut self,
+        objective: &Objective<'_, I>,
+        names: &[&'static str],
+        at_bound: &[&'static str],
+    ) {
+        let space = objective.space();
+        let s = self.point.clone();
+        for (j, name) in names.iter().enumerate() {
+            if at_bound.contains(name) {
+                self.params.push((base_name(name), None));
+                continue;
+            }
+            let half = self.quantile * self.covariance[j][j].max(0.0).sqrt();
+            let (lo, hi) = ((s[j] - half).max(0.0), (s[j] + half).min(1.0));
+            if lo == 0.0 || hi == 1.0 {
+                self.clipped.push(base_name(name));
+            }
+            let at = |t: f64| {
+                let mut x = s.clone();
+                x[j] = t;
+                space.decode(&x)
+            };
+            let value = |p: bw_models::BaseParams| match *name {
+                "B_b" => p.b_b,
+                "g" => p.gamma_b / p.b_b.max(f64::MIN_POSITIVE),
+                "kappa" => p.kappa,
+                "sigma_b" => p.sigma_b,
+                "n" => p.n,
+                "p" => p.p,
+                "U_b" => p.u_b,
+                _ => p.t_b,
+            };
+            let (a, b) = (value(at(lo)), value(at(hi)));
+            if *name == "g" {
+                // Γ_b = g B_b mixes two coordinates: its interval by the delta method.
+                let grad: Vec<f64> = (0..s.len())
+                    .map(|i| {
+                        let (mut p, mut q) = (s.clone(), s.clone());
+                        p[i] = (s[i] + H).min(1.0);
+                        q[i] = (s[i] - H).max(0.0);
+                        (space.decode(&p).gamma_b - space.decode(&q).gamma_b) / (p[i] - q[i])
+                    })
+                    .collect();
+                let gamma = space.decode(&s).gamma_b;
+                let h = self.quantile * self.sd(&grad);
+                let bb = space.decode(&s).b_b;
+                self.params
+                    .push(("Gamma_b", Some([(gamma - h).max(-bb), (gamma + h).min(bb)])));
+            } else {
+                self.params
+                    .push((base_name(name), Some([a.min(b), a.max(b)])));
+            }
+        }
+        if space.known().is_some() {
+            if let Some((_, Some([lo, hi]))) = self.params.iter().find(|(n, _)| *n == "U_b") {
+                let m = space.known().expect("checked").m;
+                let t = Some([m * lo, m * hi]);
+                self.params.push(("T_b", t));
+            }
+        }
+    }
+
+    /// The band of `e(v0)` and `t_d(v0)` at `speeds` (m/s).
+    ///
+    /// # Errors
+    /// [`IdentifyError::Model`] when a simulation fails.
+    pub fn band<I: Input + Sync>(
+        &self,
+        objective: &Objective<'_, I>,
+        speeds: &[f64],
+    ) -> Result<Vec<BandPoint>, IdentifyError> {
+        let grid = Dataset::at_speeds(&objective.data().path, speeds);
+        let at = |x: &[f64]| -> Result<Vec<Prediction>, IdentifyError> {
+            let map = objective.space().map(&objective.space().decode(x))?;
+            Ok(predict(
+                &map,
+                objective.input(),
+                &grid,
+                objective.settings(),
+            )?)
+        };
+        let centre = at(&self.point)?;
+        let flat = |x: &[f64]| -> Result<Vec<f64>, IdentifyError> {
+            Ok(at(x)?.iter().flat_map(|p| [p.e, p.t_d]).collect())
+        };
+        let all: Vec<usize> = (0..self.point.len())
+            .filter(|&j| self.covariance[j][j] > 0.0)
+            .collect();
+        let cols = columns(&self.point, &all, &flat)?;
+        let mut grad = vec![0.0; self.point.len()];
+        Ok(centre
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let mut limits = |row: usize, value: f64| {
+                    grad.iter_mut().for_each(|g| *g = 0.0);
+                    for (c, &j) in all.iter().enumerate() {
+                        grad[j] = cols[c][row];
+                    }
+                    let h = self.quantile * self.sd(&grad);
+                    [value, value - h, value + h]
+                };
+                BandPoint {
+                    v0: p.v0,
+                    e: limits(2 * i, p.e),
+                    t_d: limits(2 * i + 1, p.t_d),
+                }
+            })
+            .collect())
+    }
+}
+
+/// The reported name of a searched quantity (`g` is reported as `Gamma_b`).
+fn base_name(name: &'static str) -> &'static str {
+    if name == "g" {
+        "Gamma_b"
+    } else {
+        NAMES.iter().find(|n| **n == name).copied().unwrap_or(name)
+    }
+}
