@@ -31,6 +31,7 @@ pub mod plot;
 pub mod scene;
 pub mod signal;
 pub mod simulate;
+mod tables;
 
 pub use error::CliError;
 

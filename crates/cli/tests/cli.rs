@@ -483,7 +483,7 @@ fn synthetic_config(dir: &Path) -> PathBuf {
     std::fs::write(
         &config,
         "[[fit]]\nname = \"synthetic\"\nmodel = \"shccm\"\ndata = \"synthetic.csv\"\n[fit.bounds]\nkappa = [0.1, 0.9]\nsigma_b = [0.0, 0.1]\n\
-         [fit.fixed]\nB_b = 1.0\ng = -1.0\nn = 1.5\np = 1.5\n[fit.optimizer]\nparticles = 8\niterations = 10\npolish = 300\nstarts = 1\n",
+         [fit.fixed]\nB_b = 1.0\ng = -1.0\nn = 1.5\np = 1.5\n[fit.optimizer]\nparticles = 8\niterations = 10\npolish = 300\nstarts = 2\n",
     )
     .unwrap();
     config
@@ -532,8 +532,33 @@ fn identify_run_recovers_synthetic_parameters_on_any_thread_count() {
             .len(),
         2
     );
+    let c = &f["convergence"];
+    assert!(c["agreeing"].as_u64().unwrap() >= 2, "{c}");
+    assert!(c["starts"].as_u64().unwrap() >= c["agreeing"].as_u64().unwrap());
+    assert_eq!(
+        c["costs"].as_array().unwrap().len() as u64,
+        c["starts"].as_u64().unwrap()
+    );
+    assert_eq!(f["at_bound"], serde_json::json!([]));
+    let iv = &f["intervals"];
+    assert_eq!(iv["level"], 0.95);
+    assert!(iv["method"].as_str().unwrap().contains("delta method"));
+    let kappa = iv["params"]["kappa"].as_array().unwrap();
+    let (lo, hi) = (kappa[0].as_f64().unwrap(), kappa[1].as_f64().unwrap());
+    // Noise-free data: an interval around the truth, and a narrow one.
+    assert!(lo <= 0.6 && 0.6 <= hi && hi - lo < 1e-3, "{iv}");
+    assert!(f["predictions"]["e"]["summary"]
+        .as_str()
+        .unwrap()
+        .starts_with("e is determined to"));
+    assert_eq!(f["warnings"], serde_json::json!([]));
     let csv = std::fs::read_to_string(out_dir.join("synthetic.csv")).unwrap();
-    assert!(csv.starts_with("v_0,e,e_model,t_d,t_d_model"));
+    assert!(csv.starts_with("v_0,e,e_model,t_d,t_d_model,e_lo,e_hi,t_d_lo,t_d_hi"));
+    for row in csv.lines().skip(1) {
+        let v: Vec<f64> = row.split(',').filter_map(|x| x.parse().ok()).collect();
+        // v_0, e, e_model, e_lo, e_hi: the band holds the model.
+        assert!(v[3] <= v[2] && v[2] <= v[4], "{row}");
+    }
     assert!(out_dir.join("synthetic_cor.svg").exists() && out_dir.join("summary.json").exists());
 }
 
@@ -796,4 +821,36 @@ mod fuzz {
             }
         }
     }
+}
+
+/// Suspicious data and an optimum on a bound are named on stderr and in the JSON; the fit still
+/// finishes (exit 0) with its results.
+#[test]
+fn identify_warns_about_data_and_bounds() {
+    let dir = scratch("identify-warnings");
+    std::fs::write(
+        dir.join("d.csv"),
+        "v_0,e\n0.2,0.95\n0.5,0.93\n1.0,1.02\n2.0,0.88\n4.0,0.84\n",
+    )
+    .unwrap();
+    let config = dir.join("fit.toml");
+    std::fs::write(
+        &config,
+        "[[fit]]\nname = \"w\"\nmodel = \"shccm\"\ndata = \"d.csv\"\n[fit.bounds]\nkappa = [0.1, 0.9]\nsigma_b = [0.0, 0.001]\n\
+         [fit.fixed]\nB_b = 0.0\ng = 0.0\nn = 1.5\np = 1.5\n[fit.optimizer]\nparticles = 8\niterations = 10\n",
+    )
+    .unwrap();
+    let out = identify(&["run", config.to_str().unwrap(), "--json"]);
+    let v = json(&out);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("d.csv:4: e = 1.02 > 1"), "{stderr}");
+    // Damping alone cannot reach e = 0.84: sigma_b ends on its upper bound.
+    assert!(
+        stderr.contains("sigma_b = 0.001 is on its upper bound 0.001"),
+        "{stderr}"
+    );
+    let f = &v["fits"][0];
+    assert_eq!(f["at_bound"], serde_json::json!(["sigma_b"]));
+    assert_eq!(f["intervals"]["params"]["sigma_b"], serde_json::Value::Null);
+    assert_eq!(f["warnings"].as_array().unwrap().len(), 2, "{f}");
 }

@@ -183,8 +183,9 @@ impl Space {
         self.known
     }
 
-    /// Base parameters at a point `s` of the unit cube (coordinates are clamped into it).
-    pub fn decode(&self, s: &[f64]) -> BaseParams {
+    /// The searchable quantities of [`NAMES`] (with `g`, not `Γ_b`) at a point `s` of the unit
+    /// cube (coordinates are clamped into it).
+    pub fn quantities(&self, s: &[f64]) -> [f64; 8] {
         let mut v = [0.0; 8];
         for (i, p) in self.params.iter().enumerate() {
             if let Param::Fixed(x) = p {
@@ -210,6 +211,12 @@ impl Space {
         if let Some(c) = self.known {
             v[7] = c.m * v[6];
         }
+        v
+    }
+
+    /// Base parameters at a point `s` of the unit cube (coordinates are clamped into it).
+    pub fn decode(&self, s: &[f64]) -> BaseParams {
+        let v = self.quantities(s);
         BaseParams {
             b_b: v[0],
             gamma_b: v[1] * v[0],

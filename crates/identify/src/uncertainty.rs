@@ -12,7 +12,9 @@
 //! narrow, which is why the band is validated by simulation (`BENCHMARKS.md`, coverage). A
 //! prediction `q` (a parameter, `e(v0)`, `t_d(v0)`) gets `q ± t_{0.975, M-r} sqrt(∇qᵀ C ∇q)`;
 //! a parameter's interval is taken on its search scale (logarithmic where searched so) and
-//! clipped to its bounds. Parameters on a bound are held there and get no interval.
+//! clipped to its bounds. Parameters on a bound are held there and get no interval; a
+//! parameter with a weight of 0.1 or more in an undetermined direction gets its whole bound
+//! interval (and is listed in `clipped`).
 
 use crate::data::Dataset;
 use crate::objective::{predict, Objective, Prediction};
@@ -107,7 +109,18 @@ pub fn uncertainty<I: Input + Sync>(
     };
     let g = columns(s, &free, &residuals)?;
     let m = r.len();
-    let (rank, inverse) = pseudo_inverse(&g, m)?;
+    let Inverse {
+        rank,
+        inverse,
+        undetermined,
+    } = pseudo_inverse(&g, m)?;
+    if rank == 0 {
+        return Err(IdentifyError::Objectives {
+            reason: "the data determine no parameter combination (the model's predictions do \
+                     not change with any free parameter off its bound)"
+                .into(),
+        });
+    }
     if m <= rank {
         return Err(IdentifyError::Objectives {
             reason: format!(
@@ -142,26 +155,49 @@ pub fn uncertainty<I: Input + Sync>(
         covariance,
         quantile,
     };
-    u.parameter_intervals(objective, &names, at_bound);
+    let undetermined: Vec<&'static str> = undetermined.iter().map(|&a| names[free[a]]).collect();
+    u.parameter_intervals(objective, &names, at_bound, &undetermined);
     Ok(u)
 }
 
+/// The pseudo-inverse of `GᵀG` over the determined directions.
+struct Inverse {
+    rank: usize,
+    inverse: Vec<Vec<f64>>,
+    /// Columns with a weight of at least 0.1 in a dropped (undetermined) direction.
+    undetermined: Vec<usize>,
+}
+
 /// Rank and pseudo-inverse of `GᵀG` (columns `g`, `m` rows), dropping small singular values.
-fn pseudo_inverse(g: &[Vec<f64>], m: usize) -> Result<(usize, Vec<Vec<f64>>), IdentifyError> {
+fn pseudo_inverse(g: &[Vec<f64>], m: usize) -> Result<Inverse, IdentifyError> {
     let k = g.len();
     if k == 0 || m == 0 {
-        return Ok((0, vec![vec![0.0; k]; k]));
+        return Ok(Inverse {
+            rank: 0,
+            inverse: vec![vec![0.0; k]; k],
+            undetermined: (0..k).collect(),
+        });
     }
     let jac = faer::Mat::<f64>::from_fn(m, k, |i, j| g[j][i]);
-    let svd = jac.thin_svd().map_err(|e| IdentifyError::Optimizer {
+    let svd = jac.svd().map_err(|e| IdentifyError::Optimizer {
         message: format!("SVD of the sensitivity matrix: {e:?}"),
     })?;
-    let sv: Vec<f64> = (0..k.min(m)).map(|i| svd.S().column_vector()[i]).collect();
+    let sv: Vec<f64> = (0..k)
+        .map(|i| {
+            if i < m {
+                svd.S().column_vector()[i]
+            } else {
+                0.0
+            }
+        })
+        .collect();
     let largest = sv.iter().copied().fold(0.0, f64::max);
     let mut inverse = vec![vec![0.0; k]; k];
     let mut rank = 0;
+    let mut undetermined = Vec::new();
     for (c, &si) in sv.iter().enumerate() {
         if !(si > RANK_TOLERANCE * largest) {
+            undetermined.extend((0..k).filter(|&a| svd.V()[(a, c)].abs() >= 0.1));
             continue;
         }
         rank += 1;
@@ -171,7 +207,13 @@ fn pseudo_inverse(g: &[Vec<f64>], m: usize) -> Result<(usize, Vec<Vec<f64>>), Id
             }
         }
     }
-    Ok((rank, inverse))
+    undetermined.sort_unstable();
+    undetermined.dedup();
+    Ok(Inverse {
+        rank,
+        inverse,
+        undetermined,
+    })
 }
 
 impl Uncertainty {
@@ -191,6 +233,7 @@ impl Uncertainty {
         objective: &Objective<'_, I>,
         names: &[&'static str],
         at_bound: &[&'static str],
+        undetermined: &[&'static str],
     ) {
         let space = objective.space();
         let s = self.point.clone();
@@ -199,7 +242,12 @@ impl Uncertainty {
                 self.params.push((base_name(name), None));
                 continue;
             }
-            let half = self.quantile * self.covariance[j][j].max(0.0).sqrt();
+            // A parameter with weight in an undetermined direction: the data do not bound it.
+            let half = if undetermined.contains(name) {
+                f64::INFINITY
+            } else {
+                self.quantile * self.covariance[j][j].max(0.0).sqrt()
+            };
             let (lo, hi) = ((s[j] - half).max(0.0), (s[j] + half).min(1.0));
             if lo == 0.0 || hi == 1.0 {
                 self.clipped.push(base_name(name));
@@ -231,7 +279,11 @@ impl Uncertainty {
                     })
                     .collect();
                 let gamma = space.decode(&s).gamma_b;
-                let h = self.quantile * self.sd(&grad);
+                let h = if half.is_finite() {
+                    self.quantile * self.sd(&grad)
+                } else {
+                    f64::INFINITY
+                };
                 let bb = space.decode(&s).b_b;
                 self.params
                     .push(("Gamma_b", Some([(gamma - h).max(-bb), (gamma + h).min(bb)])));

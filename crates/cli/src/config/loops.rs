@@ -1,8 +1,7 @@
 //! `[[loop_fit]]` tables: contact laws fitted to measured hysteresis loops.
 
-use super::{optimizer, param_of, Ctx, Pair, RawOptimizer};
-use crate::scene::raw::Num;
-use crate::scene::{model_kind, span};
+use super::{optimizer, param_of, Pair, RawOptimizer};
+use crate::tables::{model_kind, span, Ctx, Num};
 use crate::CliError;
 use bw_models::ModelKind;
 use bwc_identify::{Budget, IdentifyError, Param};

@@ -19,20 +19,17 @@
 //! [fit.pareto]                        # count: weights of a Pareto sweep over (J1, J2)
 //! ```
 
+mod fit;
 mod loops;
 
 pub use loops::LoopFitConfig;
 
-use crate::scene::raw::{Num, RawInput, RawSolver};
-use crate::scene::{model_kind, signal, span, Ctx};
 use crate::signal::Signal;
+use crate::tables::{Ctx, Num, RawInput, RawSolver};
 use crate::CliError;
 use bw_models::{BaseParams, ModelKind, Settings};
-use bwc_identify::{
-    Budget, Dataset, IdentifyError, KnownMassStiffness, Param, Space, Weights, NAMES,
-};
+use bwc_identify::{Budget, Dataset, Param, Space, Weights};
 use serde::Deserialize;
-use std::ops::Range;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
@@ -88,6 +85,37 @@ struct RawQuantities<T> {
     u_b: Option<T>,
     #[serde(rename = "T_b")]
     t_b: Option<T>,
+}
+
+impl<T> Default for RawQuantities<T> {
+    fn default() -> Self {
+        Self {
+            b_b: None,
+            g: None,
+            kappa: None,
+            sigma_b: None,
+            n: None,
+            p: None,
+            u_b: None,
+            t_b: None,
+        }
+    }
+}
+
+impl<T> RawQuantities<T> {
+    /// The entries in the order of [`NAMES`].
+    fn by_name(&self) -> [&Option<T>; 8] {
+        [
+            &self.b_b,
+            &self.g,
+            &self.kappa,
+            &self.sigma_b,
+            &self.n,
+            &self.p,
+            &self.u_b,
+            &self.t_b,
+        ]
+    }
 }
 
 #[derive(Debug, Deserialize)]
@@ -201,7 +229,7 @@ impl Config {
     /// [`CliError::Io`], [`CliError::Syntax`] and [`CliError::Invalid`] as for scenes;
     /// [`CliError::Identify`] for a data file's own errors (with its path and line).
     pub fn load(path: &Path) -> Result<Self, CliError> {
-        Self::parse(path, &crate::scene::read_text(path)?)
+        Self::parse(path, &crate::tables::read_text(path)?)
     }
 
     /// Validates a config given as text; data files are read relative to `path`'s folder.
@@ -211,7 +239,7 @@ impl Config {
     pub fn parse(path: &Path, src: &str) -> Result<Self, CliError> {
         let ctx = Ctx { path, src };
         let raw: RawConfig =
-            toml::from_str(src).map_err(|e| crate::scene::syntax_error(&ctx, &e))?;
+            toml::from_str(src).map_err(|e| crate::tables::syntax_error(&ctx, &e))?;
         let fits = raw.fit.unwrap_or_default();
         let loop_fits = raw.loop_fit.unwrap_or_default();
         if fits.is_empty() && loop_fits.is_empty() {
@@ -222,22 +250,22 @@ impl Config {
             ));
         }
         let dir = path.parent().unwrap_or(Path::new("."));
-        let mut out: Vec<FitConfig> = Vec::new();
+        let mut drafts: Vec<fit::Draft> = Vec::new();
         for (i, f) in fits.iter().enumerate() {
-            let fit = parse_fit(&ctx, dir, f, i)?;
-            if out.iter().any(|o| o.name == fit.name) {
+            let draft = fit::parse_fit(&ctx, dir, f, i)?;
+            if drafts.iter().any(|o| o.name() == draft.name()) {
                 return Err(ctx.invalid(
                     &f.span(),
                     "[[fit]].name",
-                    format!("\"{}\" is used twice: names must be unique", fit.name),
+                    format!("\"{}\" is used twice: names must be unique", draft.name()),
                 ));
             }
-            out.push(fit);
+            drafts.push(draft);
         }
         let mut loops_out: Vec<LoopFitConfig> = Vec::new();
         for (i, f) in loop_fits.iter().enumerate() {
             let fit = loops::parse_loop_fit(&ctx, dir, f, i)?;
-            if out.iter().any(|o| o.name == fit.name)
+            if drafts.iter().any(|o| o.name() == fit.name)
                 || loops_out.iter().any(|o| o.name == fit.name)
             {
                 return Err(ctx.invalid(
@@ -248,260 +276,17 @@ impl Config {
             }
             loops_out.push(fit);
         }
+        // The data files are read once the whole config has parsed.
+        let out = drafts
+            .into_iter()
+            .map(|d| d.with_data(&ctx))
+            .collect::<Result<Vec<_>, _>>()?;
         Ok(Config {
             path: path.to_owned(),
             fits: out,
             loop_fits: loops_out,
         })
     }
-}
-
-fn parse_fit(
-    ctx: &Ctx,
-    dir: &Path,
-    f: &Spanned<RawFit>,
-    index: usize,
-) -> Result<FitConfig, CliError> {
-    let t = f.span();
-    let r = f.get_ref();
-    let name = r
-        .name
-        .as_ref()
-        .map_or_else(|| format!("fit {}", index + 1), |n| n.get_ref().clone());
-    let kind = match &r.model {
-        Some(m) => model_kind(ctx, m, "[[fit]].model")?,
-        None => {
-            return Err(ctx.invalid(
-                &t,
-                "[[fit]].model",
-                "missing required key: \"shccm\" or \"mcm\"",
-            ))
-        }
-    };
-    let data_key = r.data.as_ref().ok_or_else(|| {
-        ctx.invalid(
-            &t,
-            "[[fit]].data",
-            "missing required key: a CSV file relative to the config",
-        )
-    })?;
-    let data_path = dir.join(data_key.get_ref());
-    let data = Dataset::load(&data_path).map_err(|source| CliError::Identify {
-        path: ctx.path.to_owned(),
-        fit: name.clone(),
-        source,
-    })?;
-
-    let weights = match &r.objectives {
-        None => Weights { j1: 1.0, j2: 0.0 },
-        Some(o) => {
-            let o_ref = o.get_ref();
-            let j1 = ctx.opt(&o_ref.j1, "objectives.J1")?.unwrap_or(0.0);
-            let j2 = ctx.opt(&o_ref.j2, "objectives.J2")?.unwrap_or(0.0);
-            Weights { j1, j2 }
-        }
-    };
-
-    // Bounds and fixed values.
-    let empty_b = RawQuantities {
-        b_b: None,
-        g: None,
-        kappa: None,
-        sigma_b: None,
-        n: None,
-        p: None,
-        u_b: None,
-        t_b: None,
-    };
-    let empty_v = RawQuantities {
-        b_b: None,
-        g: None,
-        kappa: None,
-        sigma_b: None,
-        n: None,
-        p: None,
-        u_b: None,
-        t_b: None,
-    };
-    let b = r.bounds.as_ref().map_or(&empty_b, |b| b.get_ref());
-    let v = r.fixed.as_ref().map_or(&empty_v, |v| v.get_ref());
-    let bounds = [
-        &b.b_b, &b.g, &b.kappa, &b.sigma_b, &b.n, &b.p, &b.u_b, &b.t_b,
-    ];
-    let fixed = [
-        &v.b_b, &v.g, &v.kappa, &v.sigma_b, &v.n, &v.p, &v.u_b, &v.t_b,
-    ];
-    let mut log = [false; 8];
-    if let Some(l) = &r.log {
-        for item in l.get_ref() {
-            match NAMES.iter().position(|n| n == item.get_ref()) {
-                Some(i) => log[i] = true,
-                None => {
-                    return Err(ctx.invalid(
-                        &item.span(),
-                        "[[fit]].log",
-                        format!(
-                            "\"{}\" is not a base parameter: use {}",
-                            item.get_ref(),
-                            NAMES.join(", ")
-                        ),
-                    ))
-                }
-            }
-        }
-    }
-    let known = match &r.known {
-        None => None,
-        Some(k) => {
-            let kr = k.get_ref();
-            Some(KnownMassStiffness {
-                m: ctx.req(&kr.m, &k.span(), "[fit.known].m")?,
-                k: ctx.req(&kr.k, &k.span(), "[fit.known].k")?,
-            })
-        }
-    };
-    let input = match &r.input {
-        Some(i) => signal(ctx, i, "[fit.input]", known.map(|k| k.m))?,
-        None => Signal::zero(),
-    };
-    let uses_input_scales =
-        !bw_models::input::Input::is_zero(&input) || weights.j2 > 0.0 || known.is_some();
-    let mut params = [Param::Fixed(1.0); 8];
-    let bounds_span = r.bounds.as_ref().map_or(t.clone(), |b| b.span());
-    for i in 0..8 {
-        let key = NAMES[i];
-        params[i] = match param_of(ctx, "fit", key, bounds[i], fixed[i], log[i])? {
-            Some(param) => param,
-            None if i == 7 && known.is_some() => Param::Derived,
-            // U_b and T_b only matter with an input, a duration objective or a known mass.
-            None if i >= 6 && !uses_input_scales => Param::Fixed(1.0),
-            None => {
-                return Err(ctx.invalid(
-                    &bounds_span,
-                    format!("[fit.bounds].{key}"),
-                    format!(
-                        "missing: give bounds for {key} in [fit.bounds] or a value in [fit.fixed]"
-                    ),
-                ))
-            }
-        };
-    }
-    let space = Space::new(kind, params, known).map_err(|e| match e {
-        IdentifyError::Bounds {
-            name,
-            lo,
-            hi,
-            allowed,
-        } => {
-            let i = NAMES.iter().position(|n| *n == name);
-            let (table, s) = match i {
-                Some(i) if bounds[i].is_some() => ("[fit.bounds]", span(bounds[i])),
-                Some(i) if fixed[i].is_some() => ("[fit.fixed]", span(fixed[i])),
-                _ => ("[fit.known]", r.known.as_ref().map(|k| k.span())),
-            };
-            ctx.invalid(
-                &s.unwrap_or(t.clone()),
-                format!("{table}.{name}"),
-                format!("[{lo}, {hi}] is not admissible: {allowed}"),
-            )
-        }
-        other => ctx.invalid(&t, format!("[[fit]] \"{name}\""), other.to_string()),
-    })?;
-
-    let point = |p: &Spanned<RawPoint>, table: &str| -> Result<BaseParams, CliError> {
-        let s = p.span();
-        let q = p.get_ref();
-        let key = |k: &str| format!("[fit.{table}].{k}");
-        let uf = |v: &Option<Num>, k: &str| -> Result<f64, CliError> {
-            if uses_input_scales {
-                ctx.req(v, &s, &key(k))
-            } else {
-                Ok(ctx.opt(v, &key(k))?.unwrap_or(1.0))
-            }
-        };
-        let mut bp = BaseParams {
-            b_b: ctx.req(&q.b_b, &s, &key("B_b"))?,
-            gamma_b: ctx.req(&q.gamma_b, &s, &key("Gamma_b"))?,
-            kappa: ctx.req(&q.kappa, &s, &key("kappa"))?,
-            sigma_b: ctx.req(&q.sigma_b, &s, &key("sigma_b"))?,
-            n: ctx.req(&q.n, &s, &key("n"))?,
-            p: ctx.req(&q.p, &s, &key("p"))?,
-            u_b: uf(&q.u_b, "U_b")?,
-            t_b: 1.0,
-        };
-        bp.t_b = match known {
-            Some(k) => k.m * bp.u_b,
-            None => uf(&q.t_b, "T_b")?,
-        };
-        bw_models::BaseMap::new(kind, bp).map_err(|e| {
-            let span_of = |n: &str| match n {
-                "B_b" => span(&q.b_b),
-                "Gamma_b" => span(&q.gamma_b),
-                "kappa" => span(&q.kappa),
-                "sigma_b" => span(&q.sigma_b),
-                "n" => span(&q.n),
-                "p" => span(&q.p),
-                "U_b" => span(&q.u_b),
-                "T_b" => span(&q.t_b),
-                _ => None,
-            };
-            ctx.model_error(e, &format!("[fit.{table}]"), span_of, &s)
-        })?;
-        Ok(bp)
-    };
-    let start = match &r.start {
-        Some(p) => {
-            let bp = point(p, "start")?;
-            Some(
-                space
-                    .encode(&bp)
-                    .map_err(|e| ctx.invalid(&p.span(), "[fit.start]", e.to_string()))?,
-            )
-        }
-        None => None,
-    };
-    let params_eval = r.params.as_ref().map(|p| point(p, "params")).transpose()?;
-
-    let (budget, seed) = optimizer(ctx, &r.optimizer, "[fit.optimizer]", index)?;
-
-    let search = Settings {
-        rtol: 1e-8,
-        atol: 1e-10,
-        ..Settings::default()
-    };
-    let settings = crate::scene::solver_settings(ctx, &r.solver, "[fit.solver]", search)?;
-    let pareto = match &r.pareto {
-        None => None,
-        Some(p) => {
-            Some(count(ctx, &p.get_ref().count, "[fit.pareto].count", 2, 1_000, 11)? as usize)
-        }
-    };
-    // The objectives must match the data (checked by the library, reported at the objectives key).
-    let objective_span: Range<usize> = r.objectives.as_ref().map_or(t.clone(), |o| o.span());
-    bwc_identify::Objective::new(&space, &data, &input, settings, weights)
-        .map_err(|e| ctx.invalid(&objective_span, "[[fit]].objectives", e.to_string()))?;
-    if pareto.is_some() && !(data.has_cor() && data.has_durations()) {
-        return Err(ctx.invalid(
-            &r.pareto.as_ref().map_or(t.clone(), |p| p.span()),
-            "[fit.pareto]",
-            "a Pareto sweep needs both `e` and `t_d` in the data",
-        ));
-    }
-    Ok(FitConfig {
-        name,
-        kind,
-        data,
-        space,
-        input,
-        weights,
-        budget,
-        seed,
-        settings,
-        start,
-        params: params_eval,
-        uses_input_scales,
-        pareto,
-    })
 }
 
 fn optimizer(

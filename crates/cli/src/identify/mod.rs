@@ -95,13 +95,8 @@ fn plain_curve(
         .collect())
 }
 
-/// Warnings on how a search ended.
-fn search_warnings(
-    f: &FitConfig,
-    c: &Convergence,
-    at_bound: &[&str],
-    p: &BaseParams,
-) -> Vec<String> {
+/// Warnings on how a search ended (`s` the optimum on the unit cube).
+fn search_warnings(f: &FitConfig, c: &Convergence, at_bound: &[&str], s: &[f64]) -> Vec<String> {
     let mut w = Vec::new();
     if c.agreeing < 2 {
         w.push(format!(
@@ -113,30 +108,23 @@ fn search_warnings(
             f.budget.tolerance * 100.0
         ));
     }
+    let values = f.space.quantities(s);
     for name in at_bound {
         let i = bwc_identify::NAMES
             .iter()
             .position(|n| n == name)
             .unwrap_or(0);
-        let value = [
-            p.b_b,
-            p.gamma_b / p.b_b.max(f64::MIN_POSITIVE),
-            p.kappa,
-            p.sigma_b,
-            p.n,
-            p.p,
-            p.u_b,
-            p.t_b,
-        ][i];
         let (lo, hi) = f.space.bounds(i).unwrap_or((f64::NAN, f64::NAN));
-        let bound = if (value - lo).abs() <= (value - hi).abs() {
+        let value = values[i];
+        let (side, bound) = if (value - lo).abs() <= (value - hi).abs() {
             ("lower", lo)
         } else {
             ("upper", hi)
         };
         w.push(format!(
-            "\"{}\": {name} = {value} is on its {} bound {}: widen [fit.bounds].{name} if the model allows",
-            f.name, bound.0, bound.1
+            "\"{}\": {name} = {value} is on its {side} bound {bound}: widen [fit.bounds].{name} \
+             if the model allows",
+            f.name
         ));
     }
     w
@@ -180,7 +168,7 @@ pub fn run_fit(
         f,
         &result.convergence,
         &result.at_bound,
-        &result.params,
+        &result.point,
     ));
     let speeds = curve_speeds(&f.data);
     let data_speeds: Vec<f64> = f.data.points.iter().map(|p| p.v0).collect();

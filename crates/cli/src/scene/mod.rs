@@ -14,20 +14,19 @@
 //! [output]                   # optional: trajectory, dt, loops, sweep, plots
 //! ```
 
-mod inputs;
+mod bodies;
 pub(crate) mod raw;
 
-use inputs::bodies;
-pub(crate) use inputs::signal;
+use crate::tables::{model_kind, read_text, signal, solver_settings, span, syntax_error, Ctx};
+use bodies::bodies;
 
 use crate::signal::Signal;
 use crate::CliError;
 use bw_models::{
-    BaseMap, BaseParams, Bodies, ModelError, ModelKind, Nondim, NondimParams, Physical,
-    PhysicalParams, Settings, Stiffness,
+    BaseMap, BaseParams, Bodies, ModelKind, Nondim, NondimParams, Physical, PhysicalParams,
+    Settings,
 };
-use bwc_ode::{DOP853, DOPRI5, VERN7, VERN9};
-use raw::{Num, RawBase, RawScene, RawSolver, SeqOrMap};
+use raw::{RawBase, RawScene, SeqOrMap};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
@@ -108,127 +107,6 @@ pub struct OutputSpec {
     pub sweep: bool,
     /// SVG plots of whatever is written.
     pub plots: bool,
-}
-
-pub(crate) struct Ctx<'a> {
-    pub(crate) path: &'a Path,
-    pub(crate) src: &'a str,
-}
-
-impl Ctx<'_> {
-    pub(crate) fn line(&self, span: &Range<usize>) -> usize {
-        let end = span.start.min(self.src.len());
-        self.src[..end].matches('\n').count() + 1
-    }
-
-    pub(crate) fn invalid(
-        &self,
-        span: &Range<usize>,
-        key: impl Into<String>,
-        message: impl Into<String>,
-    ) -> CliError {
-        CliError::Invalid {
-            path: self.path.to_owned(),
-            line: self.line(span),
-            key: key.into(),
-            message: message.into(),
-        }
-    }
-
-    pub(crate) fn num(&self, v: &Num, key: &str) -> Result<f64, CliError> {
-        let x = *v.get_ref();
-        if x.is_finite() {
-            Ok(x)
-        } else {
-            Err(self.invalid(&v.span(), key, format!("{x} is not a finite number")))
-        }
-    }
-
-    pub(crate) fn req(
-        &self,
-        v: &Option<Num>,
-        table: &Range<usize>,
-        key: &str,
-    ) -> Result<f64, CliError> {
-        match v {
-            Some(v) => self.num(v, key),
-            None => Err(self.invalid(table, key, "missing required key")),
-        }
-    }
-
-    pub(crate) fn opt(&self, v: &Option<Num>, key: &str) -> Result<Option<f64>, CliError> {
-        v.as_ref().map(|v| self.num(v, key)).transpose()
-    }
-
-    /// Turns a model-library error into one that names the key and line.
-    pub(crate) fn model_error(
-        &self,
-        e: ModelError,
-        table: &str,
-        span_of: impl Fn(&str) -> Option<Range<usize>>,
-        fallback: &Range<usize>,
-    ) -> CliError {
-        match e {
-            ModelError::InvalidParameter {
-                name,
-                value,
-                allowed,
-            }
-            | ModelError::InvalidSetting {
-                name,
-                value,
-                allowed,
-            } => {
-                let span = span_of(name).unwrap_or_else(|| fallback.clone());
-                self.invalid(
-                    &span,
-                    format!("{table}.{name}"),
-                    format!("{value} is not admissible: {allowed}"),
-                )
-            }
-            other => self.invalid(fallback, table.to_string(), other.to_string()),
-        }
-    }
-}
-
-/// The text of an input file.
-///
-/// # Errors
-/// [`CliError::Io`] naming the file.
-pub(crate) fn read_text(path: &Path) -> Result<String, CliError> {
-    std::fs::read_to_string(path).map_err(|source| CliError::Io {
-        path: path.to_owned(),
-        source,
-    })
-}
-
-/// A TOML parse error as `file:line:column: message`.
-pub(crate) fn syntax_error(ctx: &Ctx, e: &toml::de::Error) -> CliError {
-    let src = ctx.src;
-    let at = e.span().map_or(0, |s| s.start.min(src.len()));
-    let line_start = src[..at].rfind('\n').map_or(0, |i| i + 1);
-    CliError::Syntax {
-        path: ctx.path.to_owned(),
-        line: ctx.line(&(at..at)),
-        column: src[line_start..at].chars().count() + 1,
-        message: e.message().trim().replace('\n', " "),
-    }
-}
-
-pub(crate) fn span<T>(v: &Option<Spanned<T>>) -> Option<Range<usize>> {
-    v.as_ref().map(|s| s.span())
-}
-
-pub(crate) fn model_kind(ctx: &Ctx, v: &Spanned<String>, key: &str) -> Result<ModelKind, CliError> {
-    match v.get_ref().as_str() {
-        "shccm" => Ok(ModelKind::Shccm),
-        "mcm" => Ok(ModelKind::Mcm),
-        other => Err(ctx.invalid(
-            &v.span(),
-            key,
-            format!("\"{other}\" is not a model: use \"shccm\" or \"mcm\""),
-        )),
-    }
 }
 
 impl Scene {
@@ -582,86 +460,6 @@ fn base_system(
             time_scale_known: t_b.is_some(),
         },
     })
-}
-
-/// Parses a `[solver]`-like table (`method`, `rtol`, `atol`, `max_step`, `t_max`, `max_steps`,
-/// `stop_at_kinks`, `switch_when_stiff`, `series`) over `defaults`.
-pub(crate) fn solver_settings(
-    ctx: &Ctx,
-    table: &Option<Spanned<RawSolver>>,
-    name: &str,
-    defaults: Settings,
-) -> Result<Settings, CliError> {
-    let mut s = defaults;
-    let Some(sv) = table else { return Ok(s) };
-    let r = sv.get_ref();
-    let key = |k: &str| format!("{name}.{k}");
-    if let Some(m) = &r.method {
-        match m.get_ref().as_str() {
-            "dopri5" => s.method = &DOPRI5,
-            "dop853" => s.method = &DOP853,
-            "vern7" => s.method = &VERN7,
-            "vern9" => s.method = &VERN9,
-            "rosenbrock" => s.stiffness = Stiffness::Rosenbrock,
-            other => {
-                return Err(ctx.invalid(
-                    &m.span(),
-                    key("method"),
-                    format!(
-                        "\"{other}\": use \"dopri5\", \"dop853\", \"vern7\", \"vern9\" or \"rosenbrock\""
-                    ),
-                ))
-            }
-        };
-    }
-    if let Some(v) = &r.switch_when_stiff {
-        if s.stiffness != Stiffness::Rosenbrock {
-            s.stiffness = if *v.get_ref() {
-                Stiffness::Switch
-            } else {
-                Stiffness::Ignore
-            };
-        }
-    }
-    if let Some(v) = ctx.opt(&r.rtol, &key("rtol"))? {
-        s.rtol = v;
-    }
-    if let Some(v) = ctx.opt(&r.atol, &key("atol"))? {
-        s.atol = v;
-    }
-    if let Some(v) = &r.max_step {
-        s.max_step = *v.get_ref();
-    }
-    if let Some(v) = ctx.opt(&r.t_max, &key("t_max"))? {
-        s.t_max = v;
-    }
-    if let Some(v) = &r.max_steps {
-        if *v.get_ref() < 1 {
-            return Err(ctx.invalid(
-                &v.span(),
-                key("max_steps"),
-                format!("{} is not admissible: >= 1", v.get_ref()),
-            ));
-        }
-        s.max_steps = *v.get_ref() as u64;
-    }
-    if let Some(v) = &r.stop_at_kinks {
-        s.stop_at_kinks = *v.get_ref();
-    }
-    if let Some(v) = &r.series {
-        s.series = *v.get_ref();
-    }
-    s.validate().map_err(|e| {
-        let span_of = |n: &str| match n {
-            "rtol" => span(&r.rtol),
-            "atol" => span(&r.atol),
-            "max_step" => span(&r.max_step),
-            "t_max" => span(&r.t_max),
-            _ => None,
-        };
-        ctx.model_error(e, name, span_of, &sv.span())
-    })?;
-    Ok(s)
 }
 
 fn output(ctx: &Ctx, raw: &RawScene) -> Result<OutputSpec, CliError> {

@@ -9,7 +9,8 @@ use std::marker::PhantomData;
 use toml::Spanned;
 
 /// A number with its position in the file.
-pub type Num = Spanned<f64>;
+pub(crate) use crate::tables::Num;
+pub(crate) use crate::tables::{RawInput, RawSolver};
 
 /// A value that is either an array (`S`) or a table (`M`), deserialized without buffering so
 /// that spans inside survive.
@@ -158,35 +159,6 @@ pub struct RawBodies {
     pub l2: Option<Num>,
     pub u1: Option<Spanned<RawInput>>,
     pub u2: Option<Spanned<RawInput>>,
-}
-
-/// An input signal: `kind` and the keys that kind takes.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawInput {
-    pub kind: Option<Spanned<String>>,
-    pub value: Option<Num>,
-    pub m: Option<Num>,
-    pub g: Option<Num>,
-    #[serde(rename = "D")]
-    pub d: Option<Num>,
-    pub omega: Option<Num>,
-    pub points: Option<Spanned<Vec<Vec<Num>>>>,
-    pub terms: Option<Vec<Spanned<RawInput>>>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawSolver {
-    pub method: Option<Spanned<String>>,
-    pub rtol: Option<Num>,
-    pub atol: Option<Num>,
-    pub max_step: Option<Num>,
-    pub t_max: Option<Num>,
-    pub max_steps: Option<Spanned<i64>>,
-    pub stop_at_kinks: Option<Spanned<bool>>,
-    pub switch_when_stiff: Option<Spanned<bool>>,
-    pub series: Option<Spanned<bool>>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -1,64 +1,25 @@
-//! The inputs of a scene: `[input]`-like tables (the external force on the contact or on one
-//! body) and `[bodies]` (two bodies, each with its own input).
+//! `[input]`-like tables: the external force on the contact or on one body.
 
-use super::{raw, span, Ctx};
+use super::{span, Ctx, Num};
 use crate::signal::Signal;
 use crate::CliError;
 use bw_models::input::{Arctan, Table};
-use bw_models::Bodies;
-use raw::RawInput;
+use serde::Deserialize;
 use toml::Spanned;
 
-pub(super) fn bodies(
-    ctx: &Ctx,
-    b: &Spanned<raw::RawBodies>,
-) -> Result<Bodies<Signal, Signal>, CliError> {
-    let t = b.span();
-    let r = b.get_ref();
-    let m1 = ctx.req(&r.m1, &t, "[bodies].m1")?;
-    let m2 = match &r.m2 {
-        Some(m) if m.get_ref().0.is_nan() => {
-            return Err(ctx.invalid(&m.span(), "[bodies].m2", "NaN is not a mass"))
-        }
-        Some(m) => m.get_ref().0,
-        None => {
-            return Err(ctx.invalid(
-                &t,
-                "[bodies].m2",
-                "missing required key (a mass in kg or \"inf\")",
-            ))
-        }
-    };
-    let u1 =
-        r.u1.as_ref()
-            .map(|u| signal(ctx, u, "[bodies.u1]", Some(m1)))
-            .transpose()?
-            .unwrap_or_else(Signal::zero);
-    let u2 =
-        r.u2.as_ref()
-            .map(|u| signal(ctx, u, "[bodies.u2]", m2.is_finite().then_some(m2)))
-            .transpose()?
-            .unwrap_or_else(Signal::zero);
-    let (v1, v2) = (
-        ctx.req(&r.v1, &t, "[bodies].v1")?,
-        ctx.req(&r.v2, &t, "[bodies].v2")?,
-    );
-    let (l1, l2) = (
-        ctx.opt(&r.l1, "[bodies].l1")?.unwrap_or(0.0),
-        ctx.opt(&r.l2, "[bodies].l2")?.unwrap_or(0.0),
-    );
-    Bodies::new(m1, m2, v1, v2, l1, l2, u1, u2).map_err(|e| {
-        let span_of = |name: &str| match name {
-            "m1" => span(&r.m1),
-            "m2" => span(&r.m2),
-            "v1" | "v0" => span(&r.v1),
-            "v2" => span(&r.v2),
-            "l1" => span(&r.l1),
-            "l2" => span(&r.l2),
-            _ => None,
-        };
-        ctx.model_error(e, "[bodies]", span_of, &t)
-    })
+/// An input signal: `kind` and the keys that kind takes.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawInput {
+    pub kind: Option<Spanned<String>>,
+    pub value: Option<Num>,
+    pub m: Option<Num>,
+    pub g: Option<Num>,
+    #[serde(rename = "D")]
+    pub d: Option<Num>,
+    pub omega: Option<Num>,
+    pub points: Option<Spanned<Vec<Vec<Num>>>>,
+    pub terms: Option<Vec<Spanned<RawInput>>>,
 }
 
 pub(crate) fn signal(

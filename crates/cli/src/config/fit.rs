@@ -1,0 +1,327 @@
+//! One `[[fit]]` table, parsed in named parts: what is fitted ([`head`]), the objectives, the
+//! search space ([`space`]), points given in full ([`point`]), the optimizer and the solver.
+//! The data file is read only after the whole config has parsed ([`Draft::with_data`]).
+
+use super::{optimizer, param_of, RawFit, RawPoint, RawQuantities};
+use crate::signal::Signal;
+use crate::tables::{model_kind, signal, solver_settings, span, Ctx, Num};
+use crate::CliError;
+use bw_models::{BaseParams, ModelKind, Settings};
+use bwc_identify::{Dataset, IdentifyError, KnownMassStiffness, Param, Space, Weights, NAMES};
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+use super::FitConfig;
+
+/// A `[[fit]]` validated up to its data.
+pub(super) struct Draft {
+    fit: FitConfig,
+    data_path: PathBuf,
+    objective_span: Range<usize>,
+    pareto_span: Range<usize>,
+}
+
+impl Draft {
+    /// The fit's name.
+    pub(super) fn name(&self) -> &str {
+        &self.fit.name
+    }
+
+    /// Reads the data file and checks the objectives against it.
+    ///
+    /// # Errors
+    /// [`CliError::Identify`] for the data file's own errors; [`CliError::Invalid`] at
+    /// `objectives` for a weight on a quantity the data lack, at `[fit.pareto]` without both.
+    pub(super) fn with_data(self, ctx: &Ctx) -> Result<FitConfig, CliError> {
+        let mut fit = self.fit;
+        fit.data = Dataset::load(&self.data_path).map_err(|source| CliError::Identify {
+            path: ctx.path.to_owned(),
+            fit: fit.name.clone(),
+            source,
+        })?;
+        bwc_identify::Objective::new(&fit.space, &fit.data, &fit.input, fit.settings, fit.weights)
+            .map_err(|e| ctx.invalid(&self.objective_span, "[[fit]].objectives", e.to_string()))?;
+        if fit.pareto.is_some() && !(fit.data.has_cor() && fit.data.has_durations()) {
+            return Err(ctx.invalid(
+                &self.pareto_span,
+                "[fit.pareto]",
+                "a Pareto sweep needs both `e` and `t_d` in the data",
+            ));
+        }
+        Ok(fit)
+    }
+}
+
+/// Parses `[[fit]]` number `index` (0-based); `dir` is the config's folder.
+pub(super) fn parse_fit(
+    ctx: &Ctx,
+    dir: &Path,
+    f: &Spanned<RawFit>,
+    index: usize,
+) -> Result<Draft, CliError> {
+    let t = f.span();
+    let r = f.get_ref();
+    let (name, kind, data_path) = head(ctx, dir, r, &t, index)?;
+    let weights = objectives(ctx, r)?;
+    let known = known(ctx, r)?;
+    let input = match &r.input {
+        Some(i) => signal(ctx, i, "[fit.input]", known.map(|k| k.m))?,
+        None => Signal::zero(),
+    };
+    let uses_input_scales =
+        !bw_models::input::Input::is_zero(&input) || weights.j2 > 0.0 || known.is_some();
+    let space = space(ctx, r, &t, &name, kind, known, uses_input_scales)?;
+    let scales = Scales {
+        kind,
+        known,
+        uses_input_scales,
+    };
+    let start = match &r.start {
+        Some(p) => {
+            let bp = point(ctx, p, "start", &scales)?;
+            Some(
+                space
+                    .encode(&bp)
+                    .map_err(|e| ctx.invalid(&p.span(), "[fit.start]", e.to_string()))?,
+            )
+        }
+        None => None,
+    };
+    let params = r
+        .params
+        .as_ref()
+        .map(|p| point(ctx, p, "params", &scales))
+        .transpose()?;
+    let (budget, seed) = optimizer(ctx, &r.optimizer, "[fit.optimizer]", index)?;
+    let search = Settings {
+        rtol: 1e-8,
+        atol: 1e-10,
+        ..Settings::default()
+    };
+    let settings = solver_settings(ctx, &r.solver, "[fit.solver]", search)?;
+    let pareto = match &r.pareto {
+        None => None,
+        Some(p) => Some(
+            super::count(ctx, &p.get_ref().count, "[fit.pareto].count", 2, 1_000, 11)? as usize,
+        ),
+    };
+    Ok(Draft {
+        fit: FitConfig {
+            name,
+            kind,
+            data: Dataset::at_speeds(&data_path, &[]),
+            space,
+            input,
+            weights,
+            budget,
+            seed,
+            settings,
+            start,
+            params,
+            uses_input_scales,
+            pareto,
+        },
+        data_path,
+        objective_span: r.objectives.as_ref().map_or(t.clone(), |o| o.span()),
+        pareto_span: r.pareto.as_ref().map_or(t.clone(), |p| p.span()),
+    })
+}
+
+/// `name`, `model` and `data` (the path, relative to the config's folder).
+fn head(
+    ctx: &Ctx,
+    dir: &Path,
+    r: &RawFit,
+    t: &Range<usize>,
+    index: usize,
+) -> Result<(String, ModelKind, PathBuf), CliError> {
+    let name = r
+        .name
+        .as_ref()
+        .map_or_else(|| format!("fit {}", index + 1), |n| n.get_ref().clone());
+    let kind = match &r.model {
+        Some(m) => model_kind(ctx, m, "[[fit]].model")?,
+        None => {
+            return Err(ctx.invalid(
+                t,
+                "[[fit]].model",
+                "missing required key: \"shccm\" or \"mcm\"",
+            ))
+        }
+    };
+    let data = r.data.as_ref().ok_or_else(|| {
+        ctx.invalid(
+            t,
+            "[[fit]].data",
+            "missing required key: a CSV file relative to the config",
+        )
+    })?;
+    Ok((name, kind, dir.join(data.get_ref())))
+}
+
+/// `objectives = { J1 = w1, J2 = w2 }` (default: J1 alone).
+fn objectives(ctx: &Ctx, r: &RawFit) -> Result<Weights, CliError> {
+    Ok(match &r.objectives {
+        None => Weights { j1: 1.0, j2: 0.0 },
+        Some(o) => {
+            let o = o.get_ref();
+            Weights {
+                j1: ctx.opt(&o.j1, "objectives.J1")?.unwrap_or(0.0),
+                j2: ctx.opt(&o.j2, "objectives.J2")?.unwrap_or(0.0),
+            }
+        }
+    })
+}
+
+/// `[fit.known]`: `m`, `k`.
+fn known(ctx: &Ctx, r: &RawFit) -> Result<Option<KnownMassStiffness>, CliError> {
+    r.known
+        .as_ref()
+        .map(|k| {
+            let kr = k.get_ref();
+            Ok(KnownMassStiffness {
+                m: ctx.req(&kr.m, &k.span(), "[fit.known].m")?,
+                k: ctx.req(&kr.k, &k.span(), "[fit.known].k")?,
+            })
+        })
+        .transpose()
+}
+
+/// `log = [...]`: which quantities are searched on a log scale.
+fn log_flags(ctx: &Ctx, r: &RawFit) -> Result<[bool; 8], CliError> {
+    let mut log = [false; 8];
+    for item in r.log.as_ref().map_or(&[][..], |l| l.get_ref()) {
+        match NAMES.iter().position(|n| n == item.get_ref()) {
+            Some(i) => log[i] = true,
+            None => {
+                return Err(ctx.invalid(
+                    &item.span(),
+                    "[[fit]].log",
+                    format!(
+                        "\"{}\" is not a base parameter: use {}",
+                        item.get_ref(),
+                        NAMES.join(", ")
+                    ),
+                ))
+            }
+        }
+    }
+    Ok(log)
+}
+
+/// The search space from `[fit.bounds]`, `[fit.fixed]`, `log` and `[fit.known]`.
+#[allow(clippy::too_many_arguments)]
+fn space(
+    ctx: &Ctx,
+    r: &RawFit,
+    t: &Range<usize>,
+    name: &str,
+    kind: ModelKind,
+    known: Option<KnownMassStiffness>,
+    uses_input_scales: bool,
+) -> Result<Space, CliError> {
+    let empty_b = RawQuantities::default();
+    let empty_v = RawQuantities::default();
+    let b = r.bounds.as_ref().map_or(&empty_b, |b| b.get_ref());
+    let v = r.fixed.as_ref().map_or(&empty_v, |v| v.get_ref());
+    let bounds = b.by_name();
+    let fixed = v.by_name();
+    let log = log_flags(ctx, r)?;
+    let mut params = [Param::Fixed(1.0); 8];
+    let bounds_span = r.bounds.as_ref().map_or(t.clone(), |b| b.span());
+    for i in 0..8 {
+        let key = NAMES[i];
+        params[i] = match param_of(ctx, "fit", key, bounds[i], fixed[i], log[i])? {
+            Some(param) => param,
+            None if i == 7 && known.is_some() => Param::Derived,
+            // U_b and T_b only matter with an input, a duration objective or a known mass.
+            None if i >= 6 && !uses_input_scales => Param::Fixed(1.0),
+            None => {
+                return Err(ctx.invalid(
+                    &bounds_span,
+                    format!("[fit.bounds].{key}"),
+                    format!(
+                        "missing: give bounds for {key} in [fit.bounds] or a value in [fit.fixed]"
+                    ),
+                ))
+            }
+        };
+    }
+    Space::new(kind, params, known).map_err(|e| match e {
+        IdentifyError::Bounds {
+            name,
+            lo,
+            hi,
+            allowed,
+        } => {
+            let i = NAMES.iter().position(|n| *n == name);
+            let (table, s) = match i {
+                Some(i) if bounds[i].is_some() => ("[fit.bounds]", span(bounds[i])),
+                Some(i) if fixed[i].is_some() => ("[fit.fixed]", span(fixed[i])),
+                _ => ("[fit.known]", r.known.as_ref().map(|k| k.span())),
+            };
+            ctx.invalid(
+                &s.unwrap_or(t.clone()),
+                format!("{table}.{name}"),
+                format!("[{lo}, {hi}] is not admissible: {allowed}"),
+            )
+        }
+        other => ctx.invalid(t, format!("[[fit]] \"{name}\""), other.to_string()),
+    })
+}
+
+/// What a full parameter point needs: the model, and whether `U_b`, `T_b` are required.
+struct Scales {
+    kind: ModelKind,
+    known: Option<KnownMassStiffness>,
+    uses_input_scales: bool,
+}
+
+/// `[fit.start]` or `[fit.params]`: a full `P*`, checked by the model.
+fn point(
+    ctx: &Ctx,
+    p: &Spanned<RawPoint>,
+    table: &str,
+    scales: &Scales,
+) -> Result<BaseParams, CliError> {
+    let s = p.span();
+    let q = p.get_ref();
+    let key = |k: &str| format!("[fit.{table}].{k}");
+    let uf = |v: &Option<Num>, k: &str| -> Result<f64, CliError> {
+        if scales.uses_input_scales {
+            ctx.req(v, &s, &key(k))
+        } else {
+            Ok(ctx.opt(v, &key(k))?.unwrap_or(1.0))
+        }
+    };
+    let mut bp = BaseParams {
+        b_b: ctx.req(&q.b_b, &s, &key("B_b"))?,
+        gamma_b: ctx.req(&q.gamma_b, &s, &key("Gamma_b"))?,
+        kappa: ctx.req(&q.kappa, &s, &key("kappa"))?,
+        sigma_b: ctx.req(&q.sigma_b, &s, &key("sigma_b"))?,
+        n: ctx.req(&q.n, &s, &key("n"))?,
+        p: ctx.req(&q.p, &s, &key("p"))?,
+        u_b: uf(&q.u_b, "U_b")?,
+        t_b: 1.0,
+    };
+    bp.t_b = match scales.known {
+        Some(k) => k.m * bp.u_b,
+        None => uf(&q.t_b, "T_b")?,
+    };
+    bw_models::BaseMap::new(scales.kind, bp).map_err(|e| {
+        let span_of = |n: &str| match n {
+            "B_b" => span(&q.b_b),
+            "Gamma_b" => span(&q.gamma_b),
+            "kappa" => span(&q.kappa),
+            "sigma_b" => span(&q.sigma_b),
+            "n" => span(&q.n),
+            "p" => span(&q.p),
+            "U_b" => span(&q.u_b),
+            "T_b" => span(&q.t_b),
+            _ => None,
+        };
+        ctx.model_error(e, &format!("[fit.{table}]"), span_of, &s)
+    })?;
+    Ok(bp)
+}
