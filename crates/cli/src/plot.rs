@@ -108,7 +108,6 @@ pub type Banded = [(f64, f64, f64, f64)];
 ///
 /// # Errors
 /// The drawing backend's message.
-#[allow(clippy::too_many_arguments)]
 pub fn fit_chart(
     title: &str,
     x_label: &str,

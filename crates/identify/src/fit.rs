@@ -349,7 +349,8 @@ fn refine<P: CubeProblem>(
         if c < cost {
             (x, cost) = (y, c);
         }
-        if !(gain > 1e-9 * cost.abs()) {
+        // NaN gains end the polish too.
+        if gain.is_nan() || gain <= 1e-9 * cost.abs() {
             break;
         }
     }

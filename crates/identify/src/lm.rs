@@ -53,7 +53,7 @@ pub(crate) fn polish<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<(
     let mut x: Vec<f64> = x.iter().map(|v| v.clamp(0.0, 1.0)).collect();
     let mut r = problem.residuals_at(&x)?;
     let mut c_now = cost(&r);
-    if !(c_now <= c) && c.is_finite() {
+    if c.is_finite() && (c_now.is_nan() || c_now > c) {
         // The clamped start is worse than the caller's point: nothing to polish from.
         return None;
     }

@@ -251,15 +251,12 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
         let v = self.space.violation(&self.space.decode(s));
         let penalty = outside + if v > 0.0 { 1.0 + 10.0 * v } else { 0.0 };
         let len = self.weighted_residual_count();
-        match self.evaluate(s) {
-            Ok((p, _)) => {
-                let mut r = self.weighted_residuals(&p);
-                if r.iter().all(|x| x.is_finite()) {
-                    r.push(penalty.sqrt());
-                    return r;
-                }
+        if let Ok((p, _)) = self.evaluate(s) {
+            let mut r = self.weighted_residuals(&p);
+            if r.iter().all(|x| x.is_finite()) {
+                r.push(penalty.sqrt());
+                return r;
             }
-            Err(_) => {}
         }
         let mut r = vec![0.0; len];
         r.push((FAILED + penalty).sqrt());

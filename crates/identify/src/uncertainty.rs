@@ -66,11 +66,14 @@ pub struct BandPoint {
     pub t_d: [f64; 3],
 }
 
+/// A vector-valued function of a cube point.
+type VectorFn<'a> = dyn Fn(&[f64]) -> Result<Vec<f64>, IdentifyError> + 'a;
+
 /// Central-difference columns of `f` at `s` over the coordinates `free` (one-sided at faces).
 fn columns(
     s: &[f64],
     free: &[usize],
-    f: &dyn Fn(&[f64]) -> Result<Vec<f64>, IdentifyError>,
+    f: &VectorFn,
 ) -> Result<Vec<Vec<f64>>, IdentifyError> {
     free.iter()
         .map(|&j| {
@@ -196,7 +199,7 @@ fn pseudo_inverse(g: &[Vec<f64>], m: usize) -> Result<Inverse, IdentifyError> {
     let mut rank = 0;
     let mut undetermined = Vec::new();
     for (c, &si) in sv.iter().enumerate() {
-        if !(si > RANK_TOLERANCE * largest) {
+        if si.is_nan() || si <= RANK_TOLERANCE * largest {
             undetermined.extend((0..k).filter(|&a| svd.V()[(a, c)].abs() >= 0.1));
             continue;
         }

@@ -211,7 +211,6 @@ fn log_flags(ctx: &Ctx, r: &RawFit) -> Result<[bool; 8], CliError> {
 }
 
 /// The search space from `[fit.bounds]`, `[fit.fixed]`, `log` and `[fit.known]`.
-#[allow(clippy::too_many_arguments)]
 fn space(
     ctx: &Ctx,
     r: &RawFit,
