@@ -148,6 +148,18 @@ pub fn fit_chart(
         0.05 * y0.abs().max(1e-3)
     };
     let (y0, y1) = (y0 - py, y1 + py);
+    let drawn: Vec<(f64, f64)> = data
+        .1
+        .iter()
+        .map(|p| (p.0, p.1))
+        .chain(
+            model
+                .1
+                .iter()
+                .flat_map(|p| [(p.0, p.1), (p.0, p.2), (p.0, p.3)]),
+        )
+        .collect();
+    let corner = legend_corner(&drawn, (x0, x1), (y0, y1), log_x);
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (900, 560)).into_drawing_area();
@@ -232,7 +244,7 @@ pub fn fit_chart(
                     .legend(move |(x, y)| Circle::new((x + 10, y), 3, mark.filled()));
                 chart
                     .configure_series_labels()
-                    .position(SeriesLabelPosition::UpperRight)
+                    .position(corner)
                     .background_style(WHITE.mix(0.8))
                     .border_style(BLACK)
                     .draw()
@@ -256,4 +268,41 @@ pub fn fit_chart(
         root.present().map_err(|e| e.to_string())?;
     }
     Ok(svg)
+}
+
+/// The corner of the plot whose quarter holds the fewest drawn points: where the legend hides
+/// the least.
+fn legend_corner(
+    points: &[(f64, f64)],
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+    log_x: bool,
+) -> SeriesLabelPosition {
+    let fx = |x: f64| {
+        if log_x {
+            (x / x0).ln() / (x1 / x0).ln()
+        } else {
+            (x - x0) / (x1 - x0)
+        }
+    };
+    let fy = |y: f64| (y - y0) / (y1 - y0);
+    let count = |right: bool, upper: bool| {
+        points
+            .iter()
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+            .filter(|p| {
+                let (u, v) = (fx(p.0), fy(p.1));
+                (if right { u > 0.55 } else { u < 0.45 }) && (if upper { v > 0.6 } else { v < 0.4 })
+            })
+            .count()
+    };
+    [
+        (SeriesLabelPosition::UpperRight, count(true, true)),
+        (SeriesLabelPosition::LowerRight, count(true, false)),
+        (SeriesLabelPosition::UpperLeft, count(false, true)),
+        (SeriesLabelPosition::LowerLeft, count(false, false)),
+    ]
+    .into_iter()
+    .min_by_key(|c| c.1)
+    .map_or(SeriesLabelPosition::UpperRight, |c| c.0)
 }

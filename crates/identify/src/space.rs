@@ -46,6 +46,37 @@ pub struct Space {
     free: Vec<usize>,
 }
 
+/// The value at `t` (clamped into `[0, 1]`) of `[lo, hi]` on a linear or log scale, exactly `lo`
+/// and `hi` at the ends.
+fn scale(lo: f64, hi: f64, log: bool, t: f64) -> f64 {
+    let t = t.clamp(0.0, 1.0);
+    if t == 0.0 {
+        lo
+    } else if t == 1.0 {
+        hi
+    } else if log {
+        lo * (hi / lo).powf(t)
+    } else {
+        lo + (hi - lo) * t
+    }
+}
+
+/// The inverse of [`scale`].
+fn unscale(lo: f64, hi: f64, log: bool, v: f64) -> f64 {
+    if hi == lo {
+        0.5
+    } else if log {
+        (v / lo).ln() / (hi / lo).ln()
+    } else {
+        (v - lo) / (hi - lo)
+    }
+}
+
+/// The largest κ the inequality `(m/k) κ / T_b^(p+1) <= 1` and the upper bound `hi` allow.
+fn kappa_max(c: KnownMassStiffness, hi: f64, t_b: f64, p: f64) -> f64 {
+    hi.min(c.k / c.m * t_b.powf(p + 1.0))
+}
+
 /// Admissible range of each quantity (for messages) and a check.
 fn admissible(kind: ModelKind, i: usize, v: f64) -> Result<(), &'static str> {
     let ok = match i {
@@ -193,23 +224,19 @@ impl Space {
             }
         }
         for (j, &i) in self.free.iter().enumerate() {
-            let t = s[j].clamp(0.0, 1.0);
             if let Param::Free { lo, hi, log } = self.params[i] {
-                v[i] = if log {
-                    lo * (hi / lo).powf(t)
-                } else {
-                    lo + (hi - lo) * t
-                };
-                // Land exactly on the bounds at the ends of the cube.
-                if t == 0.0 {
-                    v[i] = lo;
-                } else if t == 1.0 {
-                    v[i] = hi;
-                }
+                v[i] = scale(lo, hi, log, s[j]);
             }
         }
         if let Some(c) = self.known {
             v[7] = c.m * v[6];
+            // κ is searched between its lower bound and the largest value the inequality
+            // allows at this T_b and p: the constraint is a face of the cube, not a penalty.
+            if let Some(j) = self.free.iter().position(|&i| i == 2) {
+                if let Param::Free { lo, hi, log } = self.params[2] {
+                    v[2] = scale(lo, kappa_max(c, hi, v[7], v[5]).max(lo), log, s[j]);
+                }
+            }
         }
         v
     }
@@ -248,17 +275,26 @@ impl Space {
                             allowed: "a starting point inside the bounds",
                         });
                     }
-                    Ok(if hi == lo {
-                        0.5
-                    } else if log {
-                        (v[i] / lo).ln() / (hi / lo).ln()
-                    } else {
-                        (v[i] - lo) / (hi - lo)
-                    })
+                    let hi = match self.known {
+                        Some(c) if i == 2 => {
+                            kappa_max(c, hi, c.m * p.u_b, p.p).max(lo).min(hi).max(v[i])
+                        }
+                        _ => hi,
+                    };
+                    Ok(unscale(lo, hi, log, v[i]))
                 }
                 Param::Fixed(_) | Param::Derived => unreachable!("only free indices"),
             })
             .collect()
+    }
+
+    /// Whether the free quantity `i` (index into [`NAMES`]) at cube coordinate 1 sits on the
+    /// inequality constraint rather than on its upper bound (κ under [`KnownMassStiffness`]).
+    pub fn on_constraint(&self, i: usize, s: &[f64]) -> bool {
+        match (self.known, self.params[i]) {
+            (Some(_), Param::Free { hi, .. }) if i == 2 => self.quantities(s)[2] < hi,
+            _ => false,
+        }
     }
 
     /// How far `p` violates the inequality constraint (0 when satisfied).

@@ -62,7 +62,7 @@ pub struct BandPoint {
     pub v0: f64,
     /// Predicted CoR and its limits.
     pub e: [f64; 3],
-    /// Predicted duration (s) and its limits.
+    /// Predicted duration (s) and its limits (NaN where the bodies do not separate).
     pub t_d: [f64; 3],
 }
 
@@ -70,11 +70,7 @@ pub struct BandPoint {
 type VectorFn<'a> = dyn Fn(&[f64]) -> Result<Vec<f64>, IdentifyError> + 'a;
 
 /// Central-difference columns of `f` at `s` over the coordinates `free` (one-sided at faces).
-fn columns(
-    s: &[f64],
-    free: &[usize],
-    f: &VectorFn,
-) -> Result<Vec<Vec<f64>>, IdentifyError> {
+fn columns(s: &[f64], free: &[usize], f: &VectorFn) -> Result<Vec<Vec<f64>>, IdentifyError> {
     free.iter()
         .map(|&j| {
             let (mut lo, mut hi) = (s.to_vec(), s.to_vec());
@@ -347,7 +343,12 @@ impl Uncertainty {
                 BandPoint {
                     v0: p.v0,
                     e: limits(2 * i, p.e),
-                    t_d: limits(2 * i + 1, p.t_d),
+                    // Without separation there is no duration to predict.
+                    t_d: if p.separated {
+                        limits(2 * i + 1, p.t_d)
+                    } else {
+                        [f64::NAN; 3]
+                    },
                 }
             })
             .collect())

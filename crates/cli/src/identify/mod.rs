@@ -90,7 +90,7 @@ fn plain_curve(
         .map(|p| BandPoint {
             v0: p.v0,
             e: [p.e; 3],
-            t_d: [p.t_d; 3],
+            t_d: [if p.separated { p.t_d } else { f64::NAN }; 3],
         })
         .collect())
 }
@@ -109,18 +109,25 @@ fn search_warnings(f: &FitConfig, c: &Convergence, at_bound: &[&str], s: &[f64])
         ));
     }
     let values = f.space.quantities(s);
+    let free = f.space.free_names();
     for name in at_bound {
         let i = bwc_identify::NAMES
             .iter()
             .position(|n| n == name)
             .unwrap_or(0);
+        let j = free.iter().position(|n| n == name).unwrap_or(0);
         let (lo, hi) = f.space.bounds(i).unwrap_or((f64::NAN, f64::NAN));
         let value = values[i];
-        let (side, bound) = if (value - lo).abs() <= (value - hi).abs() {
-            ("lower", lo)
-        } else {
-            ("upper", hi)
-        };
+        let upper = s[j] >= 0.5;
+        if upper && f.space.on_constraint(i, s) {
+            w.push(format!(
+                "\"{}\": {name} = {value} is on the constraint (m/k) kappa / T_b^(p+1) <= 1 of \
+                 [fit.known]",
+                f.name
+            ));
+            continue;
+        }
+        let (side, bound) = if upper { ("upper", hi) } else { ("lower", lo) };
         w.push(format!(
             "\"{}\": {name} = {value} is on its {side} bound {bound}: widen [fit.bounds].{name} \
              if the model allows",
