@@ -89,7 +89,7 @@ pub(crate) fn polish<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<(
                 let gain = c_now - cy;
                 (x, r, c_now) = (y, ry, cy);
                 lambda = (lambda / 3.0).max(1e-12);
-                improved = gain > 1e-12 * c_now;
+                improved = gain > 1e-9 * c_now;
                 break;
             }
             lambda *= 4.0;
