@@ -854,3 +854,41 @@ fn identify_warns_about_data_and_bounds() {
     assert_eq!(f["intervals"]["params"]["sigma_b"], serde_json::Value::Null);
     assert_eq!(f["warnings"].as_array().unwrap().len(), 2, "{f}");
 }
+
+/// A coverage study is a set of independent replicates: the same on any thread count, and a
+/// study split into shards (`--first-seed`, `--replicates`) gives the same replicates.
+#[test]
+fn identify_coverage_shards_and_threads() {
+    let dir = scratch("identify-coverage");
+    let config = synthetic_config(&dir);
+    let c = config.to_str().unwrap();
+    let run = |args: &[&str]| {
+        let mut all = vec!["coverage", c, "--json", "--noise", "0.01"];
+        all.extend_from_slice(args);
+        json(&identify(&all))
+    };
+    let whole = run(&["--replicates", "3", "--threads", "1"]);
+    assert_eq!(whole, run(&["--replicates", "3", "--threads", "2"]));
+    let a = run(&["--replicates", "2"]);
+    let b = run(&["--replicates", "1", "--first-seed", "3"]);
+    let reps = |v: &serde_json::Value| v["coverage"][0]["replicates"].as_array().unwrap().clone();
+    let mut joined = reps(&a);
+    joined.extend(reps(&b));
+    assert_eq!(joined, reps(&whole));
+    let s = &whole["coverage"][0];
+    assert_eq!(s["truth_from"], "fit");
+    assert_eq!(s["noise"], 0.01);
+    let cov = s["coverage"].as_f64().unwrap();
+    assert!((0.0..=1.0).contains(&cov));
+    assert_eq!(reps(&whole).len(), 3);
+    assert!(reps(&whole)
+        .iter()
+        .all(|r| r["points"] == 5 && r["error"].is_null()));
+    // A fit with a duration objective is refused with a message naming it.
+    let out = identify(&[
+        "coverage",
+        fixtures().join("villegas.toml").to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("CoR-only"));
+}

@@ -17,7 +17,7 @@ use std::process::ExitCode;
     name = "bwc-identify",
     version,
     about = "Identify base parameters P* of the NDBWSHCCM / NDBWMCM from CoR and duration data",
-    after_help = "Examples:\n  bwc-identify run fixtures/kharaz.toml --out out/kharaz\n  bwc-identify run fixtures/villegas.toml --json --seed 7\n  bwc-identify eval fixtures/kharaz.toml   # costs at the paper's published vectors"
+    after_help = "Examples:\n  bwc-identify run fixtures/kharaz.toml --out out/kharaz\n  bwc-identify run fixtures/villegas.toml --json --seed 7\n  bwc-identify eval fixtures/kharaz.toml   # costs at the paper's published vectors\n  bwc-identify coverage fixtures/tennis.toml --replicates 40"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -39,6 +39,30 @@ enum Command {
         /// Base seed (combined with each fit's seed).
         #[arg(long, default_value_t = 0)]
         seed: u64,
+        /// Worker threads (default: all cores, or RAYON_NUM_THREADS).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1024))]
+        threads: Option<u64>,
+    },
+    /// Coverage study of the 95 % band on each CoR-only fit's own design: synthetic data from
+    /// [fit.params] (or the fit's optimum) plus Gaussian noise, refitted per replicate.
+    Coverage {
+        /// The config file (TOML).
+        config: PathBuf,
+        /// Replicates per fit.
+        #[arg(long, default_value_t = 40, value_parser = clap::value_parser!(u64).range(1..=100_000))]
+        replicates: u64,
+        /// Seed of the first replicate (replicate k has seed first_seed + k).
+        #[arg(long, default_value_t = 1)]
+        first_seed: u64,
+        /// Noise standard deviation of e (default: the truth's residual standard deviation).
+        #[arg(long)]
+        noise: Option<f64>,
+        /// Only the fit with this name.
+        #[arg(long)]
+        fit: Option<String>,
+        /// Print exactly one JSON object on stdout: {"coverage": [...]}.
+        #[arg(long)]
+        json: bool,
         /// Worker threads (default: all cores, or RAYON_NUM_THREADS).
         #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1024))]
         threads: Option<u64>,
@@ -72,6 +96,23 @@ fn main() -> ExitCode {
             threads.map(|t| t as usize),
         ),
         Command::Eval { config, out, json } => run(&config, out.as_deref(), json, None, None),
+        Command::Coverage {
+            config,
+            replicates,
+            first_seed,
+            noise,
+            fit,
+            json,
+            threads,
+        } => coverage_study(
+            &config,
+            replicates,
+            first_seed,
+            noise,
+            fit.as_deref(),
+            json,
+            threads.map(|t| t as usize),
+        ),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -255,6 +296,78 @@ fn run(
         bwc_cli::out!(
             "    k = {:.6e}, c = {:.6e}, n = {:.4}, p = {:.4}, alpha = {:.4}, beta = {:.4e}, gamma = {:.4e}, A = {:.4}",
             l.k, l.c, l.n, l.p, l.alpha, l.beta, l.gamma, l.a
+        );
+    }
+    Ok(())
+}
+
+/// `bwc-identify coverage`.
+fn coverage_study(
+    path: &Path,
+    replicates: u64,
+    first_seed: u64,
+    noise: Option<f64>,
+    only: Option<&str>,
+    json: bool,
+    threads: Option<usize>,
+) -> Result<(), CliError> {
+    let config = Config::load(path)?;
+    if let Some(n) = noise {
+        if !(n.is_finite() && n > 0.0) {
+            return Err(CliError::Invalid {
+                path: path.to_owned(),
+                line: 1,
+                key: "--noise".into(),
+                message: format!("{n} is not admissible: a standard deviation > 0"),
+            });
+        }
+    }
+    let fits: Vec<_> = config
+        .fits
+        .iter()
+        .filter(|f| only.is_none_or(|n| n == f.name))
+        .collect();
+    if fits.is_empty() {
+        let names: Vec<&str> = config.fits.iter().map(|f| f.name.as_str()).collect();
+        return Err(CliError::Invalid {
+            path: path.to_owned(),
+            line: 1,
+            key: "--fit".into(),
+            message: format!("no [[fit]] named {only:?}: the config has {names:?}"),
+        });
+    }
+    let seeds = first_seed..first_seed.saturating_add(replicates);
+    let work = || {
+        fits.iter()
+            .map(|f| bwc_cli::identify::run_coverage(path, f, noise, seeds.clone()))
+            .collect::<Result<Vec<_>, _>>()
+    };
+    let reports = match threads {
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map_err(|e| CliError::Threads {
+                threads: n,
+                message: e.to_string(),
+            })?
+            .install(work)?,
+        None => work()?,
+    };
+    if json {
+        bwc_cli::out!("{}", bwc_cli::identify::coverage_summary(&reports));
+        return Ok(());
+    }
+    for r in &reports {
+        let without = r.replicates.iter().filter(|x| x.error.is_some()).count();
+        bwc_cli::out!(
+            "{}: 95 % band contains the truth at {:.1} % of {} points ({} replicates, noise {:.3e}, truth from {}{})",
+            r.name,
+            100.0 * bwc_identify::coverage(&r.replicates),
+            r.replicates.iter().map(|x| x.points).sum::<usize>(),
+            r.replicates.len(),
+            r.noise,
+            r.truth_from,
+            if without > 0 { format!("; {without} without intervals") } else { String::new() }
         );
     }
     Ok(())

@@ -1,8 +1,10 @@
 //! Runs and evaluates the fits of an identification config ([`run_fit`], [`eval_fit`],
 //! [`run_loop_fit`], [`eval_loop_fit`]); [`render`] turns their reports into JSON, CSV and SVG.
 
+mod coverage;
 mod render;
 
+pub use coverage::{coverage_summary, run_coverage, CoverageReport};
 pub use render::{loop_summary, render, render_loops, slug, summary};
 
 use crate::config::FitConfig;

@@ -1,0 +1,122 @@
+//! `bwc-identify coverage`: a coverage study on a fit's own design (its speeds and bounds), so
+//! that a user can check the 95 % band before trusting it on their data. Each replicate is an
+//! independent task, a pure function of the config and its seed (`--first-seed` and
+//! `--replicates` shard a study over machines).
+
+use super::fail;
+use crate::config::FitConfig;
+use crate::CliError;
+use bw_models::input::Input;
+use bw_models::{BaseParams, Settings};
+use bwc_identify::{coverage, fit, study, CoverageTask, Objective, Replicate};
+use serde_json::{json, Value};
+use std::path::Path;
+
+/// One fit's study.
+#[derive(Debug, Clone)]
+pub struct CoverageReport {
+    /// Fit name.
+    pub name: String,
+    /// The true parameters of the synthetic data.
+    pub truth: BaseParams,
+    /// Where the truth came from: `"params"` (`[fit.params]`) or `"fit"` (the fit's optimum).
+    pub truth_from: &'static str,
+    /// Noise standard deviation of `e`.
+    pub noise: f64,
+    /// The replicates, in seed order.
+    pub replicates: Vec<Replicate>,
+}
+
+/// Runs replicates `seeds` of a coverage study of `f`: synthetic CoR data at the fit's speeds
+/// from `[fit.params]` (or, without it, from the fit's optimum on its data), Gaussian noise of
+/// standard deviation `noise` (default: the truth's residual standard deviation on the data,
+/// `sqrt(sum (e_model - e)^2 / (M - 1))`), each fitted from the bounds with the fit's budget.
+///
+/// # Errors
+/// [`CliError::Invalid`] for a fit with an input or a duration objective (studies cover CoR-only
+/// fits without input); [`CliError::Identify`] when a fit or simulation fails.
+pub fn run_coverage(
+    config: &Path,
+    f: &FitConfig,
+    noise: Option<f64>,
+    seeds: std::ops::Range<u64>,
+) -> Result<CoverageReport, CliError> {
+    let err = fail(config, f);
+    if !f.input.is_zero() || f.weights.j2 > 0.0 || f.space.known().is_some() {
+        return Err(CliError::Invalid {
+            path: config.to_owned(),
+            line: 1,
+            key: format!("[[fit]] \"{}\"", f.name),
+            message: "coverage studies cover CoR-only fits without input, [fit.known] or a J2 \
+                      weight"
+                .into(),
+        });
+    }
+    let (truth, truth_from) = match f.params {
+        Some(p) => (p, "params"),
+        None => {
+            let search =
+                Objective::new(&f.space, &f.data, &f.input, f.settings, f.weights).map_err(&err)?;
+            (
+                fit(&search, &f.budget, f.seed, None).map_err(&err)?.params,
+                "fit",
+            )
+        }
+    };
+    let noise = match noise {
+        Some(n) => n,
+        None => {
+            let map = f.space.map(&truth).map_err(&err)?;
+            let p = bwc_identify::predict(&map, &f.input, &f.data, &Settings::default())
+                .map_err(|e| err(e.into()))?;
+            let r: Vec<f64> = f
+                .data
+                .points
+                .iter()
+                .zip(&p)
+                .filter_map(|(d, q)| d.e.map(|e| q.e - e))
+                .collect();
+            (r.iter().map(|x| x * x).sum::<f64>() / (r.len().max(2) - 1) as f64).sqrt()
+        }
+    };
+    let task = CoverageTask {
+        space: f.space.clone(),
+        truth,
+        speeds: f.data.points.iter().map(|p| p.v0).collect(),
+        noise,
+        budget: f.budget,
+        settings: f.settings,
+    };
+    let replicates = study(&task, seeds).map_err(&err)?;
+    Ok(CoverageReport {
+        name: f.name.clone(),
+        truth,
+        truth_from,
+        noise,
+        replicates,
+    })
+}
+
+/// `{"coverage": [...]}`: per fit the truth, the noise, the coverage and every replicate.
+pub fn coverage_summary(reports: &[CoverageReport]) -> Value {
+    let studies: Vec<Value> = reports
+        .iter()
+        .map(|r| {
+            let t = r.truth;
+            json!({
+                "name": r.name,
+                "truth": {"B_b": t.b_b, "Gamma_b": t.gamma_b, "kappa": t.kappa, "sigma_b": t.sigma_b, "n": t.n, "p": t.p},
+                "truth_from": r.truth_from,
+                "noise": r.noise,
+                "level": bwc_identify::LEVEL,
+                "coverage": coverage(&r.replicates),
+                "replicates": r.replicates.iter().map(|x| json!({
+                    "seed": x.seed, "covered": x.covered, "points": x.points,
+                    "halfwidth": x.halfwidth.is_finite().then_some(x.halfwidth),
+                    "J1": x.j1, "error": x.error,
+                })).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    json!({ "coverage": studies })
+}
