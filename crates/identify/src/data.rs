@@ -13,8 +13,9 @@ pub struct Point {
     pub e: Option<f64>,
     /// Contact duration (s), if measured.
     pub t_d: Option<f64>,
-    /// The CoR's spread at this point, if the data carry one (column `e_std`, a standard
-    /// deviation, or `e_spread`, a range): drawn as error bars, not used by the fit.
+    /// Half-length of the CoR's error bar at this point, if the data carry a spread: column
+    /// `e_std` (a standard deviation, taken as it is) or else `e_spread` (a range, halved).
+    /// Drawn in plots, not used by the fit.
     pub spread: Option<f64>,
 }
 
@@ -78,7 +79,11 @@ impl Dataset {
             )
         })?;
         let (e_col, td_col) = (col("e"), col("t_d"));
-        let spread_col = col("e_std").or_else(|| col("e_spread"));
+        let (spread_col, spread_factor) = match (col("e_std"), col("e_spread")) {
+            (Some(c), _) => (Some(c), 1.0),
+            (None, Some(c)) => (Some(c), 0.5),
+            (None, None) => (None, 1.0),
+        };
         let mut warnings = Vec::new();
         if e_col.is_none() && td_col.is_none() {
             return Err(err(
@@ -134,7 +139,7 @@ impl Dataset {
             }
             let spread = spread_col
                 .filter(|&c| record.get(c).is_some_and(|s| !s.is_empty()))
-                .map(|c| field(c, headers.get(c).unwrap_or("e_std")))
+                .map(|c| field(c, headers.get(c).unwrap_or("e_std")).map(|x| x * spread_factor))
                 .transpose()?;
             let t_d = td_col.map(|c| field(c, "t_d")).transpose()?;
             if let Some(t) = t_d {

@@ -300,7 +300,8 @@ impl Uncertainty {
         }
     }
 
-    /// The band of `e(v0)` and `t_d(v0)` at `speeds` (m/s).
+    /// The band of `e(v0)` and `t_d(v0)` at `speeds` (m/s); the CoR's limits are clipped to
+    /// `e >= 0`, and to `e <= 1` without input.
     ///
     /// # Errors
     /// [`IdentifyError::Model`] when a simulation fails.
@@ -328,6 +329,7 @@ impl Uncertainty {
             .collect();
         let cols = columns(&self.point, &all, &flat)?;
         let mut grad = vec![0.0; self.point.len()];
+        let no_input = objective.input().is_zero();
         Ok(centre
             .iter()
             .enumerate()
@@ -340,9 +342,15 @@ impl Uncertainty {
                     let h = self.quantile * self.sd(&grad);
                     [value, value - h, value + h]
                 };
+                let mut e = limits(2 * i, p.e);
+                // e >= 0 always, and e <= 1 without input (the models dissipate energy).
+                e[1] = e[1].max(0.0);
+                if no_input {
+                    e[2] = e[2].min(1.0);
+                }
                 BandPoint {
                     v0: p.v0,
-                    e: limits(2 * i, p.e),
+                    e,
                     // Without separation there is no duration to predict.
                     t_d: if p.separated {
                         limits(2 * i + 1, p.t_d)
