@@ -3,18 +3,20 @@
 //!
 //! Model: each weighted residual (see [`Objective::weighted_residuals`]) is the model's error
 //! plus independent noise of one variance `σ²`, so that the weights must make the CoR and
-//! duration residuals equally noisy when both are fitted. With `G` the `M × k` sensitivity of
-//! the weighted residuals to the `k` free cube coordinates not on a bound (central
-//! differences), its singular values `s_i` and right singular vectors `v_i`, the parameters'
-//! covariance is `C = σ̂² Σ_{s_i > 1e-6 s_1} v_i v_iᵀ / s_i²` with `σ̂² = Σ r² / (M - r)` and
-//! `r` the number of singular values kept. Directions the data do not determine (dropped
-//! singular values) are left out: a prediction that depends on them gets a band that is too
-//! narrow, which is why the band is validated by simulation (`BENCHMARKS.md`, coverage). A
-//! prediction `q` (a parameter, `e(v0)`, `t_d(v0)`) gets `q ± t_{0.975, M-r} sqrt(∇qᵀ C ∇q)`;
-//! a parameter's interval is taken on its search scale (logarithmic where searched so) and
-//! clipped to its bounds. Parameters on a bound are held there and get no interval; a
-//! parameter with a weight of 0.1 or more in an undetermined direction gets its whole bound
-//! interval (and is listed in `clipped`).
+//! duration residuals equally noisy when both are fitted. `G` is the `M × k` sensitivity of the
+//! weighted residuals to the `k` free cube coordinates not on a bound (central differences),
+//! with singular values `s_i` and right singular vectors `v_i`; `r` counts the `s_i` above
+//! 1e-6 `s_1` (the parameter combinations the data determine) and `σ̂² = Σ r² / (M - r)`. The
+//! covariance of the cube coordinates is that of a linear model with a weak prior holding each
+//! coordinate in its box (a Gaussian with the variance 1/12 of a uniform distribution on it):
+//! `C = Σ_i v_i v_iᵀ / (s_i² / σ̂² + 12)`. Where the data determine a direction
+//! (`s_i² / σ̂² ≫ 12`) this is the classical `σ̂² / s_i²`; where they do not, the direction keeps
+//! the spread of its box, so a prediction that depends on it (typically away from the measured
+//! speeds) gets a wide band instead of a falsely narrow one. A prediction `q` (a parameter,
+//! `e(v0)`, `t_d(v0)`) gets `q ± t_{0.975, M-r} sqrt(∇qᵀ C ∇q)`; a parameter's interval is taken
+//! on its search scale (logarithmic where searched so) and clipped to its bounds (listed in
+//! `clipped` when it reaches one). Parameters on a bound are held there and get no interval.
+//! The band's coverage is validated by simulation (`BENCHMARKS.md`, `bwc-identify coverage`).
 
 use crate::data::Dataset;
 use crate::objective::{predict, Objective, Prediction};
@@ -27,8 +29,12 @@ use statrs::distribution::{ContinuousCDF, StudentsT};
 pub const LEVEL: f64 = 0.95;
 /// Step of the central differences on the unit cube.
 const H: f64 = 1e-4;
-/// Singular values below this fraction of the largest are taken as undetermined directions.
+/// Singular values below this fraction of the largest do not count as determined directions
+/// (for the residual degrees of freedom).
 const RANK_TOLERANCE: f64 = 1e-6;
+/// Prior precision of a cube coordinate: 12, the inverse variance of a uniform distribution on
+/// `[0, 1]`.
+const PRIOR_PRECISION: f64 = 12.0;
 
 /// Parameter intervals, and what is needed to put a band on any prediction.
 #[derive(Debug, Clone, PartialEq)]
@@ -108,11 +114,12 @@ pub fn uncertainty<I: Input + Sync>(
     };
     let g = columns(s, &free, &residuals)?;
     let m = r.len();
-    let Inverse {
-        rank,
-        inverse,
-        undetermined,
-    } = pseudo_inverse(&g, m)?;
+    let Svd { values, vectors } = svd(&g, m)?;
+    let largest = values.iter().copied().fold(0.0, f64::max);
+    let rank = values
+        .iter()
+        .filter(|&&v| v > RANK_TOLERANCE * largest)
+        .count();
     if rank == 0 {
         return Err(IdentifyError::Objectives {
             reason: "the data determine no parameter combination (the model's predictions do \
@@ -132,9 +139,19 @@ pub fn uncertainty<I: Input + Sync>(
     let rss: f64 = r.iter().map(|x| x * x).sum();
     let sigma = (rss / dof as f64).sqrt();
     let mut covariance = vec![vec![0.0; s.len()]; s.len()];
-    for (a, &i) in free.iter().enumerate() {
-        for (b, &j) in free.iter().enumerate() {
-            covariance[i][j] = sigma * sigma * inverse[a][b];
+    for (c, &si) in values.iter().enumerate() {
+        // σ̂ = 0 (data the model fits exactly) leaves the determined directions at 0.
+        let precision = if sigma > 0.0 {
+            si * si / (sigma * sigma)
+        } else if si > RANK_TOLERANCE * largest {
+            f64::INFINITY
+        } else {
+            0.0
+        } + PRIOR_PRECISION;
+        for (a, &i) in free.iter().enumerate() {
+            for (b, &j) in free.iter().enumerate() {
+                covariance[i][j] += vectors[a][c] * vectors[b][c] / precision;
+            }
         }
     }
     let quantile = StudentsT::new(0.0, 1.0, dof as f64)
@@ -143,7 +160,7 @@ pub fn uncertainty<I: Input + Sync>(
         })?
         .inverse_cdf(0.5 + LEVEL / 2.0);
     let mut u = Uncertainty {
-        method: "linearised (delta method), Student-t",
+        method: "linearised (delta method) with a weak prior holding each parameter in its bounds, Student-t",
         level: LEVEL,
         sigma,
         dof,
@@ -154,64 +171,37 @@ pub fn uncertainty<I: Input + Sync>(
         covariance,
         quantile,
     };
-    let undetermined: Vec<&'static str> = undetermined.iter().map(|&a| names[free[a]]).collect();
-    u.parameter_intervals(objective, &names, at_bound, &undetermined);
+    u.parameter_intervals(objective, &names, at_bound);
     Ok(u)
 }
 
-/// The pseudo-inverse of `GᵀG` over the determined directions.
-struct Inverse {
-    rank: usize,
-    inverse: Vec<Vec<f64>>,
-    /// Columns with a weight of at least 0.1 in a dropped (undetermined) direction.
-    undetermined: Vec<usize>,
+/// Singular values (`k`, zero beyond the `m` rows) and right singular vectors (`vectors[a][c]`:
+/// component `a` of vector `c`) of the `m × k` matrix with columns `g`.
+struct Svd {
+    values: Vec<f64>,
+    vectors: Vec<Vec<f64>>,
 }
 
-/// Rank and pseudo-inverse of `GᵀG` (columns `g`, `m` rows), dropping small singular values.
-fn pseudo_inverse(g: &[Vec<f64>], m: usize) -> Result<Inverse, IdentifyError> {
+fn svd(g: &[Vec<f64>], m: usize) -> Result<Svd, IdentifyError> {
     let k = g.len();
     if k == 0 || m == 0 {
-        return Ok(Inverse {
-            rank: 0,
-            inverse: vec![vec![0.0; k]; k],
-            undetermined: (0..k).collect(),
+        let identity = (0..k).map(|a| (0..k).map(|c| f64::from(u8::from(a == c))).collect());
+        return Ok(Svd {
+            values: vec![0.0; k],
+            vectors: identity.collect(),
         });
     }
     let jac = faer::Mat::<f64>::from_fn(m, k, |i, j| g[j][i]);
-    let svd = jac.svd().map_err(|e| IdentifyError::Optimizer {
+    let d = jac.svd().map_err(|e| IdentifyError::Optimizer {
         message: format!("SVD of the sensitivity matrix: {e:?}"),
     })?;
-    let sv: Vec<f64> = (0..k)
-        .map(|i| {
-            if i < m {
-                svd.S().column_vector()[i]
-            } else {
-                0.0
-            }
-        })
-        .collect();
-    let largest = sv.iter().copied().fold(0.0, f64::max);
-    let mut inverse = vec![vec![0.0; k]; k];
-    let mut rank = 0;
-    let mut undetermined = Vec::new();
-    for (c, &si) in sv.iter().enumerate() {
-        if si.is_nan() || si <= RANK_TOLERANCE * largest {
-            undetermined.extend((0..k).filter(|&a| svd.V()[(a, c)].abs() >= 0.1));
-            continue;
-        }
-        rank += 1;
-        for (a, row) in inverse.iter_mut().enumerate() {
-            for (b, x) in row.iter_mut().enumerate() {
-                *x += svd.V()[(a, c)] * svd.V()[(b, c)] / (si * si);
-            }
-        }
-    }
-    undetermined.sort_unstable();
-    undetermined.dedup();
-    Ok(Inverse {
-        rank,
-        inverse,
-        undetermined,
+    Ok(Svd {
+        values: (0..k)
+            .map(|i| if i < m { d.S().column_vector()[i] } else { 0.0 })
+            .collect(),
+        vectors: (0..k)
+            .map(|a| (0..k).map(|c| d.V()[(a, c)]).collect())
+            .collect(),
     })
 }
 
@@ -232,7 +222,6 @@ impl Uncertainty {
         objective: &Objective<'_, I>,
         names: &[&'static str],
         at_bound: &[&'static str],
-        undetermined: &[&'static str],
     ) {
         let space = objective.space();
         let s = self.point.clone();
@@ -241,12 +230,7 @@ impl Uncertainty {
                 self.params.push((base_name(name), None));
                 continue;
             }
-            // A parameter with weight in an undetermined direction: the data do not bound it.
-            let half = if undetermined.contains(name) {
-                f64::INFINITY
-            } else {
-                self.quantile * self.covariance[j][j].max(0.0).sqrt()
-            };
+            let half = self.quantile * self.covariance[j][j].max(0.0).sqrt();
             let (lo, hi) = ((s[j] - half).max(0.0), (s[j] + half).min(1.0));
             if lo == 0.0 || hi == 1.0 {
                 self.clipped.push(base_name(name));
@@ -278,11 +262,7 @@ impl Uncertainty {
                     })
                     .collect();
                 let gamma = space.decode(&s).gamma_b;
-                let h = if half.is_finite() {
-                    self.quantile * self.sd(&grad)
-                } else {
-                    f64::INFINITY
-                };
+                let h = self.quantile * self.sd(&grad);
                 let bb = space.decode(&s).b_b;
                 self.params
                     .push(("Gamma_b", Some([(gamma - h).max(-bb), (gamma + h).min(bb)])));

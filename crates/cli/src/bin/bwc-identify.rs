@@ -207,6 +207,21 @@ fn run(
     for w in reports.iter().flat_map(|r| &r.warnings) {
         eprintln!("bwc-identify: warning: {w}");
     }
+    for r in &loop_reports {
+        if let Some(c) = r.convergence.as_ref().filter(|c| c.agreeing < 2) {
+            eprintln!(
+                "bwc-identify: warning: \"{}\": only {} of {} starts reached the best cost within \
+                 the tolerance: the optimum may not be global; raise [loop_fit.optimizer].max_starts",
+                r.name, c.agreeing, c.starts
+            );
+        }
+        for name in &r.at_bound {
+            eprintln!(
+                "bwc-identify: warning: \"{}\": {name} is on a bound of [loop_fit.bounds]",
+                r.name
+            );
+        }
+    }
     if let Some(dir) = out {
         let mut files = render(&config.fits, &reports, dir)?;
         files[0].1 = (combined(&reports, &loop_reports).to_string() + "\n").into_bytes();

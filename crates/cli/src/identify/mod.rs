@@ -312,6 +312,10 @@ pub struct LoopReport {
     pub wall_s: f64,
     /// Simulated loops, one per measured loop.
     pub curves: Vec<bwc_identify::Curve>,
+    /// How the search ended (runs only).
+    pub convergence: Option<Convergence>,
+    /// Free quantities on a bound of the search (runs only).
+    pub at_bound: Vec<&'static str>,
 }
 
 /// Fits the contact law of a loop fit from its bounds.
@@ -346,6 +350,8 @@ pub fn run_loop_fit(
         evaluations: min.evaluations,
         wall_s: clock.elapsed().as_secs_f64(),
         curves,
+        at_bound: bwc_identify::at_bound(&f.space.free_names(), &min.point),
+        convergence: Some(min.convergence),
     })
 }
 
@@ -387,6 +393,8 @@ pub fn eval_loop_fit(
         evaluations: 1,
         wall_s: clock.elapsed().as_secs_f64(),
         curves,
+        convergence: None,
+        at_bound: Vec::new(),
     })
 }
 

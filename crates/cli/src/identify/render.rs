@@ -333,6 +333,8 @@ pub fn loop_summary(reports: &[LoopReport]) -> Vec<Value> {
                 "name": r.name, "model": r.model, "kind": "loops",
                 "params": {"k": l.k, "c": l.c, "n": l.n, "p": l.p, "alpha": l.alpha, "beta": l.beta, "gamma": l.gamma, "A": l.a},
                 "cost": r.cost, "J1": null, "J2": null, "evaluations": r.evaluations, "wall_s": r.wall_s,
+                "convergence": r.convergence.as_ref().map(|c| json!({"starts": c.starts, "agreeing": c.agreeing, "evaluations": c.evaluations, "costs": c.costs})),
+                "at_bound": r.at_bound,
             })
         })
         .collect()
