@@ -1,5 +1,7 @@
 //! SVG line charts (plotters, SVG backend, no system fonts needed).
 
+use plotters::coord::ranged1d::ValueFormatter;
+use plotters::coord::types::RangedCoordf64;
 pub use plotters::prelude::SeriesLabelPosition;
 use plotters::prelude::*;
 
@@ -103,8 +105,19 @@ pub type Measured = [(f64, f64, Option<f64>)];
 /// A model line with its confidence band: `(x, value, lower, upper)`.
 pub type Banded = [(f64, f64, f64, f64)];
 
+/// What a fit chart shows.
+struct FitLayers<'a> {
+    x_label: &'a str,
+    y_label: &'a str,
+    data: (&'a str, &'a Measured),
+    model: (&'a str, &'a Banded),
+    band_label: &'a str,
+    corner: SeriesLabelPosition,
+}
+
 /// A fit chart: the data as markers (with error bars where they carry a spread), the model as
-/// a line with its confidence band shaded; a logarithmic x axis when `log_x`.
+/// a line with its confidence band shaded (unless `band_label` is empty); a logarithmic x axis
+/// when `log_x`; the legend in the corner that hides the least.
 ///
 /// # Errors
 /// The drawing backend's message.
@@ -117,28 +130,27 @@ pub fn fit_chart(
     band_label: &str,
     log_x: bool,
 ) -> Result<String, String> {
-    let finite = |v: f64| v.is_finite();
-    let xs = data
+    let xs: Vec<f64> = data
         .1
         .iter()
         .map(|p| p.0)
-        .chain(model.1.iter().map(|p| p.0));
-    let ys = data
+        .chain(model.1.iter().map(|p| p.0))
+        .filter(|x| x.is_finite() && (!log_x || *x > 0.0))
+        .collect();
+    let ys: Vec<f64> = data
         .1
         .iter()
-        .flat_map(|p| {
-            let s = p.2.unwrap_or(0.0);
-            [p.1 - s, p.1 + s]
-        })
-        .chain(model.1.iter().flat_map(|p| [p.1, p.2, p.3]));
-    let range = |it: &mut dyn Iterator<Item = f64>| {
-        it.filter(|v| finite(*v))
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-                (a.min(v), b.max(v))
+        .flat_map(|p| [p.1 - p.2.unwrap_or(0.0), p.1 + p.2.unwrap_or(0.0)])
+        .chain(model.1.iter().flat_map(|p| [p.1, p.2, p.3]))
+        .filter(|y| y.is_finite())
+        .collect();
+    let range = |v: &[f64]| {
+        v.iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(*x), b.max(*x))
             })
     };
-    let (x0, x1) = range(&mut xs.filter(|x| !log_x || *x > 0.0));
-    let (y0, y1) = range(&mut ys.into_iter());
+    let ((x0, x1), (y0, y1)) = (range(&xs), range(&ys));
     if !(x0.is_finite() && y0.is_finite()) {
         return Err("nothing finite to draw".into());
     }
@@ -159,7 +171,14 @@ pub fn fit_chart(
                 .flat_map(|p| [(p.0, p.1), (p.0, p.2), (p.0, p.3)]),
         )
         .collect();
-    let corner = legend_corner(&drawn, (x0, x1), (y0, y1), log_x);
+    let layers = FitLayers {
+        x_label,
+        y_label,
+        data,
+        model,
+        band_label,
+        corner: legend_corner(&drawn, (x0, x1), (y0, y1), log_x),
+    };
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (900, 560)).into_drawing_area();
@@ -170,104 +189,89 @@ pub fn fit_chart(
             .margin(16)
             .x_label_area_size(48)
             .y_label_area_size(72);
-        macro_rules! draw {
-            ($chart:expr) => {{
-                let mut chart = $chart;
-                chart
-                    .configure_mesh()
-                    .x_desc(x_label)
-                    .y_desc(y_label)
-                    .draw()
-                    .map_err(|e| e.to_string())?;
-                let band_color = RGBColor(31, 119, 180);
-                let mut outline: Vec<(f64, f64)> = model
-                    .1
-                    .iter()
-                    .filter(|p| finite(p.2) && finite(p.3))
-                    .map(|p| (p.0, p.3))
-                    .collect();
-                let lower: Vec<(f64, f64)> = model
-                    .1
-                    .iter()
-                    .rev()
-                    .filter(|p| finite(p.2) && finite(p.3))
-                    .map(|p| (p.0, p.2))
-                    .collect();
-                if !band_label.is_empty() && !outline.is_empty() {
-                    outline.extend(lower);
-                    chart
-                        .draw_series(std::iter::once(Polygon::new(
-                            outline,
-                            band_color.mix(0.2).filled(),
-                        )))
-                        .map_err(|e| e.to_string())?
-                        .label(band_label)
-                        .legend(move |(x, y)| {
-                            Rectangle::new(
-                                [(x, y - 5), (x + 20, y + 5)],
-                                band_color.mix(0.2).filled(),
-                            )
-                        });
-                }
-                let line: Vec<(f64, f64)> = model
-                    .1
-                    .iter()
-                    .filter(|p| finite(p.1))
-                    .map(|p| (p.0, p.1))
-                    .collect();
-                chart
-                    .draw_series(LineSeries::new(line, band_color.stroke_width(2)))
-                    .map_err(|e| e.to_string())?
-                    .label(model.0)
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], band_color.stroke_width(2))
-                    });
-                let mark = RGBColor(214, 39, 40);
-                chart
-                    .draw_series(data.1.iter().filter_map(|p| {
-                        p.2.filter(|s| *s > 0.0).map(|s| {
-                            PathElement::new(
-                                vec![(p.0, p.1 - s), (p.0, p.1 + s)],
-                                mark.stroke_width(1),
-                            )
-                        })
-                    }))
-                    .map_err(|e| e.to_string())?;
-                chart
-                    .draw_series(
-                        data.1
-                            .iter()
-                            .map(|p| Circle::new((p.0, p.1), 3, mark.filled())),
-                    )
-                    .map_err(|e| e.to_string())?
-                    .label(data.0)
-                    .legend(move |(x, y)| Circle::new((x + 10, y), 3, mark.filled()));
-                chart
-                    .configure_series_labels()
-                    .position(corner)
-                    .background_style(WHITE.mix(0.8))
-                    .border_style(BLACK)
-                    .draw()
-                    .map_err(|e| e.to_string())?;
-            }};
-        }
         if log_x {
-            draw!(builder
+            let chart = builder
                 .build_cartesian_2d((x0 / 1.1..x1 * 1.1).log_scale(), y0..y1)
-                .map_err(|e| e.to_string())?);
+                .map_err(|e| e.to_string())?;
+            draw_fit(chart, &layers)?;
         } else {
             let px = if x1 > x0 {
                 0.05 * (x1 - x0)
             } else {
                 0.5 * x0.abs().max(1e-12)
             };
-            draw!(builder
+            let chart = builder
                 .build_cartesian_2d((x0 - px)..(x1 + px), y0..y1)
-                .map_err(|e| e.to_string())?);
+                .map_err(|e| e.to_string())?;
+            draw_fit(chart, &layers)?;
         }
         root.present().map_err(|e| e.to_string())?;
     }
     Ok(svg)
+}
+
+/// Draws the layers of a fit chart on a chart with either x axis.
+fn draw_fit<'a, X>(
+    mut chart: ChartContext<'a, SVGBackend<'a>, Cartesian2d<X, RangedCoordf64>>,
+    l: &FitLayers,
+) -> Result<(), String>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
+    chart
+        .configure_mesh()
+        .x_desc(l.x_label)
+        .y_desc(l.y_label)
+        .draw()
+        .map_err(e)?;
+    let line = RGBColor(31, 119, 180);
+    let shade = line.mix(0.2).filled();
+    let ok = |p: &&(f64, f64, f64, f64)| p.2.is_finite() && p.3.is_finite();
+    let mut outline: Vec<(f64, f64)> = l.model.1.iter().filter(ok).map(|p| (p.0, p.3)).collect();
+    if !l.band_label.is_empty() && !outline.is_empty() {
+        outline.extend(l.model.1.iter().rev().filter(ok).map(|p| (p.0, p.2)));
+        chart
+            .draw_series(std::iter::once(Polygon::new(outline, shade)))
+            .map_err(e)?
+            .label(l.band_label)
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 20, y + 5)], shade));
+    }
+    let curve = l
+        .model
+        .1
+        .iter()
+        .filter(|p| p.1.is_finite())
+        .map(|p| (p.0, p.1));
+    chart
+        .draw_series(LineSeries::new(curve, line.stroke_width(2)))
+        .map_err(e)?
+        .label(l.model.0)
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], line.stroke_width(2)));
+    let mark = RGBColor(214, 39, 40);
+    let bars = l.data.1.iter().filter_map(|p| {
+        p.2.filter(|s| *s > 0.0)
+            .map(|s| PathElement::new(vec![(p.0, p.1 - s), (p.0, p.1 + s)], mark.stroke_width(1)))
+    });
+    chart.draw_series(bars).map_err(e)?;
+    chart
+        .draw_series(
+            l.data
+                .1
+                .iter()
+                .map(|p| Circle::new((p.0, p.1), 3, mark.filled())),
+        )
+        .map_err(e)?
+        .label(l.data.0)
+        .legend(move |(x, y)| Circle::new((x + 10, y), 3, mark.filled()));
+    chart
+        .configure_series_labels()
+        .position(l.corner.clone())
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(e)?;
+    Ok(())
 }
 
 /// The corner of the plot whose quarter holds the fewest drawn points: where the legend hides

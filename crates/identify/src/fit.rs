@@ -47,7 +47,7 @@ impl Default for Budget {
     fn default() -> Self {
         Self {
             particles: 20,
-            iterations: 20,
+            iterations: 30,
             polish_iterations: 60,
             starts: 4,
             max_starts: 12,
