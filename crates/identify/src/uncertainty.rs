@@ -7,16 +7,18 @@
 //! weighted residuals to the `k` free cube coordinates not on a bound (central differences),
 //! with singular values `s_i` and right singular vectors `v_i`; `r` counts the `s_i` above
 //! 1e-6 `s_1` (the parameter combinations the data determine) and `σ̂² = Σ r² / (M - r)`. The
-//! covariance of the cube coordinates is that of a linear model with a weak prior holding each
-//! coordinate in its box (a Gaussian with the variance 1/12 of a uniform distribution on it):
-//! `C = Σ_i v_i v_iᵀ / (s_i² / σ̂² + 12)`. Where the data determine a direction
-//! (`s_i² / σ̂² ≫ 12`) this is the classical `σ̂² / s_i²`; where they do not, the direction keeps
-//! the spread of its box, so a prediction that depends on it (typically away from the measured
-//! speeds) gets a wide band instead of a falsely narrow one. A prediction `q` (a parameter,
-//! `e(v0)`, `t_d(v0)`) gets `q ± t_{0.975, M-r} sqrt(∇qᵀ C ∇q)`; a parameter's interval is taken
-//! on its search scale (logarithmic where searched so) and clipped to its bounds (listed in
-//! `clipped` when it reaches one). Parameters on a bound are held there and get no interval.
-//! The band's coverage is validated by simulation (`BENCHMARKS.md`, `bwc-identify coverage`).
+//! covariance of the cube coordinates is the classical `σ̂² (GᵀG)⁻¹ = Σ_i v_i v_iᵀ σ̂² / s_i²`
+//! over the determined directions, and `v_i v_iᵀ / 12` (the variance of a uniform distribution
+//! on the box: the bounds are all that is known) for each direction the data do not determine.
+//! A prediction that depends on those (typically away from the measured speeds) gets a wide
+//! band instead of a falsely narrow one. (Capping every direction's variance at 1/12, or a
+//! Gaussian prior of that variance, narrowed the band near the data below its nominal coverage:
+//! `BENCHMARKS.md`.)
+//! A prediction `q` (a parameter, `e(v0)`, `t_d(v0)`) gets `q ± t_{0.975, M-r} sqrt(∇qᵀ C ∇q)`;
+//! a parameter's interval is taken on its search scale (logarithmic where searched so) and
+//! clipped to its bounds (listed in `clipped` when it reaches one). Parameters on a bound are
+//! held there and get no interval. The band's coverage is validated by simulation
+//! (`BENCHMARKS.md`, `bwc-identify coverage`).
 
 use crate::data::Dataset;
 use crate::objective::{predict, Objective, Prediction};
@@ -32,9 +34,9 @@ const H: f64 = 1e-4;
 /// Singular values below this fraction of the largest do not count as determined directions
 /// (for the residual degrees of freedom).
 const RANK_TOLERANCE: f64 = 1e-6;
-/// Prior precision of a cube coordinate: 12, the inverse variance of a uniform distribution on
-/// `[0, 1]`.
-const PRIOR_PRECISION: f64 = 12.0;
+/// The variance of a direction the data do not determine: that of a uniform distribution on
+/// `[0, 1]`, the bounds being all that is known of it.
+const BOX_VARIANCE: f64 = 1.0 / 12.0;
 
 /// Parameter intervals, and what is needed to put a band on any prediction.
 #[derive(Debug, Clone, PartialEq)]
@@ -140,17 +142,15 @@ pub fn uncertainty<I: Input + Sync>(
     let sigma = (rss / dof as f64).sqrt();
     let mut covariance = vec![vec![0.0; s.len()]; s.len()];
     for (c, &si) in values.iter().enumerate() {
-        // σ̂ = 0 (data the model fits exactly) leaves the determined directions at 0.
-        let precision = if sigma > 0.0 {
-            si * si / (sigma * sigma)
-        } else if si > RANK_TOLERANCE * largest {
-            f64::INFINITY
+        let determined = si > RANK_TOLERANCE * largest;
+        let variance = if determined {
+            sigma * sigma / (si * si)
         } else {
-            0.0
-        } + PRIOR_PRECISION;
+            BOX_VARIANCE
+        };
         for (a, &i) in free.iter().enumerate() {
             for (b, &j) in free.iter().enumerate() {
-                covariance[i][j] += vectors[a][c] * vectors[b][c] / precision;
+                covariance[i][j] += vectors[a][c] * vectors[b][c] * variance;
             }
         }
     }
@@ -160,7 +160,8 @@ pub fn uncertainty<I: Input + Sync>(
         })?
         .inverse_cdf(0.5 + LEVEL / 2.0);
     let mut u = Uncertainty {
-        method: "linearised (delta method) with a weak prior holding each parameter in its bounds, Student-t",
+        method:
+            "linearised (delta method), Student-t; undetermined directions spread over their bounds",
         level: LEVEL,
         sigma,
         dof,

@@ -73,8 +73,8 @@ pub(super) fn parse_loop_fit(
     dir: &Path,
     f: &Spanned<RawLoopFit>,
     index: usize,
-) -> Result<LoopFitConfig, CliError> {
-    use bwc_identify::{LawSpace, Loop, LAW_NAMES};
+) -> Result<LoopDraft, CliError> {
+    use bwc_identify::{LawSpace, LAW_NAMES};
     let t = f.span();
     let r = f.get_ref();
     let name = r.name.as_ref().map_or_else(
@@ -106,19 +106,13 @@ pub(super) fn parse_loop_fit(
             "missing: [{ data = \"...csv\", v0 = ... }, ...]",
         )
     })?;
-    let mut loops = Vec::new();
+    let mut sources = Vec::new();
     for l in refs.get_ref() {
         let lr = l.get_ref();
         let v0 = ctx.num(&lr.v0, "[[loop_fit]].loops.v0")?;
-        loops.push(
-            Loop::load(&dir.join(lr.data.get_ref()), v0).map_err(|source| CliError::Identify {
-                path: ctx.path.to_owned(),
-                fit: name.clone(),
-                source,
-            })?,
-        );
+        sources.push((dir.join(lr.data.get_ref()), v0));
     }
-    if loops.is_empty() {
+    if sources.is_empty() {
         return Err(ctx.invalid(&refs.span(), "[[loop_fit]].loops", "no loops"));
     }
     let mut log = [false; 8];
@@ -241,14 +235,48 @@ pub(super) fn parse_loop_fit(
         }
     };
     let (budget, seed) = optimizer(ctx, &r.optimizer, "[loop_fit.optimizer]", index)?;
-    Ok(LoopFitConfig {
-        name,
-        kind,
-        m,
-        loops,
-        space,
-        budget,
-        seed,
-        params: params_eval,
+    Ok(LoopDraft {
+        fit: LoopFitConfig {
+            name,
+            kind,
+            m,
+            loops: Vec::new(),
+            space,
+            budget,
+            seed,
+            params: params_eval,
+        },
+        sources,
     })
+}
+
+/// A `[[loop_fit]]` validated up to its loop files.
+pub(super) struct LoopDraft {
+    fit: LoopFitConfig,
+    /// Each loop's CSV file and impact speed (m/s).
+    sources: Vec<(std::path::PathBuf, f64)>,
+}
+
+impl LoopDraft {
+    /// The fit's name.
+    pub(super) fn name(&self) -> &str {
+        &self.fit.name
+    }
+
+    /// Reads the loop files.
+    ///
+    /// # Errors
+    /// [`CliError::Identify`] for a loop file's own errors (with its path and line).
+    pub(super) fn with_data(self, ctx: &Ctx) -> Result<LoopFitConfig, CliError> {
+        let mut fit = self.fit;
+        for (path, v0) in &self.sources {
+            let l = bwc_identify::Loop::load(path, *v0).map_err(|source| CliError::Identify {
+                path: ctx.path.to_owned(),
+                fit: fit.name.clone(),
+                source,
+            })?;
+            fit.loops.push(l);
+        }
+        Ok(fit)
+    }
 }

@@ -262,22 +262,26 @@ impl Config {
             }
             drafts.push(draft);
         }
-        let mut loops_out: Vec<LoopFitConfig> = Vec::new();
+        let mut loop_drafts: Vec<loops::LoopDraft> = Vec::new();
         for (i, f) in loop_fits.iter().enumerate() {
             let fit = loops::parse_loop_fit(&ctx, dir, f, i)?;
-            if drafts.iter().any(|o| o.name() == fit.name)
-                || loops_out.iter().any(|o| o.name == fit.name)
+            if drafts.iter().any(|o| o.name() == fit.name())
+                || loop_drafts.iter().any(|o| o.name() == fit.name())
             {
                 return Err(ctx.invalid(
                     &f.span(),
                     "[[loop_fit]].name",
-                    format!("\"{}\" is used twice: names must be unique", fit.name),
+                    format!("\"{}\" is used twice: names must be unique", fit.name()),
                 ));
             }
-            loops_out.push(fit);
+            loop_drafts.push(fit);
         }
         // The data files are read once the whole config has parsed.
         let out = drafts
+            .into_iter()
+            .map(|d| d.with_data(&ctx))
+            .collect::<Result<Vec<_>, _>>()?;
+        let loops_out = loop_drafts
             .into_iter()
             .map(|d| d.with_data(&ctx))
             .collect::<Result<Vec<_>, _>>()?;
