@@ -89,12 +89,31 @@ fn determined(r: &FitReport) -> Value {
             .collect();
         let max_inside = inside.iter().copied().fold(0.0, f64::max);
         let (first, last) = (r.curve.first(), r.curve.last());
-        let below = first.map(|b| (b.v0, half(b, q)));
-        let above = last.map(|b| (b.v0, half(b, q)));
+        // Without separation (no duration predicted) e = 0 there, with nothing to bound.
+        let end = |b: &BandPoint| {
+            (
+                b.v0,
+                if b.t_d[0].is_nan() {
+                    f64::NAN
+                } else {
+                    half(b, q)
+                },
+            )
+        };
+        let below = first.map(end);
+        let above = last.map(end);
+        // At a speed where the model does not separate there is no duration to bound.
+        let at = |b: Option<(f64, f64)>| match b {
+            Some((v0, h)) if h.is_finite() => format!("+/-{h:.2e}{unit} at {} m/s", sig3(v0)),
+            Some((v0, _)) => format!("no separation (e = 0) at {} m/s", sig3(v0)),
+            None => "nothing".into(),
+        };
         let sentence = format!(
-            "{name} is determined to +/-{max_inside:.2e}{unit} over the measured {lo:.2}-{hi:.2} m/s; +/-{:.2e}{unit} at {:.2} m/s and +/-{:.2e}{unit} at {:.2} m/s outside it",
-            below.map_or(f64::NAN, |b| b.1), below.map_or(f64::NAN, |b| b.0),
-            above.map_or(f64::NAN, |b| b.1), above.map_or(f64::NAN, |b| b.0),
+            "{name} is determined to +/-{max_inside:.2e}{unit} over the measured {}-{} m/s; {} and {} outside it",
+            sig3(lo),
+            sig3(hi),
+            at(below),
+            at(above),
         );
         json!({
             "inside": {"v0": [lo, hi], "halfwidth_max": max_inside},
@@ -108,6 +127,12 @@ fn determined(r: &FitReport) -> Value {
         v["t_d"] = quantity(1, " s", "t_d");
     }
     v
+}
+
+/// `x` with three significant digits (a speed in a sentence).
+fn sig3(x: f64) -> String {
+    let decimals = (2 - x.abs().log10().floor() as i32).max(0) as usize;
+    format!("{x:.decimals$}")
 }
 
 /// File-name stem of a fit: lowercase letters, digits and `_`.
