@@ -114,6 +114,11 @@ pub fn uncertainty<I: Input + Sync>(
         let (p, _) = objective.evaluate(x)?;
         Ok(objective.weighted_residuals(&p))
     };
+    if free.is_empty() {
+        return Err(IdentifyError::Objectives {
+            reason: "no free parameter off a bound: nothing to estimate".into(),
+        });
+    }
     let g = columns(s, &free, &residuals)?;
     let m = r.len();
     let Svd { values, vectors } = svd(&g, m)?;

@@ -100,7 +100,8 @@ fn plain_curve(
 /// Warnings on how a search ended (`s` the optimum on the unit cube).
 fn search_warnings(f: &FitConfig, c: &Convergence, at_bound: &[&str], s: &[f64]) -> Vec<String> {
     let mut w = Vec::new();
-    if c.agreeing < 2 {
+    // Nothing free: nothing was searched.
+    if c.agreeing < 2 && f.space.dim() > 0 {
         w.push(format!(
             "\"{}\": only {} of {} starts reached the best cost within {} %: the optimum may not \
              be global; raise [fit.optimizer].max_starts or particles",
