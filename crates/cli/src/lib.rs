@@ -35,6 +35,28 @@ mod tables;
 
 pub use error::CliError;
 
+/// Runs `work` on a rayon pool of `threads` threads, or on the global pool (all cores, or
+/// `RAYON_NUM_THREADS`) when `None`. Results do not depend on the choice.
+///
+/// # Errors
+/// [`CliError::Threads`] if the pool cannot start; otherwise `work`'s own error.
+pub fn with_threads<T: Send>(
+    threads: Option<usize>,
+    work: impl FnOnce() -> Result<T, CliError> + Send,
+) -> Result<T, CliError> {
+    match threads {
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map_err(|e| CliError::Threads {
+                threads: n,
+                message: e.to_string(),
+            })?
+            .install(work),
+        None => work(),
+    }
+}
+
 /// `writeln!` to stdout, ignoring errors such as a closed pipe (`bwc-simulate ... | head` must
 /// not panic, as `println!` would).
 #[macro_export]

@@ -193,17 +193,7 @@ fn run(
             }
         }
     };
-    let (reports, loop_reports) = match threads {
-        Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .map_err(|e| CliError::Threads {
-                threads: n,
-                message: e.to_string(),
-            })?
-            .install(work)?,
-        None => work()?,
-    };
+    let (reports, loop_reports) = bwc_cli::with_threads(threads, work)?;
     for w in reports.iter().flat_map(|r| &r.warnings) {
         eprintln!("bwc-identify: warning: {w}");
     }
@@ -357,17 +347,7 @@ fn coverage_study(
             .map(|f| bwc_cli::identify::run_coverage(path, f, noise, seeds.clone()))
             .collect::<Result<Vec<_>, _>>()
     };
-    let reports = match threads {
-        Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .map_err(|e| CliError::Threads {
-                threads: n,
-                message: e.to_string(),
-            })?
-            .install(work)?,
-        None => work()?,
-    };
+    let reports = bwc_cli::with_threads(threads, work)?;
     if json {
         bwc_cli::out!("{}", bwc_cli::identify::coverage_summary(&reports));
         return Ok(());

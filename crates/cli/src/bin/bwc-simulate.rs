@@ -78,17 +78,7 @@ fn run(
             bar.set_draw_target(ProgressDrawTarget::stderr());
         }
     };
-    let runs = match threads {
-        Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .map_err(|e| CliError::Threads {
-                threads: n,
-                message: e.to_string(),
-            })?
-            .install(|| simulate::run(&scene, Some(&tick)))?,
-        None => simulate::run(&scene, Some(&tick))?,
-    };
+    let runs = bwc_cli::with_threads(threads, || simulate::run(&scene, Some(&tick)))?;
     bar.finish_and_clear();
     if let Some(dir) = out {
         let files = output::render(&scene, &runs, dir)?;
