@@ -8,7 +8,7 @@
 
 use bw_models::BaseParams;
 use bwc_cli::config::Config;
-use bwc_identify::{coverage, study, CoverageTask};
+use bwc_identify::{coverage, study};
 
 fn main() {
     let replicates: u64 = std::env::args()
@@ -51,14 +51,7 @@ fn main() {
     );
     bwc_cli::out!("|---|---|---|---|---|---|---|");
     for (f, (truth, noise)) in config.fits.iter().zip(truths) {
-        let task = CoverageTask {
-            space: f.space.clone(),
-            truth,
-            speeds: f.data.points.iter().map(|p| p.v0).collect(),
-            noise,
-            budget: f.budget,
-            settings: f.settings,
-        };
+        let task = bwc_cli::identify::coverage_task(f, truth, noise);
         let clock = std::time::Instant::now();
         let reps = study(&task, 1..replicates + 1).expect("replicates");
         let with: Vec<_> = reps.iter().filter(|r| r.error.is_none()).collect();

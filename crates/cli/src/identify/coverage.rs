@@ -41,7 +41,7 @@ pub fn run_coverage(
     noise: Option<f64>,
     seeds: std::ops::Range<u64>,
 ) -> Result<CoverageReport, CliError> {
-    let err = fail(config, f);
+    let err = fail(config, &f.name);
     if !f.input.is_zero() || f.weights.j2 > 0.0 || f.space.known().is_some() {
         return Err(CliError::Invalid {
             path: config.to_owned(),
@@ -79,15 +79,7 @@ pub fn run_coverage(
             (r.iter().map(|x| x * x).sum::<f64>() / (r.len().max(2) - 1) as f64).sqrt()
         }
     };
-    let task = CoverageTask {
-        space: f.space.clone(),
-        truth,
-        speeds: f.data.points.iter().map(|p| p.v0).collect(),
-        noise,
-        budget: f.budget,
-        settings: f.settings,
-    };
-    let replicates = study(&task, seeds).map_err(&err)?;
+    let replicates = study(&coverage_task(f, truth, noise), seeds).map_err(&err)?;
     Ok(CoverageReport {
         name: f.name.clone(),
         truth,
@@ -95,6 +87,19 @@ pub fn run_coverage(
         noise,
         replicates,
     })
+}
+
+/// The coverage study of `f`'s design (its speeds, bounds, budget and search settings) with
+/// synthetic data from `truth` plus noise of standard deviation `noise`.
+pub fn coverage_task(f: &FitConfig, truth: BaseParams, noise: f64) -> CoverageTask {
+    CoverageTask {
+        space: f.space.clone(),
+        truth,
+        speeds: f.data.points.iter().map(|p| p.v0).collect(),
+        noise,
+        budget: f.budget,
+        settings: f.settings,
+    }
 }
 
 /// `{"coverage": [...]}`: per fit the truth, the noise, the coverage and every replicate.

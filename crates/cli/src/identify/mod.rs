@@ -4,7 +4,7 @@
 mod coverage;
 mod render;
 
-pub use coverage::{coverage_summary, run_coverage, CoverageReport};
+pub use coverage::{coverage_summary, coverage_task, run_coverage, CoverageReport};
 pub use render::{loop_summary, render, render_loops, slug, summary};
 
 use crate::config::FitConfig;
@@ -140,14 +140,14 @@ fn search_warnings(f: &FitConfig, c: &Convergence, at_bound: &[&str], s: &[f64])
     w
 }
 
+/// Wraps a library error of the fit named `name` in the config at `path`.
 fn fail<'a>(
     path: &'a Path,
-    f: &'a FitConfig,
+    name: &'a str,
 ) -> impl Fn(bwc_identify::IdentifyError) -> CliError + 'a {
-    let path = path.to_owned();
     move |source| CliError::Identify {
-        path: path.clone(),
-        fit: f.name.clone(),
+        path: path.to_owned(),
+        fit: name.to_owned(),
         source,
     }
 }
@@ -163,7 +163,7 @@ pub fn run_fit(
     progress: &(dyn Fn() + Sync),
 ) -> Result<FitReport, CliError> {
     let clock = Instant::now();
-    let err = fail(config, f);
+    let err = fail(config, &f.name);
     let objective = Objective::new(&f.space, &f.data, &f.input, f.settings, f.weights)
         .map_err(&err)?
         .with_progress(progress);
@@ -264,7 +264,7 @@ pub fn run_fit(
 /// simulation fails.
 pub fn eval_fit(config: &Path, f: &FitConfig) -> Result<FitReport, CliError> {
     let clock = Instant::now();
-    let err = fail(config, f);
+    let err = fail(config, &f.name);
     let params = f.params.ok_or_else(|| CliError::Invalid {
         path: config.to_owned(),
         line: 1,
@@ -330,19 +330,15 @@ pub fn run_loop_fit(
     progress: &(dyn Fn() + Sync),
 ) -> Result<LoopReport, CliError> {
     let clock = Instant::now();
-    let err = |source| CliError::Identify {
-        path: config.to_owned(),
-        fit: f.name.clone(),
-        source,
-    };
+    let err = fail(config, &f.name);
     let objective = bwc_identify::LoopObjective::new(&f.space, &f.loops, f.m, Settings::default())
-        .map_err(err)?;
+        .map_err(&err)?;
     let counted = Counted {
         inner: &objective,
         progress,
     };
-    let min = bwc_identify::minimize(&counted, &f.budget, seed ^ f.seed, None).map_err(err)?;
-    let (cost, curves) = objective.evaluate(&min.point).map_err(err)?;
+    let min = bwc_identify::minimize(&counted, &f.budget, seed ^ f.seed, None).map_err(&err)?;
+    let (cost, curves) = objective.evaluate(&min.point).map_err(&err)?;
     Ok(LoopReport {
         name: f.name.clone(),
         model: f.kind.name(),
@@ -371,14 +367,10 @@ pub fn eval_loop_fit(
         key: format!("[loop_fit.params] of \"{}\"", f.name),
         message: "missing: `eval` needs the parameters to evaluate".into(),
     })?;
-    let err = |source| CliError::Identify {
-        path: config.to_owned(),
-        fit: f.name.clone(),
-        source,
-    };
+    let err = fail(config, &f.name);
     let objective = bwc_identify::LoopObjective::new(&f.space, &f.loops, f.m, Settings::default())
-        .map_err(err)?;
-    let curves = objective.simulate(&law).map_err(err)?;
+        .map_err(&err)?;
+    let curves = objective.simulate(&law).map_err(&err)?;
     let cost = f
         .loops
         .iter()
