@@ -89,6 +89,26 @@ impl<I1: Input, I2: Input> Bodies<I1, I2> {
         })
     }
 
+    /// The masses `(m1, m2)` (kg; `m2 = +inf` for a fixed body).
+    pub fn masses(&self) -> (f64, f64) {
+        (self.m1, self.m2)
+    }
+
+    /// The velocities `(v1, v2)` at impact (m/s).
+    pub fn velocities(&self) -> (f64, f64) {
+        (self.v1, self.v2)
+    }
+
+    /// The distances `(l1, l2)` of the centres of mass from the contact point (m).
+    pub fn distances(&self) -> (f64, f64) {
+        (self.l1, self.l2)
+    }
+
+    /// The external forces `(u1, u2)` (N).
+    pub fn inputs(&self) -> (&I1, &I2) {
+        (&self.u1, &self.u2)
+    }
+
     /// `η = m1 / (m1 + m2)` (0 for a fixed body 2).
     pub fn eta(&self) -> f64 {
         if self.m2.is_infinite() {

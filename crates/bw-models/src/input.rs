@@ -171,6 +171,11 @@ impl Table {
             u: points.iter().map(|p| p.1).collect(),
         })
     }
+
+    /// The points `(t, u)` in time order.
+    pub fn points(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        self.t.iter().copied().zip(self.u.iter().copied())
+    }
 }
 
 impl Input for Table {

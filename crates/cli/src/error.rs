@@ -73,6 +73,16 @@ pub enum CliError {
         /// What went wrong.
         source: bwc_identify::IdentifyError,
     },
+    /// The `--out` folder cannot be used, or a file in it could not be written.
+    #[error("--out {dir}: {}{source}", file.as_ref().map_or(String::new(), |f| format!("writing {f} failed: ")))]
+    Output {
+        /// The folder given as `--out`.
+        dir: PathBuf,
+        /// The file being written, if the folder itself was usable.
+        file: Option<String>,
+        /// What the operating system said.
+        source: std::io::Error,
+    },
     /// The thread pool could not be built.
     #[error("cannot start {threads} threads: {message}")]
     Threads {

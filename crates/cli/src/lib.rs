@@ -17,7 +17,8 @@
 //!     n = 1.0
 //!     p = 1.5
 //! "#)?;
-//! let runs = bwc_cli::simulate::run(&scene, None)?;
+//! let runs = bwc_cli::simulate::run(&scene, None);
+//! assert_eq!(runs[0].outcome, bwc_cli::simulate::Outcome::Separated);
 //! assert!((runs[0].e - 0.748434931597434).abs() < 1e-9);
 //! # Ok::<(), bwc_cli::CliError>(())
 //! ```
@@ -26,6 +27,7 @@
 pub mod config;
 mod error;
 pub mod identify;
+pub mod outdir;
 pub mod output;
 pub mod plot;
 pub mod scene;

@@ -3,12 +3,12 @@
 //! run leaves no half-written file.
 
 use crate::plot::{self, Series, SeriesLabelPosition};
-use crate::scene::{OutputSpec, Scene};
-use crate::simulate::Run;
+use crate::scene::{OutputSpec, Scene, System};
+use crate::simulate::{Outcome, Run};
 use crate::CliError;
 use bw_models::ModelKind;
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// One run in the JSON summary. Key names are a fixed contract; keys may be added.
 #[derive(Debug, Serialize)]
@@ -43,6 +43,51 @@ pub struct RunSummary {
     pub name: Option<String>,
     /// Unit of `t_s`.
     pub time_unit: &'static str,
+    /// How the run ended: `"separated"`, `"settled"`, `"horizon"` or `"failed"`.
+    pub outcome: &'static str,
+    /// For a failed run, what went wrong and which setting would help; null otherwise.
+    pub error: Option<String>,
+    /// For a settled contact, where it came to rest (`F + u = 0`); null otherwise.
+    pub rest: Option<RestSummary>,
+    /// The time scale `T_c` (s): solver times (`t_max`, `max_step`) are multiples of it; null
+    /// for nondimensional runs.
+    #[serde(rename = "T_c")]
+    pub t_c: Option<f64>,
+    /// The nondimensional parameters the run integrated; null for a failed run.
+    pub nondimensional: Option<NondimSummary>,
+}
+
+/// Where a settled contact came to rest, in the run's units (`time_unit`; N and m for SI
+/// runs, nondimensional otherwise).
+#[derive(Debug, Serialize)]
+pub struct RestSummary {
+    /// When it was found at rest.
+    pub t: f64,
+    /// Relative displacement.
+    pub x: f64,
+    /// Contact force.
+    #[serde(rename = "F")]
+    pub f: f64,
+    /// Input: at rest `F + u = 0`.
+    pub u: f64,
+}
+
+/// Nondimensional parameters, keyed as in a scene's `[nondimensional]` table.
+#[derive(Debug, Serialize)]
+#[allow(non_snake_case)]
+pub struct NondimSummary {
+    /// `B`.
+    pub B: f64,
+    /// `Γ`.
+    pub Gamma: f64,
+    /// `κ`.
+    pub kappa: f64,
+    /// `σ`.
+    pub sigma: f64,
+    /// `n`.
+    pub n: f64,
+    /// `p`.
+    pub p: f64,
 }
 
 /// The JSON summary: `{"runs": [...]}`.
@@ -63,7 +108,7 @@ impl Summary {
                     t_s: r.t_s,
                     e: r.e,
                     t_d: r.t_d,
-                    separated: r.t_s.is_some(),
+                    separated: r.outcome == Outcome::Separated,
                     rhs_evals: r.stats.rhs_evals,
                     accepted: r.stats.accepted,
                     rejected: r.stats.rejected,
@@ -74,15 +119,66 @@ impl Summary {
                     model: r.model.name(),
                     name: r.name.clone(),
                     time_unit: r.time_unit,
+                    outcome: r.outcome.name(),
+                    error: r.error.clone(),
+                    rest: r.rest.map(|q| RestSummary {
+                        t: q.t,
+                        x: q.x,
+                        f: q.f,
+                        u: q.u,
+                    }),
+                    t_c: r.t_c,
+                    nondimensional: r.nondimensional.map(|q| NondimSummary {
+                        B: q.b,
+                        Gamma: q.gamma,
+                        kappa: q.kappa,
+                        sigma: q.sigma,
+                        n: q.n,
+                        p: q.p,
+                    }),
                 })
                 .collect(),
         }
     }
 
-    /// The summary as one line of JSON.
-    pub fn to_json(&self) -> String {
-        serde_json::to_string(self).expect("summary serializes")
+    /// The summary with the provenance of `scene`: `{"runs", "units", "scene", "tool",
+    /// "version", "command"}`.
+    pub fn with_provenance(&self, scene: &Scene, runs: &[Run]) -> serde_json::Value {
+        let mut v = crate::outdir::provenance("bwc-simulate");
+        v["runs"] = serde_json::to_value(&self.runs).expect("runs serialize");
+        v["units"] = units(scene, runs);
+        v["scene"] = scene.describe();
+        v
     }
+}
+
+/// The unit of every JSON key of a run and of every CSV column (`"1"`: dimensionless; the
+/// nondimensional quantities are in the scales of Table 1).
+pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
+    let nd = "nondimensional";
+    let t = match runs.first().map(|r| r.time_unit) {
+        Some(u) if runs.iter().all(|r| r.time_unit == u) => u,
+        Some(_) => "s or nondimensional (each run's time_unit)",
+        None => "s",
+    };
+    // Trajectories of [nondimensional] and [base] systems are in the model's own variables.
+    let si = scene
+        .systems
+        .iter()
+        .all(|s| matches!(s.system, System::Physical { .. } | System::Bodies { .. }));
+    let (m, ms, n) = if si { ("m", "m/s", "N") } else { (nd, nd, nd) };
+    serde_json::json!({
+        "runs": {"v0": "m/s", "e": "1", "t_s": t, "t_d": "s", "T_c": "s", "stiff_from": t,
+            "rest": {"t": t, "x": m, "F": n, "u": n}, "nondimensional": "1",
+            "rhs_evals": "count", "accepted": "count", "rejected": "count", "events": "count",
+            "jacobians": "count", "series_steps": "count"},
+        "sweep.csv": {"v_0": "m/s", "e": "1", "t_d": "s", "t_s": t, "separated": "true/false",
+            "name": "text", "outcome": "text"},
+        "trajectory.csv": {"v_0": "m/s", "name": "text", "t": t, "x": m, "v": ms, "u": n,
+            "F": n, "z": m, "r": m, "y": m, "x_m_1": "m", "x_m_2": "m", "x_m": "m",
+            "v_m_1": "m/s", "v_m_2": "m/s", "v_m": "m/s", "u_1": "N", "u_2": "N"},
+        "loop.csv": {"v_0": "m/s", "x": m, "F": n, "name": "text"},
+    })
 }
 
 /// Renders every requested output of `runs` into `(file name, bytes)` pairs.
@@ -91,10 +187,7 @@ impl Summary {
 /// [`CliError::Csv`] or [`CliError::Plot`] if rendering fails.
 pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Vec<u8>)>, CliError> {
     let spec: OutputSpec = scene.output;
-    let mut files = vec![(
-        "summary.json".to_string(),
-        (Summary::new(runs).to_json() + "\n").into_bytes(),
-    )];
+    let mut files = Vec::new();
     let several_systems = scene.systems.len() > 1;
     let several_runs = runs.len() > 1;
     let sweep = spec.sweep || scene.speeds.len() > 1;
@@ -119,18 +212,20 @@ pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Ve
         if several_systems {
             header.push("name");
         }
+        header.push("outcome");
         w.write_record(&header).map_err(csv_err("sweep.csv"))?;
         for r in runs {
             let mut rec = vec![
                 opt(r.v0),
-                r.e.to_string(),
+                opt(Some(r.e).filter(|e| e.is_finite())),
                 opt(r.t_d),
                 opt(r.t_s),
-                r.t_s.is_some().to_string(),
+                (r.outcome == Outcome::Separated).to_string(),
             ];
             if several_systems {
                 rec.push(r.name.clone().unwrap_or_default());
             }
+            rec.push(r.outcome.name().to_string());
             w.write_record(&rec).map_err(csv_err("sweep.csv"))?;
         }
         files.push((
@@ -372,27 +467,4 @@ fn time_histories(runs: &[Run], bodies: bool) -> Result<Vec<(String, Vec<u8>)>, 
             .into_bytes(),
         ),
     ])
-}
-
-/// Writes `files` into `dir` (created if needed): each to a temporary name, then renamed.
-///
-/// # Errors
-/// [`CliError::Io`] naming the file that could not be written; temporary files are removed.
-pub fn write_all(dir: &Path, files: &[(String, Vec<u8>)]) -> Result<Vec<PathBuf>, CliError> {
-    std::fs::create_dir_all(dir).map_err(|source| CliError::Io {
-        path: dir.to_owned(),
-        source,
-    })?;
-    let mut written = Vec::new();
-    for (name, bytes) in files {
-        let path = dir.join(name);
-        let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-        let result = std::fs::write(&tmp, bytes).and_then(|_| std::fs::rename(&tmp, &path));
-        if let Err(source) = result {
-            let _ = std::fs::remove_file(&tmp);
-            return Err(CliError::Io { path, source });
-        }
-        written.push(path);
-    }
-    Ok(written)
 }

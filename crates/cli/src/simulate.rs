@@ -1,11 +1,10 @@
 //! Runs the impacts of a scene: one per system and speed, in parallel, in a fixed order.
 
 use crate::scene::{Scene, System, SystemSpec};
-use crate::CliError;
 use bw_models::input::{Constant, Input, Scaled};
 use bw_models::{
-    impact, simulate as sim, BodyMotion, Bwmcm, Bwshccm, CollisionModel, Impact, ModelError,
-    ModelKind, Ndbwmcm, Ndbwshccm, Sampling, Settings,
+    impact, nondimensionalize, simulate as sim, BodyMotion, Bwmcm, Bwshccm, CollisionModel, Impact,
+    ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Nondim, PhysicalParams, Sampling, Settings,
 };
 use bwc_ode::Stats;
 use rayon::prelude::*;
@@ -22,8 +21,19 @@ pub struct Run {
     /// Separation time: nondimensional for `[nondimensional]` scenes (and `[base]` scenes
     /// without `T_b`), seconds otherwise; `None` without separation.
     pub t_s: Option<f64>,
-    /// Coefficient of restitution (0 without separation).
+    /// Coefficient of restitution (0 without separation, NaN for a failed run).
     pub e: f64,
+    /// How the run ended.
+    pub outcome: Outcome,
+    /// For a failed run: what went wrong and which setting would help.
+    pub error: Option<String>,
+    /// For a settled contact: where it came to rest.
+    pub rest: Option<Rest>,
+    /// The time scale `T_c` (s) of the run, for `[physical]`, `[bodies]` and `[base]` scenes
+    /// with `T_b`: solver times (`t_max`, `max_step`) are multiples of it.
+    pub t_c: Option<f64>,
+    /// The nondimensional parameters the run integrated (Table 1 or the base map at `v0`).
+    pub nondimensional: Option<Nondim>,
     /// Contact duration in seconds, where a time scale exists.
     pub t_d: Option<f64>,
     /// Unit of `t_s` and of the trajectory's `t`: `"s"` or `"nondimensional"`.
@@ -36,6 +46,44 @@ pub struct Run {
     pub series_steps: u64,
     /// Sampled trajectory (only when an output asks for it).
     pub trajectory: Vec<Sample>,
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outcome {
+    /// The bodies separated: `t_s = inf{t : F <= 0 <= v}` was reached.
+    Separated,
+    /// The contact came to rest with the force balancing a constant input: it never ends.
+    Settled,
+    /// The horizon `[solver].t_max` came first: no separation by then.
+    Horizon,
+    /// The simulation failed (see [`Run::error`]).
+    Failed,
+}
+
+impl Outcome {
+    /// The name used in tables and JSON: `"separated"`, `"settled"`, `"horizon"`, `"failed"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Outcome::Separated => "separated",
+            Outcome::Settled => "settled",
+            Outcome::Horizon => "horizon",
+            Outcome::Failed => "failed",
+        }
+    }
+}
+
+/// Where a settled contact came to rest, in the run's units: at rest, `F + u = 0`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Rest {
+    /// When it was found at rest.
+    pub t: f64,
+    /// Relative displacement there.
+    pub x: f64,
+    /// Contact force there.
+    pub f: f64,
+    /// Input there.
+    pub u: f64,
 }
 
 /// One sample of a trajectory, in the run's units.
@@ -71,11 +119,10 @@ impl Run {
     }
 }
 
-/// Runs every impact of `scene` on the current rayon pool, calling `progress` after each.
-///
-/// # Errors
-/// [`CliError::Simulation`] for the first run that fails.
-pub fn run(scene: &Scene, progress: Option<&(dyn Fn() + Sync)>) -> Result<Vec<Run>, CliError> {
+/// Runs every impact of `scene` on the current rayon pool, calling `progress` after each. Each
+/// run stands alone: one that fails is returned with [`Outcome::Failed`] and its error, and the
+/// others are unaffected.
+pub fn run(scene: &Scene, progress: Option<&(dyn Fn() + Sync)>) -> Vec<Run> {
     let speeds: Vec<Option<f64>> = if scene.speeds.is_empty() {
         vec![None]
     } else {
@@ -94,24 +141,84 @@ pub fn run(scene: &Scene, progress: Option<&(dyn Fn() + Sync)>) -> Result<Vec<Ru
     });
     jobs.par_iter()
         .map(|&(spec, v0)| {
-            let r = run_one(spec, v0, &scene.settings, sampling).map_err(|source| {
-                CliError::Simulation {
-                    path: scene.path.clone(),
-                    run: match (&spec.name, v0) {
-                        (Some(n), Some(v)) => format!("{n} at v0 = {v}"),
-                        (_, Some(v)) => format!("v0 = {v}"),
-                        (Some(n), None) => n.clone(),
-                        (None, None) => "1".into(),
-                    },
-                    source,
-                }
-            });
+            let run = run_one(spec, v0, &scene.settings, sampling)
+                .unwrap_or_else(|e| failed(spec, v0, &e, &scene.settings));
             if let Some(p) = progress {
                 p();
             }
-            r
+            run
         })
         .collect()
+}
+
+/// The record of a run that failed with `error`.
+fn failed(spec: &SystemSpec, v0: Option<f64>, error: &ModelError, settings: &Settings) -> Run {
+    let scaling = scaling(spec, v0).ok();
+    let v0 = match &spec.system {
+        System::Bodies { bodies, .. } => Some(bodies.impact_speed()),
+        _ => v0,
+    };
+    Run {
+        name: spec.name.clone(),
+        model: spec.kind,
+        v0,
+        t_s: None,
+        e: f64::NAN,
+        outcome: Outcome::Failed,
+        error: Some(format!("{error}; {}", hint(error, settings))),
+        rest: None,
+        t_c: scaling.as_ref().and_then(|s| s.t_c),
+        nondimensional: scaling.map(|s| s.nondimensional),
+        t_d: None,
+        time_unit: time_unit(spec),
+        stats: Stats::default(),
+        stiff_from: None,
+        series_steps: 0,
+        trajectory: Vec::new(),
+    }
+}
+
+/// The setting that would help a run that failed with `error`.
+fn hint(error: &ModelError, settings: &Settings) -> String {
+    use bwc_ode::Error as Ode;
+    let solver = match error {
+        ModelError::Solver(bwc_events::Error::Solver(e)) => Some(e),
+        _ => None,
+    };
+    match solver {
+        Some(Ode::TooManySteps { max_steps, .. }) => format!(
+            "raise [solver].max_steps (now {max_steps}), or loosen [solver].rtol (now {:e}); \
+             a stiff contact is cheaper with switch_when_stiff = true or method = \"rosenbrock\"",
+            settings.rtol
+        ),
+        Some(Ode::StepSizeTooSmall { .. }) => format!(
+            "the step size collapsed: loosen [solver].rtol (now {:e}) and atol (now {:e}), or \
+             use method = \"rosenbrock\" for a stiff contact",
+            settings.rtol, settings.atol
+        ),
+        Some(Ode::NonFiniteState { .. }) => {
+            "the state overflowed: check the parameters and the impact speed".into()
+        }
+        _ => "check the scene's parameters and [solver] settings".into(),
+    }
+}
+
+/// The unit of the times of a system's runs.
+fn time_unit(spec: &SystemSpec) -> &'static str {
+    match &spec.system {
+        System::Nondimensional { .. } => "nondimensional",
+        System::Base {
+            time_scale_known, ..
+        } if !time_scale_known => "nondimensional",
+        _ => "s",
+    }
+}
+
+/// What the scales of a run give its record: `T_c` (s) where known and the nondimensional
+/// parameters integrated.
+struct Scaling {
+    t_c: Option<f64>,
+    nondimensional: Nondim,
 }
 
 fn run_one(
@@ -120,25 +227,47 @@ fn run_one(
     settings: &Settings,
     sampling: Option<Sampling>,
 ) -> Result<Run, ModelError> {
-    let mk = |impact: Impact, trajectory, t_scale: Option<f64>, time_unit| {
-        let t_s = impact.t_s.map(|t| t * t_scale.unwrap_or(1.0));
+    let scaling = scaling(spec, v0)?;
+    let mk = |driven: Driven, t_scale: Option<f64>| {
+        let Driven {
+            impact,
+            trajectory,
+            rest,
+        } = driven;
+        let scale = t_scale.unwrap_or(1.0);
+        let t_s = impact.t_s.map(|t| t * scale);
+        let outcome = if impact.t_s.is_some() {
+            Outcome::Separated
+        } else if impact.settled_at.is_some() {
+            Outcome::Settled
+        } else {
+            Outcome::Horizon
+        };
         Run {
             name: spec.name.clone(),
             model: spec.kind,
             v0,
             t_s,
             e: impact.e,
+            outcome,
+            error: None,
+            rest: rest.map(|r| Rest {
+                t: r.t * scale,
+                ..r
+            }),
+            t_c: scaling.t_c,
+            nondimensional: Some(scaling.nondimensional),
             t_d: if t_scale.is_some() { t_s } else { None },
-            time_unit,
+            time_unit: time_unit(spec),
             stats: impact.stats,
-            stiff_from: impact.stiff_from.map(|t| t * t_scale.unwrap_or(1.0)),
+            stiff_from: impact.stiff_from.map(|t| t * scale),
             series_steps: impact.series_steps,
             trajectory,
         }
     };
     match &spec.system {
         System::Nondimensional { params, u } => {
-            let (imp, tr) = match spec.kind {
+            let driven = match spec.kind {
                 ModelKind::Shccm => drive(
                     &Ndbwshccm::new(params, Constant(*u))?,
                     settings,
@@ -152,7 +281,7 @@ fn run_one(
                     1.0,
                 )?,
             };
-            Ok(mk(imp, tr, None, "nondimensional"))
+            Ok(mk(driven, None))
         }
         System::Base {
             map,
@@ -167,7 +296,7 @@ fn run_one(
                 time_scale: s.time_scale,
             };
             let scale = time_scale_known.then(|| map.time_scale(v0v));
-            let (imp, tr) = match spec.kind {
+            let driven = match spec.kind {
                 ModelKind::Shccm => drive(
                     &Ndbwshccm::new(&nd, u)?,
                     settings,
@@ -181,54 +310,77 @@ fn run_one(
                     scale.unwrap_or(1.0),
                 )?,
             };
-            Ok(mk(
-                imp,
-                tr,
-                scale,
-                if scale.is_some() {
-                    "s"
-                } else {
-                    "nondimensional"
-                },
-            ))
+            Ok(mk(driven, scale))
         }
         System::Physical { params, m, input } => {
             let v0v = v0.unwrap_or(1.0);
-            let (imp, tr) = physical(spec.kind, params, *m, v0v, input, settings, sampling)?;
-            Ok(mk(imp, tr, Some(1.0), "s"))
+            let driven = physical(spec.kind, params, *m, v0v, input, settings, sampling)?;
+            Ok(mk(driven, Some(1.0)))
         }
         System::Bodies { params, bodies } => {
-            let (imp, mut tr) = physical(
-                spec.kind,
-                params,
-                bodies.effective_mass(),
-                bodies.impact_speed(),
-                bodies.relative_input(),
-                settings,
-                sampling,
-            )?;
-            if !tr.is_empty() {
+            let (m, v0b) = (bodies.effective_mass(), bodies.impact_speed());
+            let input = bodies.relative_input();
+            let mut driven = physical(spec.kind, params, m, v0b, input, settings, sampling)?;
+            if !driven.trajectory.is_empty() {
                 let mut motion = bodies.motion()?;
-                for s in &mut tr {
+                for s in &mut driven.trajectory {
                     s.bodies = Some(motion.at(s.t, s.x, s.v)?);
                 }
             }
-            let mut run = mk(imp, tr, Some(1.0), "s");
-            run.v0 = Some(bodies.impact_speed());
+            let mut run = mk(driven, Some(1.0));
+            run.v0 = Some(v0b);
             Ok(run)
         }
     }
 }
 
+/// `T_c` (where the run has a time scale in s) and the nondimensional parameters of a run:
+/// Table 1 for SI systems, the base map at `v0` for `[base]`.
+fn scaling(spec: &SystemSpec, v0: Option<f64>) -> Result<Scaling, ModelError> {
+    let v0 = v0.unwrap_or(1.0);
+    let table_1 = |params: &PhysicalParams, m: f64, v0: f64| {
+        let (nd, scales) = nondimensionalize(params, m, v0)?;
+        Ok(Scaling {
+            t_c: Some(scales.t_c),
+            nondimensional: *nd.get(),
+        })
+    };
+    match &spec.system {
+        System::Nondimensional { params, .. } => Ok(Scaling {
+            t_c: None,
+            nondimensional: *params.get(),
+        }),
+        System::Base {
+            map,
+            time_scale_known,
+            ..
+        } => Ok(Scaling {
+            t_c: time_scale_known.then(|| map.time_scale(v0)),
+            nondimensional: *map.at(v0)?.0.get(),
+        }),
+        System::Physical { params, m, .. } => table_1(params, *m, v0),
+        System::Bodies { params, bodies } => {
+            table_1(params, bodies.effective_mass(), bodies.impact_speed())
+        }
+    }
+}
+
+/// What [`drive`] returns: the impact, its samples, and where a settled contact came to rest.
+struct Driven {
+    impact: Impact,
+    trajectory: Vec<Sample>,
+    rest: Option<Rest>,
+}
+
 fn physical<I: Input>(
     kind: ModelKind,
-    params: &bw_models::PhysicalParams,
+    params: &PhysicalParams,
     m: f64,
     v0: f64,
     input: I,
     settings: &Settings,
     sampling: Option<Sampling>,
-) -> Result<(Impact, Vec<Sample>), ModelError> {
+) -> Result<Driven, ModelError> {
     match kind {
         ModelKind::Shccm => drive(
             &Bwshccm::new(params, m, v0, input)?,
@@ -246,27 +398,42 @@ fn drive<M: CollisionModel<N>, const N: usize>(
     settings: &Settings,
     sampling: Option<Sampling>,
     t_scale: f64,
-) -> Result<(Impact, Vec<Sample>), ModelError> {
-    let Some(sampling) = sampling else {
-        return Ok((impact(model, settings)?, Vec::new()));
-    };
+) -> Result<Driven, ModelError> {
     let mut rows = Vec::new();
-    let sampling = match sampling {
-        Sampling::Grid { dt } => Sampling::Grid { dt: dt / t_scale },
-        s => s,
+    let impact = match sampling {
+        None => impact(model, settings)?,
+        Some(sampling) => {
+            let sampling = match sampling {
+                Sampling::Grid { dt } => Sampling::Grid { dt: dt / t_scale },
+                s => s,
+            };
+            sim(model, settings, sampling, |t, y| {
+                let mut state = [0.0; 4];
+                state[..N].copy_from_slice(y.as_slice());
+                rows.push(Sample {
+                    t: t * t_scale,
+                    x: model.displacement(y),
+                    v: model.velocity(y),
+                    u: model.input(t),
+                    f: model.force(y),
+                    state,
+                    bodies: None,
+                });
+            })?
+        }
     };
-    let out = sim(model, settings, sampling, |t, y| {
-        let mut state = [0.0; 4];
-        state[..N].copy_from_slice(y.as_slice());
-        rows.push(Sample {
-            t: t * t_scale,
-            x: model.displacement(y),
-            v: model.velocity(y),
+    let rest = impact.settled_at.map(|t| {
+        let y = bw_models::State::<N>::from_fn(|i, _| impact.state[i]);
+        Rest {
+            t,
+            x: model.displacement(&y),
+            f: model.force(&y),
             u: model.input(t),
-            f: model.force(y),
-            state,
-            bodies: None,
-        });
-    })?;
-    Ok((out, rows))
+        }
+    });
+    Ok(Driven {
+        impact,
+        trajectory: rows,
+        rest,
+    })
 }

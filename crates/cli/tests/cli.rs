@@ -14,6 +14,8 @@ fn simulate(args: &[&str]) -> Output {
         .expect("binary runs")
 }
 
+/// The one JSON object on stdout of a successful run, without `"command"` (the command line,
+/// which differs between runs the tests compare).
 fn json(out: &Output) -> serde_json::Value {
     assert!(
         out.status.success(),
@@ -23,12 +25,13 @@ fn json(out: &Output) -> serde_json::Value {
     let text = String::from_utf8(out.stdout.clone()).unwrap();
     // Exactly one JSON object on stdout.
     let mut stream = serde_json::Deserializer::from_str(&text).into_iter::<serde_json::Value>();
-    let v = stream.next().expect("one JSON value").expect("valid JSON");
+    let mut v = stream.next().expect("one JSON value").expect("valid JSON");
     assert!(
         stream.next().is_none(),
         "more than one JSON value on stdout"
     );
-    assert!(v.is_object());
+    assert!(v["command"].is_array(), "{v}");
+    v.as_object_mut().unwrap().remove("command");
     v
 }
 
@@ -225,7 +228,7 @@ fn rosenbrock_method_and_the_stiffness_switch() {
     .unwrap();
     let out = simulate(&["run", scene.to_str().unwrap(), "--json"]);
     let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert_eq!(out.status.code(), Some(3), "{err}");
     assert!(err.contains("20000 steps"), "{err}");
 }
 
@@ -390,26 +393,133 @@ fn bad_scenes_are_clear_errors() {
 }
 
 #[test]
-fn a_failed_run_overwrites_nothing() {
-    let dir = scratch("keep");
+fn each_run_stands_alone_and_the_output_says_what_it_is() {
+    let dir = scratch("alone");
     let out_dir = dir.join("out");
     std::fs::create_dir_all(&out_dir).unwrap();
-    std::fs::write(out_dir.join("summary.json"), "previous").unwrap();
+    // Left by an earlier run that wrote a trajectory; and a file of the user's.
+    std::fs::write(
+        out_dir.join("summary.json"),
+        r#"{"files": ["summary.json", "trajectory.csv", "../outside.txt"]}"#,
+    )
+    .unwrap();
+    std::fs::write(out_dir.join("trajectory.csv"), "stale").unwrap();
+    std::fs::write(out_dir.join("notes.txt"), "mine").unwrap();
     let scene = dir.join("s.toml");
-    // Valid scene whose simulation fails: a step limit of 3.
-    std::fs::write(&scene, format!("{GOOD_PHYSICAL}[solver]\nmax_steps = 3\n")).unwrap();
+    // Undamped, 1.5 m/s separates; 1e12 m/s needs far more than 2000 steps.
+    let sweep = "model = \"shccm\"\nv0 = [1.5, 1e12]\n[physical]\nm = 0.145\nk = 117080063.0\nc = 0.0\nn = 1.5\np = 1.5\nalpha = 0.5\nbeta = 1.0e4\ngamma = -5.0e3\nA = 1.0\n";
+    std::fs::write(&scene, format!("{sweep}[solver]\nmax_steps = 2000\n")).unwrap();
     let out = simulate(&[
         "run",
         scene.to_str().unwrap(),
         "--out",
         out_dir.to_str().unwrap(),
     ]);
-    assert_eq!(out.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("more than 3 steps"));
-    assert_eq!(
-        std::fs::read_to_string(out_dir.join("summary.json")).unwrap(),
-        "previous"
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{err}");
+    assert!(
+        err.contains("failed") && err.contains("[solver].max_steps (now 2000)"),
+        "{err}"
     );
+    let table = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        table.contains("separated") && table.contains("failed"),
+        "{table}"
+    );
+    assert!(
+        table.contains("t_s (s)") && table.contains("t_d (s)"),
+        "{table}"
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
+            .unwrap();
+    let runs = v["runs"].as_array().unwrap();
+    assert_eq!(runs[0]["outcome"], "separated");
+    assert!(runs[0]["error"].is_null() && runs[0]["e"].as_f64().unwrap() > 0.5);
+    assert_eq!(runs[1]["outcome"], "failed");
+    assert!(runs[1]["e"].is_null());
+    assert!(runs[1]["error"].as_str().unwrap().contains("max_steps"));
+    // T_c = (m/k)^(1/(p+1)) D^(-1/(p+1)) v0^(-(p-1)/(p+1)) of Table 1 at 1.5 m/s.
+    let (m, k, p, alpha, a): (f64, f64, f64, f64, f64) = (0.145, 117080063.0, 1.5, 0.5, 1.0);
+    let d = alpha + (1.0 - alpha) * a.powf(p);
+    let t_c = (m / k / d).powf(1.0 / (p + 1.0)) * 1.5f64.powf(-(p - 1.0) / (p + 1.0));
+    assert!((runs[0]["T_c"].as_f64().unwrap() / t_c - 1.0).abs() < 1e-12);
+    assert_eq!(
+        runs[0]["nondimensional"]["kappa"].as_f64().unwrap(),
+        alpha / d
+    );
+    // Provenance: the files written, the version, the command, the scene with its defaults.
+    assert_eq!(v["files"], serde_json::json!(["summary.json", "sweep.csv"]));
+    assert_eq!(v["version"], env!("CARGO_PKG_VERSION"));
+    assert_eq!(v["command"][1], "run");
+    assert_eq!(v["scene"]["solver"]["max_steps"], 2000);
+    assert_eq!(v["scene"]["solver"]["rtol"].as_f64(), Some(1e-11));
+    assert_eq!(v["scene"]["systems"][0]["physical"]["k"].as_f64(), Some(k));
+    assert_eq!(v["units"]["sweep.csv"]["t_s"], "s");
+    assert_eq!(v["units"]["runs"]["T_c"], "s");
+    let sweep_csv = std::fs::read_to_string(out_dir.join("sweep.csv")).unwrap();
+    assert!(
+        sweep_csv.starts_with("v_0,e,t_d,t_s,separated,outcome\n"),
+        "{sweep_csv}"
+    );
+    assert!(
+        sweep_csv.contains("1000000000000,,,,false,failed"),
+        "{sweep_csv}"
+    );
+    // The earlier run's trajectory is gone; the user's file stays.
+    assert!(!out_dir.join("trajectory.csv").exists());
+    assert_eq!(
+        std::fs::read_to_string(out_dir.join("notes.txt")).unwrap(),
+        "mine"
+    );
+}
+
+#[test]
+fn horizons_and_settled_contacts_are_outcomes_not_results() {
+    let dir = scratch("outcomes");
+    let scene = dir.join("horizon.toml");
+    std::fs::write(&scene, format!("{GOOD_PHYSICAL}[solver]\nt_max = 0.5\n")).unwrap();
+    let out = simulate(&["run", scene.to_str().unwrap(), "--json"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("raise [solver].t_max") && err.contains("T_c"),
+        "{err}"
+    );
+    let v = json(&out);
+    assert_eq!(v["runs"][0]["outcome"], "horizon");
+    assert_eq!(v["runs"][0]["separated"], false);
+    // Under a constant push U = -2 the NDBWSHCCM with B = 0 comes to rest where the force
+    // balances it: F = -U = 2.
+    let settle = dir.join("settle.toml");
+    std::fs::write(&settle, "model = \"shccm\"\n[nondimensional]\nB = 0\nGamma = 0\nkappa = 0.5\nsigma = 0.5\nn = 1\np = 1.5\nU = -2\n").unwrap();
+    let v = json(&simulate(&["run", settle.to_str().unwrap(), "--json"]));
+    let run = &v["runs"][0];
+    assert_eq!(run["outcome"], "settled", "{run}");
+    assert!(
+        (run["rest"]["F"].as_f64().unwrap() - 2.0).abs() < 1e-9,
+        "{run}"
+    );
+    assert_eq!(run["rest"]["u"].as_f64(), Some(-2.0));
+    assert!(run["T_c"].is_null());
+}
+
+#[test]
+fn an_unusable_out_is_refused_before_any_work() {
+    let dir = scratch("badout");
+    let blocker = dir.join("file");
+    std::fs::write(&blocker, "x").unwrap();
+    let scene = dir.join("s.toml");
+    std::fs::write(&scene, GOOD_PHYSICAL).unwrap();
+    let out_dir = blocker.join("sub");
+    let out = simulate(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("--out") && out.stdout.is_empty(), "{err}");
 }
 
 #[test]

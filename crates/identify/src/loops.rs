@@ -175,6 +175,11 @@ impl LawSpace {
         Ok(Self { kind, params, free })
     }
 
+    /// Every quantity of [`LAW_NAMES`]: held or searched.
+    pub fn params(&self) -> &[Param; 8] {
+        &self.params
+    }
+
     /// The model.
     pub fn kind(&self) -> ModelKind {
         self.kind

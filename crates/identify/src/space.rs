@@ -209,6 +209,11 @@ impl Space {
         }
     }
 
+    /// Every quantity of [`NAMES`]: held, derived or searched.
+    pub fn params(&self) -> &[Param; 8] {
+        &self.params
+    }
+
     /// The Villegas constraints, if any.
     pub fn known(&self) -> Option<KnownMassStiffness> {
         self.known

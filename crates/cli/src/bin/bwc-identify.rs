@@ -3,9 +3,10 @@
 use bwc_cli::config::Config;
 use bwc_cli::identify::{
     eval_fit, eval_loop_fit, loop_summary, render, render_loops, run_fit, run_loop_fit, summary,
-    FitReport, LoopReport,
+    units, FitReport, LoopReport,
 };
-use bwc_cli::{output, CliError};
+use bwc_cli::outdir::{self, exit};
+use bwc_cli::CliError;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
@@ -115,10 +116,13 @@ fn main() -> ExitCode {
         ),
     };
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(()) => ExitCode::from(exit::OK),
         Err(e) => {
             eprintln!("bwc-identify: {e}");
-            ExitCode::FAILURE
+            ExitCode::from(match e {
+                CliError::Output { file: Some(_), .. } => exit::NOT_WRITTEN,
+                _ => exit::ERROR,
+            })
         }
     }
 }
@@ -131,6 +135,9 @@ fn run(
     threads: Option<usize>,
 ) -> Result<(), CliError> {
     let config = Config::load(path)?;
+    if let Some(dir) = out {
+        outdir::prepare(dir)?;
+    }
     let work = || -> Result<(Vec<FitReport>, Vec<LoopReport>), CliError> {
         match seed {
             None => Ok((
@@ -212,21 +219,13 @@ fn run(
             );
         }
     }
-    if let Some(dir) = out {
-        let mut files = render(&config.fits, &reports, dir)?;
-        files[0].1 = (combined(&reports, &loop_reports).to_string() + "\n").into_bytes();
-        for (f, r) in config.loop_fits.iter().zip(&loop_reports) {
-            files.extend(render_loops(f, r, dir)?);
-        }
-        let written = output::write_all(dir, &files)?;
-        if !json {
-            for p in written {
-                eprintln!("wrote {}", p.display());
-            }
-        }
-    }
+    let mut summary = outdir::provenance("bwc-identify");
+    summary["fits"] = combined(&reports, &loop_reports)["fits"].take();
+    summary["units"] = units();
+    summary["config"] = config.describe();
+    // The results are printed before the files are written: a failed write loses nothing.
     if json {
-        bwc_cli::out!("{}", combined(&reports, &loop_reports));
+        bwc_cli::out!("{summary}");
     } else {
         for r in &reports {
             let p = r.params;
@@ -303,6 +302,18 @@ fn run(
             l.k, l.c, l.n, l.p, l.alpha, l.beta, l.gamma, l.a
         );
     }
+    if let Some(dir) = out {
+        let mut files = render(&config.fits, &reports, dir)?;
+        for (f, r) in config.loop_fits.iter().zip(&loop_reports) {
+            files.extend(render_loops(f, r, dir)?);
+        }
+        let written = outdir::write_all(dir, summary, files)?;
+        if !json {
+            for p in written {
+                eprintln!("wrote {}", p.display());
+            }
+        }
+    }
     Ok(())
 }
 
@@ -349,7 +360,9 @@ fn coverage_study(
     };
     let reports = bwc_cli::with_threads(threads, work)?;
     if json {
-        bwc_cli::out!("{}", bwc_cli::identify::coverage_summary(&reports));
+        let mut v = outdir::provenance("bwc-identify");
+        v["coverage"] = bwc_cli::identify::coverage_summary(&reports)["coverage"].take();
+        bwc_cli::out!("{v}");
         return Ok(());
     }
     for r in &reports {

@@ -1,5 +1,8 @@
 //! `bwc-simulate`: simulate the impacts a TOML scene describes.
 
+use bw_models::ModelKind;
+use bwc_cli::outdir::{self, exit};
+use bwc_cli::simulate::Outcome;
 use bwc_cli::{output, scene::Scene, simulate, CliError};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -46,21 +49,28 @@ fn main() -> ExitCode {
         threads,
     } = Cli::parse().command;
     match run(&scene, out.as_deref(), json, threads.map(|t| t as usize)) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(status) => ExitCode::from(status),
         Err(e) => {
             eprintln!("bwc-simulate: {e}");
-            ExitCode::FAILURE
+            ExitCode::from(match e {
+                CliError::Output { file: Some(_), .. } => exit::NOT_WRITTEN,
+                _ => exit::ERROR,
+            })
         }
     }
 }
 
+/// Runs a scene; returns the exit status ([`exit`]).
 fn run(
     path: &std::path::Path,
     out: Option<&std::path::Path>,
     json: bool,
     threads: Option<usize>,
-) -> Result<(), CliError> {
+) -> Result<u8, CliError> {
     let scene = Scene::load(path)?;
+    if let Some(dir) = out {
+        outdir::prepare(dir)?;
+    }
     let total = (scene.systems.len() * scene.speeds.len().max(1)) as u64;
     let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
     bar.set_style(
@@ -78,48 +88,121 @@ fn run(
             bar.set_draw_target(ProgressDrawTarget::stderr());
         }
     };
-    let runs = bwc_cli::with_threads(threads, || simulate::run(&scene, Some(&tick)))?;
+    let runs = bwc_cli::with_threads(threads, || Ok(simulate::run(&scene, Some(&tick))))?;
     bar.finish_and_clear();
+    report(&scene, &runs);
+    let summary = output::Summary::new(&runs).with_provenance(&scene, &runs);
+    // The results are printed before the files are written: a failed write loses nothing.
+    if json {
+        bwc_cli::out!("{summary}");
+    } else {
+        table(&runs);
+    }
     if let Some(dir) = out {
         let files = output::render(&scene, &runs, dir)?;
-        let written = output::write_all(dir, &files)?;
+        let written = outdir::write_all(dir, summary, files)?;
         if !json {
             for p in written {
                 eprintln!("wrote {}", p.display());
             }
         }
     }
-    if json {
-        bwc_cli::out!("{}", output::Summary::new(&runs).to_json());
-    } else {
-        // The first column as wide as the longest label (named bases make long ones).
-        let labels: Vec<String> = runs.iter().map(|r| r.label()).collect();
-        let width = labels
-            .iter()
-            .map(|l| l.chars().count())
-            .fold(24, usize::max);
-        bwc_cli::out!(
-            "{:<width$} {:>12} {:>16} {:>14} {:>10}",
-            "run",
-            "e",
-            "t_s",
-            "t_d (s)",
-            "rhs_evals"
-        );
-        for (r, label) in runs.iter().zip(&labels) {
-            let ts = r
-                .t_s
-                .map_or("no separation".to_string(), |t| format!("{t:.9e}"));
-            let td = r.t_d.map_or("-".to_string(), |t| format!("{t:.6e}"));
-            bwc_cli::out!(
-                "{:<width$} {:>12.9} {:>16} {:>14} {:>10}",
-                label,
-                r.e,
-                ts,
-                td,
-                r.stats.rhs_evals
-            );
+    let failed = runs.iter().any(|r| r.outcome == Outcome::Failed);
+    Ok(if failed { exit::SOME_FAILED } else { exit::OK })
+}
+
+/// Says on stderr what is not a plain separation: failures with their reason, horizons with the
+/// setting that moves them, settled contacts with their force balance.
+fn report(scene: &Scene, runs: &[simulate::Run]) {
+    let t_max = scene.settings.t_max;
+    for r in runs {
+        let label = match r.label().as_str() {
+            "run" => "the run".to_string(),
+            l => format!("run {l}"),
+        };
+        match r.outcome {
+            Outcome::Separated => {}
+            Outcome::Failed => eprintln!(
+                "bwc-simulate: {label} failed: {}",
+                r.error.as_deref().unwrap_or("unknown error")
+            ),
+            Outcome::Horizon => {
+                let when = match r.t_c {
+                    Some(t_c) if r.time_unit == "s" => format!(
+                        "t_max = {t_max} T_c = {:.6e} s (T_c = {t_c:.6e} s)",
+                        t_max * t_c
+                    ),
+                    _ => format!("t_max = {t_max} (nondimensional)"),
+                };
+                // A BWMCM whose series dashpot is soft against the contact (σ = m / (c T_c)
+                // large) lets the bodies creep together instead of rebounding.
+                let creeping =
+                    r.model == ModelKind::Mcm && r.nondimensional.is_some_and(|q| q.sigma > 1.0);
+                let why = if creeping {
+                    format!(
+                        "; the series dashpot yields (sigma = m / (c T_c) = {:.3e} > 1): a larger \
+                         c makes the contact spring back",
+                        r.nondimensional.map_or(f64::NAN, |q| q.sigma)
+                    )
+                } else {
+                    String::new()
+                };
+                eprintln!(
+                    "bwc-simulate: warning: {label}: no separation by {when}: the horizon came \
+                     first; raise [solver].t_max{why}"
+                );
+            }
+            Outcome::Settled => {
+                if let Some(q) = r.rest {
+                    eprintln!(
+                        "bwc-simulate: {label}: the contact settled at t = {:.6e} ({}): at \
+                         rest with F = {:.6e} balancing u = {:.6e}; it never separates",
+                        q.t, r.time_unit, q.f, q.u
+                    );
+                }
+            }
         }
     }
-    Ok(())
+}
+
+/// The human-readable table, with the unit of every column.
+fn table(runs: &[simulate::Run]) {
+    // The first column as wide as the longest label (named bases make long ones).
+    let labels: Vec<String> = runs.iter().map(|r| r.label()).collect();
+    let width = labels
+        .iter()
+        .map(|l| l.chars().count())
+        .fold(24, usize::max);
+    let t_unit = match runs.first().map(|r| r.time_unit) {
+        Some(u) if runs.iter().all(|r| r.time_unit == u) && u == "s" => "(s)",
+        Some(u) if runs.iter().all(|r| r.time_unit == u) => "(T, nondim.)",
+        _ => "(s or T)",
+    };
+    bwc_cli::out!(
+        "{:<width$} {:>10} {:>12} {:>16} {:>14} {:>10}",
+        "run",
+        "outcome",
+        "e (-)",
+        format!("t_s {t_unit}"),
+        "t_d (s)",
+        "rhs_evals"
+    );
+    for (r, label) in runs.iter().zip(&labels) {
+        let e = if r.e.is_finite() {
+            format!("{:.9}", r.e)
+        } else {
+            "-".into()
+        };
+        let ts = r.t_s.map_or("-".to_string(), |t| format!("{t:.9e}"));
+        let td = r.t_d.map_or("-".to_string(), |t| format!("{t:.6e}"));
+        bwc_cli::out!(
+            "{:<width$} {:>10} {:>12} {:>16} {:>14} {:>10}",
+            label,
+            r.outcome.name(),
+            e,
+            ts,
+            td,
+            r.stats.rhs_evals
+        );
+    }
 }

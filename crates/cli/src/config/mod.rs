@@ -19,6 +19,7 @@
 //! [fit.pareto]                        # count: weights of a Pareto sweep over (J1, J2)
 //! ```
 
+mod describe;
 mod fit;
 mod loops;
 

@@ -5,7 +5,7 @@ mod coverage;
 mod render;
 
 pub use coverage::{coverage_summary, coverage_task, run_coverage, CoverageReport};
-pub use render::{loop_summary, render, render_loops, slug, summary};
+pub use render::{loop_summary, render, render_loops, slug, summary, units};
 
 use crate::config::FitConfig;
 use crate::CliError;

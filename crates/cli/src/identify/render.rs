@@ -159,7 +159,7 @@ pub fn slug(name: &str) -> String {
     }
 }
 
-/// Renders `summary.json` and, per fit, a CSV of data vs model (with the band's limits where
+/// Renders, per fit, a CSV of data vs model (with the band's limits where
 /// there are intervals) and SVG plots (CoR and duration against v0 with the band, the Pareto
 /// front).
 ///
@@ -170,10 +170,7 @@ pub fn render(
     reports: &[FitReport],
     out: &Path,
 ) -> Result<Vec<(String, Vec<u8>)>, CliError> {
-    let mut files = vec![(
-        "summary.json".to_string(),
-        (summary(reports).to_string() + "\n").into_bytes(),
-    )];
+    let mut files = Vec::new();
     for (f, r) in fits.iter().zip(reports) {
         let stem = slug(&r.name);
         files.push(data_csv(f, r, out, &format!("{stem}.csv"))?);
@@ -425,4 +422,24 @@ pub fn render_loops(
         (csv_name, w.into_inner().expect("in-memory writer")),
         (svg_name, svg.into_bytes()),
     ])
+}
+
+/// The unit of every JSON key and CSV column of an identification (`"1"`: dimensionless; the
+/// base parameters carry powers of the impact speed in m/s, from the map `P(P*, u, v0)`).
+pub fn units() -> serde_json::Value {
+    let params = serde_json::json!({
+        "B_b": "(m/s)^(-2n/(p+1))", "Gamma_b": "(m/s)^(-2n/(p+1))", "kappa": "1",
+        "sigma_b": "NDBWSHCCM (m/s)^-1, NDBWMCM (m/s)^(-(p-1)/(p+1))", "n": "1", "p": "1",
+        "U_b": "(m/s)^(2p/(p+1)) / N", "T_b": "s (m/s)^((p-1)/(p+1))",
+    });
+    serde_json::json!({
+        "params": params,
+        "J1": "1", "J2": "s^2", "wall_s": "s",
+        "<fit>.csv": {"v_0": "m/s", "e": "1", "e_model": "1", "t_d": "s", "t_d_model": "s",
+            "e_lo": "1", "e_hi": "1", "t_d_lo": "s", "t_d_hi": "s"},
+        "<fit>_pareto.csv": {"w": "1", "J1": "1", "J2": "s^2", "B_b": params["B_b"],
+            "Gamma_b": params["Gamma_b"], "kappa": "1", "sigma_b": params["sigma_b"], "n": "1",
+            "p": "1", "U_b": params["U_b"], "T_b": params["T_b"]},
+        "<loop fit>_loops.csv": {"v_0": "m/s", "source": "data or model", "x": "m", "F": "N"},
+    })
 }

@@ -15,6 +15,7 @@
 //! ```
 
 mod bodies;
+pub(crate) mod describe;
 pub(crate) mod raw;
 
 use crate::tables::{model_kind, read_text, signal, solver_settings, span, syntax_error, Ctx};

@@ -1,0 +1,77 @@
+//! A validated config as JSON, defaults filled in: the provenance block `"config"` of
+//! `summary.json`.
+
+use super::{Config, FitConfig, LoopFitConfig};
+use crate::scene::describe::{base, settings, signal};
+use bwc_identify::{Budget, Param, LAW_NAMES, NAMES};
+use serde_json::{json, Map, Value};
+
+impl Config {
+    /// The config as parsed: every fit with its data file, objectives, searched and held
+    /// quantities, search budget, seed and solver settings (keys as in a config file).
+    pub fn describe(&self) -> Value {
+        json!({
+            "path": self.path.display().to_string(),
+            "fit": self.fits.iter().map(fit).collect::<Vec<_>>(),
+            "loop_fit": self.loop_fits.iter().map(loop_fit).collect::<Vec<_>>(),
+        })
+    }
+}
+
+fn fit(f: &FitConfig) -> Value {
+    json!({
+        "name": f.name,
+        "model": f.kind.name(),
+        "data": f.data.path.display().to_string(),
+        "points": f.data.points.len(),
+        "objectives": {"J1": f.weights.j1, "J2": f.weights.j2},
+        "quantities": quantities(&NAMES, f.space.params()),
+        "known": f.space.known().map(|k| json!({"m": k.m, "k": k.k})),
+        "input": signal(&f.input),
+        "optimizer": optimizer(&f.budget, f.seed),
+        "solver": settings(&f.settings),
+        "start": f.start,
+        "params": f.params.as_ref().map(base),
+        "pareto": f.pareto.map(|count| json!({"count": count})),
+    })
+}
+
+fn loop_fit(f: &LoopFitConfig) -> Value {
+    json!({
+        "name": f.name,
+        "model": f.kind.name(),
+        "m": f.m,
+        "loops": f.loops.len(),
+        "quantities": quantities(&LAW_NAMES, f.space.params()),
+        "optimizer": optimizer(&f.budget, f.seed),
+    })
+}
+
+/// Each quantity: its held value, `"derived"`, or its bounds and scale.
+fn quantities(names: &[&str; 8], params: &[Param; 8]) -> Value {
+    let mut m = Map::new();
+    for (name, p) in names.iter().zip(params) {
+        let v = match p {
+            Param::Fixed(x) => json!(x),
+            Param::Derived => json!("derived"),
+            Param::Free { lo, hi, log } => {
+                json!({"bounds": [lo, hi], "scale": if *log { "log" } else { "linear" }})
+            }
+        };
+        m.insert((*name).to_string(), v);
+    }
+    Value::Object(m)
+}
+
+fn optimizer(b: &Budget, seed: u64) -> Value {
+    json!({
+        "particles": b.particles,
+        "iterations": b.iterations,
+        "polish": b.polish_iterations,
+        "starts": b.starts,
+        "max_starts": b.max_starts,
+        "agree": b.agree,
+        "tolerance": b.tolerance,
+        "seed": seed,
+    })
+}

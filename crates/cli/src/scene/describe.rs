@@ -1,0 +1,117 @@
+//! A validated scene as JSON, every parameter with its unit's key and the defaults filled in:
+//! the provenance block `"scene"` of `summary.json`.
+
+use super::{OutputSpec, Scene, System, SystemSpec};
+use crate::signal::Signal;
+use bw_models::{BaseParams, Settings, Stiffness};
+use serde_json::{json, Value};
+
+impl Scene {
+    /// The scene as parsed: the systems with every parameter, the speeds, the solver settings
+    /// and the outputs, defaults filled in (keys as in a scene file).
+    pub fn describe(&self) -> Value {
+        json!({
+            "path": self.path.display().to_string(),
+            "systems": self.systems.iter().map(system).collect::<Vec<_>>(),
+            "v0": self.speeds,
+            "solver": settings(&self.settings),
+            "output": output(&self.output),
+        })
+    }
+}
+
+fn system(spec: &SystemSpec) -> Value {
+    let mut v = match &spec.system {
+        System::Nondimensional { params, u } => {
+            let p = params.get();
+            json!({"nondimensional": {"B": p.b, "Gamma": p.gamma, "kappa": p.kappa,
+                "sigma": p.sigma, "n": p.n, "p": p.p, "U": u}})
+        }
+        System::Base {
+            map,
+            input,
+            time_scale_known,
+        } => {
+            let mut b = base(map.base());
+            if !time_scale_known {
+                b["T_b"] = Value::Null;
+            }
+            json!({"base": b, "input": signal(input)})
+        }
+        System::Physical { params, m, input } => {
+            let mut p = physical(params);
+            p["m"] = json!(m);
+            json!({"physical": p, "input": signal(input)})
+        }
+        System::Bodies { params, bodies } => {
+            let ((m1, m2), (v1, v2), (l1, l2)) =
+                (bodies.masses(), bodies.velocities(), bodies.distances());
+            let (u1, u2) = bodies.inputs();
+            // A fixed body 2 has m2 = +inf, which JSON cannot hold.
+            let m2 = if m2.is_finite() {
+                json!(m2)
+            } else {
+                json!("inf")
+            };
+            json!({
+                "physical": physical(params),
+                "bodies": {"m1": m1, "m2": m2, "v1": v1, "v2": v2, "l1": l1, "l2": l2,
+                    "u1": signal(u1), "u2": signal(u2)},
+            })
+        }
+    };
+    v["model"] = json!(spec.kind.name());
+    v["name"] = json!(spec.name);
+    v
+}
+
+/// Base parameters keyed as in `[base]`.
+pub(crate) fn base(b: &BaseParams) -> Value {
+    json!({"B_b": b.b_b, "Gamma_b": b.gamma_b, "kappa": b.kappa, "sigma_b": b.sigma_b,
+        "n": b.n, "p": b.p, "U_b": b.u_b, "T_b": b.t_b})
+}
+
+fn physical(params: &bw_models::PhysicalParams) -> Value {
+    let l = params.law();
+    json!({"k": l.k, "c": l.c, "n": l.n, "p": l.p, "alpha": l.alpha, "beta": l.beta,
+        "gamma": l.gamma, "A": l.a})
+}
+
+/// An input keyed as in `[input]`.
+pub(crate) fn signal(s: &Signal) -> Value {
+    match s {
+        Signal::Constant(c) => json!({"kind": "constant", "value": c}),
+        Signal::Arctan(a) => json!({"kind": "arctan", "m": a.m, "D": a.d, "omega": a.omega}),
+        Signal::Table(t) => {
+            let (ts, us): (Vec<f64>, Vec<f64>) = t.points().unzip();
+            json!({"kind": "table", "t": ts, "u": us})
+        }
+        Signal::Sum(terms) => {
+            json!({"kind": "sum", "terms": terms.iter().map(signal).collect::<Vec<_>>()})
+        }
+    }
+}
+
+/// Solver settings keyed as in `[solver]` (`max_step` null for none).
+pub(crate) fn settings(s: &Settings) -> Value {
+    let method = match s.stiffness {
+        Stiffness::Rosenbrock => "rosenbrock".to_string(),
+        _ => s.method.name.to_lowercase(),
+    };
+    json!({
+        "method": method,
+        "rtol": s.rtol,
+        "atol": s.atol,
+        "max_step": s.max_step.is_finite().then_some(s.max_step),
+        "t_max": s.t_max,
+        "max_steps": s.max_steps,
+        "stop_at_kinks": s.stop_at_kinks,
+        "switch_when_stiff": s.stiffness == Stiffness::Switch,
+        "series": s.series,
+    })
+}
+
+fn output(o: &OutputSpec) -> Value {
+    json!({"trajectory": o.trajectory, "dt": o.dt, "loops": o.loops, "sweep": o.sweep,
+        "plots": o.plots})
+}
