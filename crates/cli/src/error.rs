@@ -83,6 +83,9 @@ pub enum CliError {
         /// What the operating system said.
         source: std::io::Error,
     },
+    /// Several mistakes in one file, in file order.
+    #[error("{}", .0.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n"))]
+    Many(Vec<CliError>),
     /// The thread pool could not be built.
     #[error("cannot start {threads} threads: {message}")]
     Threads {

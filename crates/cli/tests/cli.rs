@@ -393,6 +393,55 @@ fn bad_scenes_are_clear_errors() {
 }
 
 #[test]
+fn several_mistakes_are_reported_at_once_in_file_order() {
+    rejects(
+        "scalar-v0",
+        &GOOD_PHYSICAL.replace("v0 = [1.0]", "v0 = 1.5"),
+        Some(2),
+        &["`v0` expects a list of impact speeds", "range"],
+    );
+    let three = GOOD_PHYSICAL
+        .replace("k = 117080063.0", "k = -1.0")
+        .replace("n = 1.1", "n = \"one\"")
+        .replace("A = 0.925", "A = 0.925\nstiffness = 3");
+    rejects(
+        "three",
+        &format!("{three}[solver]\nrtol = -1\n"),
+        Some(5),
+        &[
+            "4 mistakes",
+            ":5: `[physical].k`: -1 is not admissible: k > 0",
+            ":7:5: `[physical].n` expects a number",
+            ":13:1: unknown field `stiffness`",
+            ":15: `[solver].rtol`",
+        ],
+    );
+    // A J2 weight on data without durations comes first, before what it makes required.
+    let dir = scratch("many-config");
+    std::fs::write(dir.join("d.csv"), "v_0,e\n1.0,0.8\n2.0,0.7\n").unwrap();
+    let config = dir.join("c.toml");
+    std::fs::write(
+        &config,
+        "[[fit]]\nname = \"x\"\nmodel = \"shccm\"\ndata = \"d.csv\"\nobjectives = { J1 = 1.0, J2 = 1.0 }\n[fit.bounds]\nB_b = [0.0, -10.0]\ng = [-1.0, 1.0]\nkappa = [0.02, 0.98]\nsigma_b = [1e-5, 1.0]\nn = [1.0, \"4\"]\np = [1.0, 4.0]\n",
+    )
+    .unwrap();
+    let out = identify(&["run", config.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    let lines: Vec<&str> = err.lines().collect();
+    assert!(lines[0].contains("3 mistakes"), "{err}");
+    assert!(
+        lines[1].contains(":5: `objectives.J2`") && lines[1].contains("no `t_d` column"),
+        "{err}"
+    );
+    assert!(lines[2].contains(":7: `[fit.bounds].B_b`"), "{err}");
+    assert!(
+        lines[3].contains(":11:") && lines[3].contains("`[fit.bounds].n` expects a number"),
+        "{err}"
+    );
+}
+
+#[test]
 fn each_run_stands_alone_and_the_output_says_what_it_is() {
     let dir = scratch("alone");
     let out_dir = dir.join("out");

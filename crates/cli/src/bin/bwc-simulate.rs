@@ -51,7 +51,15 @@ fn main() -> ExitCode {
     match run(&scene, out.as_deref(), json, threads.map(|t| t as usize)) {
         Ok(status) => ExitCode::from(status),
         Err(e) => {
-            eprintln!("bwc-simulate: {e}");
+            match &e {
+                CliError::Many(all) => {
+                    eprintln!("bwc-simulate: {} mistakes:", all.len());
+                    for one in all {
+                        eprintln!("bwc-simulate: {one}");
+                    }
+                }
+                _ => eprintln!("bwc-simulate: {e}"),
+            }
             ExitCode::from(match e {
                 CliError::Output { file: Some(_), .. } => exit::NOT_WRITTEN,
                 _ => exit::ERROR,

@@ -64,6 +64,7 @@ pub(super) fn parse_fit(
     let r = f.get_ref();
     let (name, kind, data_path) = head(ctx, dir, r, &t, index)?;
     let weights = objectives(ctx, r)?;
+    columns_for(ctx, r, &data_path, weights)?;
     let known = known(ctx, r)?;
     let input = match &r.input {
         Some(i) => signal(ctx, i, "[fit.input]", known.map(|k| k.m))?,
@@ -172,6 +173,46 @@ fn objectives(ctx: &Ctx, r: &RawFit) -> Result<Weights, CliError> {
             }
         }
     })
+}
+
+/// A weight on a quantity the data file has no column for, reported before everything that
+/// depends on the weights (a `J2` weight makes `U_b` and `T_b` matter): the header is read now,
+/// the data after the whole config has parsed.
+fn columns_for(ctx: &Ctx, r: &RawFit, data: &Path, w: Weights) -> Result<(), CliError> {
+    let Some(columns) = header_of(data) else {
+        // Unreadable: the data file's own error comes with the data.
+        return Ok(());
+    };
+    let span = r.objectives.as_ref().map_or(0..0, |o| o.span());
+    let has = |c: &str| columns.iter().any(|h| h == c);
+    for (weight, name, column, what) in [
+        (w.j1, "J1", "e", "CoRs"),
+        (w.j2, "J2", "t_d", "contact durations (s)"),
+    ] {
+        if weight > 0.0 && !has(column) {
+            return Err(ctx.invalid(
+                &span,
+                format!("objectives.{name}"),
+                format!(
+                    "{name} = {weight} weighs {what}, but {} has no `{column}` column (it has \
+                     {}): set {name} = 0 or add the column",
+                    data.display(),
+                    columns.join(", ")
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The column names of a data file's header (after its `#` comment lines), if it can be read.
+fn header_of(path: &Path) -> Option<Vec<String>> {
+    let mut reader = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .from_path(path)
+        .ok()?;
+    Some(reader.headers().ok()?.iter().map(String::from).collect())
 }
 
 /// `[fit.known]`: `m`, `k`.

@@ -236,8 +236,13 @@ impl Config {
     /// Validates a config given as text; data files are read relative to `path`'s folder.
     ///
     /// # Errors
-    /// As [`Config::load`].
+    /// As [`Config::load`]; a file with several mistakes reports them all ([`CliError::Many`]).
     pub fn parse(path: &Path, src: &str) -> Result<Self, CliError> {
+        crate::tables::every_error(src, |text| Self::parse_one(path, text))
+    }
+
+    /// Validates the text, stopping at its first mistake.
+    fn parse_one(path: &Path, src: &str) -> Result<Self, CliError> {
         let ctx = Ctx { path, src };
         let raw: RawConfig =
             toml::from_str(src).map_err(|e| crate::tables::syntax_error(&ctx, &e))?;

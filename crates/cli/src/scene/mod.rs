@@ -124,8 +124,13 @@ impl Scene {
     /// Validates a scene given as text (`path` is only used in messages).
     ///
     /// # Errors
-    /// As [`Scene::load`].
+    /// As [`Scene::load`]; a file with several mistakes reports them all ([`CliError::Many`]).
     pub fn parse(path: &Path, src: &str) -> Result<Self, CliError> {
+        crate::tables::every_error(src, |text| Self::parse_one(path, text))
+    }
+
+    /// Validates the text, stopping at its first mistake.
+    fn parse_one(path: &Path, src: &str) -> Result<Self, CliError> {
         let ctx = Ctx { path, src };
         let raw: RawScene = toml::from_str(src).map_err(|e| syntax_error(&ctx, &e))?;
         let whole = 0..0;

@@ -110,17 +110,170 @@ pub(crate) fn read_text(path: &Path) -> Result<String, CliError> {
     })
 }
 
-/// A TOML parse error as `file:line:column: message`.
+/// A TOML parse error as `file:line:column: message`; a type error names its key and what the
+/// key admits.
 pub(crate) fn syntax_error(ctx: &Ctx, e: &toml::de::Error) -> CliError {
     let src = ctx.src;
     let at = e.span().map_or(0, |s| s.start.min(src.len()));
     let line_start = src[..at].rfind('\n').map_or(0, |i| i + 1);
+    let mut message = e.message().trim().replace('\n', " ");
+    if message.starts_with("invalid type") {
+        if let Some(key) = key_at(src, at) {
+            let expected = match key.rsplit('.').next() {
+                Some("v0") => "a list of impact speeds in m/s, e.g. [1.5], or a range \
+                               { from = 0.5, to = 5.0, count = 10 }"
+                    .to_string(),
+                _ => expected_in_words(&message),
+            };
+            let found = message
+                .split(", expected")
+                .next()
+                .unwrap_or(&message)
+                .to_string();
+            message = format!("`{key}` expects {expected} ({found})");
+        }
+    }
     CliError::Syntax {
         path: ctx.path.to_owned(),
         line: ctx.line(&(at..at)),
         column: src[line_start..at].chars().count() + 1,
-        message: e.message().trim().replace('\n', " "),
+        message,
     }
+}
+
+/// The key of the `key = value` on 1-based `line`, with its table.
+fn line_key(src: &str, line: usize) -> Option<String> {
+    let at: usize = src.split('\n').take(line - 1).map(|l| l.len() + 1).sum();
+    key_at(src, at.min(src.len()))
+}
+
+/// The key of the `key = value` line holding byte `at`, with its table (`[physical].k`).
+fn key_at(src: &str, at: usize) -> Option<String> {
+    let line_start = src[..at].rfind('\n').map_or(0, |i| i + 1);
+    let line_end = src[at..].find('\n').map_or(src.len(), |i| at + i);
+    let (key, _) = src[line_start..line_end].split_once('=')?;
+    let key = key.trim().trim_matches('"');
+    let table = src[..line_start]
+        .lines()
+        .rev()
+        .map(str::trim)
+        .find(|l| l.starts_with('['))
+        .map(|l| {
+            l.split('#')
+                .next()
+                .unwrap_or(l)
+                .trim()
+                .replace("[[", "[")
+                .replace("]]", "]")
+        });
+    Some(match table {
+        Some(t) => format!("{t}.{key}"),
+        None => key.to_string(),
+    })
+}
+
+/// serde's "expected f64" and the like, in words.
+fn expected_in_words(message: &str) -> String {
+    let expected = message.split("expected ").nth(1).unwrap_or("another type");
+    match expected.trim() {
+        "f64" | "i64" | "u64" | "usize" => "a number".into(),
+        "a boolean" | "bool" => "true or false".into(),
+        "a string" => "a string in quotes".into(),
+        other => other.to_string(),
+    }
+}
+
+/// Most mistakes reported from one file.
+const MOST_ERRORS: usize = 20;
+
+/// Values tried in place of a bad one to see past it: a number in most admissible ranges, a
+/// list, a flag, a string; `None` drops the line (an unknown key).
+const STAND_INS: [Option<&str>; 10] = [
+    Some("1.0"),
+    Some("[1.0, 2.0]"),
+    Some("0.5"),
+    Some("2.0"),
+    Some("0.0"),
+    Some("10.0"),
+    Some("[1.0]"),
+    Some("true"),
+    Some("\"x\""),
+    None,
+];
+
+/// Parses `src` with `parse` and, where it fails on a `key = value` line, looks past the
+/// mistake by putting stand-in values in its place and parsing again, so that a file with
+/// several mistakes reports them all at once, in file order ([`CliError::Many`]).
+///
+/// # Errors
+/// The first error alone, or [`CliError::Many`] with every one found.
+pub(crate) fn every_error<T>(
+    src: &str,
+    parse: impl Fn(&str) -> Result<T, CliError>,
+) -> Result<T, CliError> {
+    let first = match parse(src) {
+        Ok(v) => return Ok(v),
+        Err(e) => e,
+    };
+    let mut text = src.to_string();
+    let mut errors = vec![first];
+    while errors.len() < MOST_ERRORS {
+        let last = errors.last().expect("one error");
+        let Some(line) = error_line(last) else { break };
+        // A stand-in gets past the mistake if parsing then stops elsewhere, on another key.
+        let key = format!("`{}`", line_key(&text, line).unwrap_or_default());
+        let Some(next) = STAND_INS.iter().find_map(|v| {
+            let patched = with_value(&text, line, *v)?;
+            match parse(&patched) {
+                Ok(_) => Some((patched, None)),
+                Err(e) if error_line(&e) != Some(line) && !e.to_string().contains(&key) => {
+                    Some((patched, Some(e)))
+                }
+                Err(_) => None,
+            }
+        }) else {
+            break;
+        };
+        text = next.0;
+        match next.1 {
+            Some(e) => errors.push(e),
+            None => break,
+        }
+    }
+    if errors.len() == 1 {
+        return Err(errors.pop().expect("one error"));
+    }
+    errors.sort_by_key(|e| error_line(e).unwrap_or(usize::MAX));
+    Err(CliError::Many(errors))
+}
+
+/// The line of a file error that a stand-in value could get past (`key = value` errors of the
+/// file itself; not a data file's, not a missing key's).
+fn error_line(e: &CliError) -> Option<usize> {
+    match e {
+        CliError::Syntax { line, .. } => Some(*line),
+        CliError::Invalid { line, message, .. } if !message.starts_with("missing") => Some(*line),
+        _ => None,
+    }
+}
+
+/// `src` with the value of the `key = value` on 1-based `line` replaced by `value` (the line
+/// commented out for `None`), `None` if that line is not a single-line `key = value`.
+fn with_value(src: &str, line: usize, value: Option<&str>) -> Option<String> {
+    let mut lines: Vec<&str> = src.split('\n').collect();
+    let text = lines.get(line.checked_sub(1)?)?;
+    let (key, rest) = text.split_once('=')?;
+    let inline_table = rest.trim_start().starts_with('{');
+    if key.trim().is_empty() || key.trim_start().starts_with('[') || inline_table && value.is_some()
+    {
+        return None;
+    }
+    let new = match value {
+        Some(v) => format!("{key}= {v}"),
+        None => format!("# {text}"),
+    };
+    lines[line - 1] = &new;
+    Some(lines.join("\n"))
 }
 
 pub(crate) fn span<T>(v: &Option<Spanned<T>>) -> Option<Range<usize>> {
