@@ -34,9 +34,8 @@ pub struct Settings {
     /// constant input by Taylor series between the non-smooth points ([`crate::series`]), with
     /// `method` for the steps next to the points where a base vanishes and onto the separation;
     /// runs that path declines (stiff, time-varying input, ill-conditioned roots) take the
-    /// Runge-Kutta path. Not with [`Stiffness::Rosenbrock`]. On by default: 1.2-1.8x faster
-    /// at equal error on the paper's cases, with errors about 100x below the Runge-Kutta path's
-    /// at the same rtol; on the stress sweep more accurate in `e` than the Runge-Kutta path
+    /// Runge-Kutta path. Not with [`Stiffness::Rosenbrock`]. On by default: faster at equal error
+    /// and more accurate at the same rtol than the Runge-Kutta path on the paper's cases
     /// (BENCHMARKS.md, STABILITY.md). Trajectories ([`simulate`] with samples) always take the
     /// Runge-Kutta path, so a CoR from a trajectory run can differ from a CoR evaluation by
     /// about the Runge-Kutta path's error (1e-11 at the default rtol).

@@ -1,4 +1,5 @@
-//! Known-answer tests of the collision models (REFERENCES.md, the paper's tables).
+//! Known-answer tests of the collision models: closed forms (each stated where it is used) and
+//! the paper's tables.
 #![allow(clippy::excessive_precision)] // reference values keep their published digits
 #![allow(clippy::approx_constant)] // p = 3.14 is a published exponent (Table 3), not π
 
@@ -43,8 +44,10 @@ fn tight() -> Settings {
     }
 }
 
-/// Exact T_s of the elastic limit (Beta function; mpmath, 20 digits).
-const ELASTIC: [(f64, f64); 7] = [
+/// Exact T_s of the elastic limit: with B = Γ = σ = 0, Z = X and V' = -|X|^(p-1) X, so e = 1 and
+/// T_s = 2/(p+1) s_max B(1/(p+1), 1/2), s_max = ((p+1)/2)^(1/(p+1)) (mpmath, 20 digits). The
+/// NDBWMCM with B = Γ = 0 and σ -> 0+ has the same limit (R ~ 0, Y = Z = X).
+pub(crate) const ELASTIC: [(f64, f64); 7] = [
     (1.0, std::f64::consts::PI),
     (1.5, 3.2180654597190430845),
     (2.0, 3.2101956532389271625),
@@ -81,8 +84,9 @@ fn elastic_limit_both_models() {
     }
 }
 
-/// Hunt-Crossley limit: e solves σ - ln(1+σ) = -σe - ln(1-σe) (mpmath, 18 digits), for any
-/// κ, n, p.
+/// Hunt-Crossley limit: with B = Γ = 0 and 0 < σ < 1, s = -X obeys s'' = -s^p (1 + σ s'),
+/// whose first integral gives e as the root in (0, 1) of σ - ln(1+σ) = -σe - ln(1-σe)
+/// (mpmath, 18 digits), for any κ, n, p.
 #[test]
 fn hunt_crossley_limit() {
     let cases = [

@@ -180,7 +180,8 @@ fn nondimensional_scene_reports_null_speed_and_duration() {
     let v = json(&simulate(&["run", scene.to_str().unwrap(), "--json"]));
     let run = &v["runs"][0];
     assert!(run["v0"].is_null() && run["t_d"].is_null());
-    // Hunt-Crossley limit: e = 0.748434931597434 (REFERENCES.md).
+    // Hunt-Crossley limit (B = Γ = 0): e is the root in (0, 1) of
+    // σ - ln(1+σ) = -σe - ln(1-σe); at σ = 0.5, e = 0.748434931597434.
     assert!((run["e"].as_f64().unwrap() - 0.748434931597434).abs() < 1e-9);
 }
 

@@ -21,8 +21,9 @@ impl<G: Fn(f64) -> f64> Condition<2> for Separation<G> {
     }
 }
 
-/// Exact separation times of s'' = -s^p, s(0) = 0, s'(0) = 1 (REFERENCES.md; Beta function
-/// values recomputed with mpmath at 30 digits).
+/// Exact separation times of s'' = -s^p, s(0) = 0, s'(0) = 1: by the first integral
+/// s'^2/2 + s^(p+1)/(p+1) = 1/2, T_s = 2/(p+1) s_max B(1/(p+1), 1/2) with
+/// s_max = ((p+1)/2)^(1/(p+1)) (Beta function values from mpmath at 30 digits).
 const ELASTIC: [(f64, f64); 5] = [
     (1.0, std::f64::consts::PI),
     (1.5, 3.2180654597190430845),

@@ -36,12 +36,10 @@
 //! the horizon) it hands the impact over ([`SeriesRun::HandOver`]) and the Runge-Kutta path
 //! continues from the last state the series reached.
 //!
-//! Accuracy and cost (BENCHMARKS.md): on the paper's cases errors about 100x below the
-//! Runge-Kutta path's at the same rtol, 1.2-1.8x faster at equal error; on the stress sweep's
-//! extreme parameters more accurate in `e` than the Runge-Kutta path (of 75,059 runs with series
-//! steps, 71 in which the Runge-Kutta path is worse by more than 10x and 1e-9, 23 the other way
-//! besides contacts that hover at zero force; STABILITY.md), which is why it is the default for
-//! CoR evaluations.
+//! Accuracy and cost are measured, not claimed here: BENCHMARKS.md, "Session 8: the target timed
+//! side by side" (time at equal error against plain DOP853 on the paper's DSS (1) cases) and
+//! STABILITY.md (accuracy on the stress sweep's extreme parameters against the Runge-Kutta
+//! path), which is why it is the default for CoR evaluations.
 
 mod contact;
 mod jet;

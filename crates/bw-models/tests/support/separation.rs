@@ -18,8 +18,8 @@ fn both() -> [Settings; 2] {
 /// Elastic contact under a strong constant pull: the bodies part where `X` returns to 0 with
 /// the impact speed (the spring gives back its energy and the pull has done no net work, so
 /// `e = 1` exactly), but the pull brings them back together within a fraction of a step. The
-/// force is positive at both ends of that step: the separation inside it used to be missed
-/// (the run then bounced on until the horizon, `e = 0`).
+/// force is positive at both ends of that step, so a locator that only compares the ends misses
+/// the separation inside it (and bounces on until the horizon, `e = 0`).
 #[test]
 fn elastic_contact_under_a_strong_pull_separates_with_e_1() {
     for (p, u) in [(6.0, -150.0), (10.0, -40.0), (10.0, -80.0), (10.0, -150.0)] {
@@ -76,8 +76,8 @@ fn a_separation_inside_a_step_is_found() {
 
 /// Stress case 83189 (seed 1): MCM with a nearly rigid dashpot at 0.5 mm/s; `Y` and `Z` reach
 /// 0 together, and the force changes sign a rounding error after the switching point `Z = 0`
-/// where the step stopped. The separation used to be lost (the next step started inside the
-/// set and never saw the force cross).
+/// where the step stopped: a locator that starts the next step inside the set never sees the
+/// force cross, and loses the separation.
 #[test]
 fn a_separation_at_a_switching_point_is_found() {
     let model = Ndbwmcm::new(
@@ -104,8 +104,8 @@ fn a_separation_at_a_switching_point_is_found() {
 
 /// Stress case 78848 (seed 1): `p = 10` under a push `U = 7.8`. The force
 /// `|X|^10 (κ + (1-κ)|Z/X|^10 - σV)` (X, Z < 0) reaches 0 where its bracket does, at `X = -0.014`,
-/// while `|X|^10` is 1e-19: the series path's root search used to crawl towards `X = 0`, where the
-/// force is tiny for another reason, and report the separation there (e = 1.0 instead of 0.88).
+/// while `|X|^10` is 1e-19: a Newton search on the force crawls towards `X = 0`, where the force
+/// is tiny for another reason, and would report the separation there (e = 1.0 instead of 0.88).
 #[test]
 fn a_separation_where_the_force_is_tiny_is_found_at_its_root() {
     let (kappa, sigma, p) = (0.4987207909673853, 1.1310166164322775, 10.0);

@@ -116,10 +116,9 @@ fn series_agree_with_runge_kutta_on_the_published_cases() {
 }
 
 /// Loose tolerances on the same cases: the series finish the impact (their Runge-Kutta steps are
-/// only those onto and off the non-smooth points, at most three; before session 7 the root of
-/// `Z` found by a Runge-Kutta run at rtol 1e-4 ... 1e-7 was declined as off by more than 1e-6 of
-/// the run, and the Runge-Kutta path did the rest, up to 182 evaluations), and stay within
-/// 10 rtol of the Runge-Kutta path at rtol 1e-14 in `e` and `T_s`.
+/// only those onto and off the non-smooth points, at most three: a root of `Z` that a
+/// Runge-Kutta run at rtol 1e-4 ... 1e-7 leaves off by its tolerance is polished, not handed
+/// over), and stay within 10 rtol of the Runge-Kutta path at rtol 1e-14 in `e` and `T_s`.
 #[test]
 fn series_finish_the_published_cases_at_loose_tolerances() {
     for (kind, b) in published_cases() {
@@ -246,62 +245,152 @@ fn series_with_constant_inputs() {
     }
 }
 
-proptest! {
-    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
-
-    /// Random admissible parameters and speeds: where the series path finishes an impact, it is
-    /// about as accurate as the Runge-Kutta path at the same (default) settings, both measured
-    /// against the Runge-Kutta path at rtol 1e-13: within 3 times the Runge-Kutta error, or
-    /// 1e-10 (relative to T_s for long contacts). The separation time can be ill-conditioned:
-    /// where the force reaches zero slowly, a state error of rtol = 1e-11 (what the tolerance
-    /// allows) moves it by `1e-11 / |dF/dT|`, and that much more is allowed. Half the runs have
-    /// `Gamma = -B` (as all the paper's fits), where the NDBWSHCCM's first step is the contact
-    /// series in `T^(p+1)`.
-    #[test]
-    fn series_agree_with_runge_kutta_on_random_parameters(
-        mcm in any::<bool>(),
-        b_b in 0.0..5.0f64,
-        g in -1.0..1.0f64,
-        hunt_crossley_loading in any::<bool>(),
-        kappa in 0.05..0.95f64,
-        sigma_b in 0.0..0.5f64,
-        n in 1.0..4.0f64,
-        p in 1.0..4.0f64,
-        v0 in 0.3..10.0f64,
-    ) {
-        let (kind, p, sigma_b) = if mcm {
-            // The NDBWMCM needs p = 1 or p >= 2, and sigma > 0.
-            let p = match p {
-                p if p < 1.5 => 1.0,
-                p if p < 2.0 => 2.0,
-                p => p,
-            };
-            (ModelKind::Mcm, p, sigma_b + 0.01)
-        } else {
-            (ModelKind::Shccm, p, sigma_b)
-        };
-        let g = if hunt_crossley_loading { -1.0 } else { g };
-        let map = BaseMap::new(kind, base(b_b, g * b_b, kappa, sigma_b, n, p)).unwrap();
-        let series = impact_at(&map, Zero, v0, &with_series()).unwrap();
-        let rk = impact_at(&map, Zero, v0, &runge_kutta(1e-11)).unwrap();
-        let reference = impact_at(&map, Zero, v0, &runge_kutta(1e-13)).unwrap();
-        prop_assert_eq!(series.separated(), reference.separated());
-        if series.series_steps > 0 && reference.separated() {
-            let err = |o: &Impact| {
-                let dt = (o.t_s.unwrap() - reference.t_s.unwrap()).abs();
-                ((o.e - reference.e).abs(), dt)
-            };
-            let ((se, st), (re, rt)) = (err(&series), err(&rk));
-            let allowed = 1e-10 * reference.t_s.unwrap().max(1.0)
-                + 1e-11 / force_rate(&map, v0, &reference.state);
-            prop_assert!(se <= 3.0 * re + 1e-10, "e: series {:e}, Runge-Kutta {:e}", se, re);
-            prop_assert!(
-                st <= 3.0 * rt + allowed,
-                "T_s: series {:e}, Runge-Kutta {:e}, allowed {:e}", st, rt, allowed
-            );
+/// Random admissible parameters and speeds (seeded, 128 cases): where the series path finishes
+/// an impact, it is about as accurate as the Runge-Kutta path at the same (default) settings,
+/// both measured against the Runge-Kutta path at rtol 1e-13: within 3 times the Runge-Kutta
+/// error, or 1e-10 (relative to T_s for long contacts). The separation time can be
+/// ill-conditioned: where the force reaches zero slowly, a state error of rtol = 1e-11 (what the
+/// tolerance allows) moves it by `1e-11 / |dF/dT|`, and that much more is allowed. Half the runs
+/// have `Gamma = -B` (as all the paper's fits), where the NDBWSHCCM's first step is the contact
+/// series in `T^(p+1)`. The number of cases the series path finished is asserted: a change
+/// that makes it decline more (or fewer) cases shows here.
+#[test]
+fn series_agree_with_runge_kutta_on_random_parameters() {
+    use proptest::test_runner::TestRunner;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let mut runner = TestRunner::new(crate::lyapunov::config(128));
+    let finished_by_series = AtomicUsize::new(0);
+    let cases = (
+        any::<bool>(),
+        0.0..5.0f64,
+        -1.0..1.0f64,
+        any::<bool>(),
+        0.05..0.95f64,
+        0.0..0.5f64,
+        1.0..4.0f64,
+        1.0..4.0f64,
+        0.3..10.0f64,
+    );
+    // Cases that once failed (found by earlier unseeded runs), then the seeded ones.
+    for (mcm, b_b, g, kappa, sigma_b, n, p, v0) in [
+        (
+            false,
+            4.81117691636256,
+            0.0,
+            0.05,
+            0.359708523509921,
+            1.0,
+            3.8241442907439667,
+            9.906531886096959,
+        ),
+        (
+            true,
+            2.9425545453613293,
+            -0.9767902114560417,
+            0.05,
+            0.3796703041080223,
+            2.1630587150872795,
+            3.4010039285974694,
+            5.956916821280303,
+        ),
+        (
+            false,
+            2.761107411245999,
+            0.0,
+            0.3444389455431368,
+            0.4574662018564419,
+            3.491911633511481,
+            3.408246493248226,
+            7.835096871789821,
+        ),
+        (
+            false,
+            1.6659074769971458,
+            -0.3271955957561158,
+            0.48178318641052015,
+            0.0,
+            1.7740005137038606,
+            1.5235505524599557,
+            0.3,
+        ),
+        (
+            false,
+            4.3081044440831295,
+            0.9409989109927078,
+            0.2335300386480572,
+            0.4806427444989865,
+            2.360353051852235,
+            2.7952151617602023,
+            9.341534241085938,
+        ),
+    ] {
+        if let Err(e) = series_case((mcm, b_b, g, false, kappa, sigma_b, n, p, v0)) {
+            panic!("{e}");
         }
     }
+    let outcome = runner.run(&cases, |case| {
+        if series_case(case)? {
+            finished_by_series.fetch_add(1, Ordering::Relaxed);
+        }
+        Ok(())
+    });
+    if let Err(e) = outcome {
+        panic!("{e}");
+    }
+    assert_eq!(finished_by_series.load(Ordering::Relaxed), SERIES_CASES);
 }
+
+/// One case of [`series_agree_with_runge_kutta_on_random_parameters`]: whether the series path
+/// took it to a separation, or the discrepancy.
+type Case = (bool, f64, f64, bool, f64, f64, f64, f64, f64);
+
+fn series_case(
+    (mcm, b_b, g, hunt_crossley_loading, kappa, sigma_b, n, p, v0): Case,
+) -> Result<bool, proptest::test_runner::TestCaseError> {
+    let (kind, p, sigma_b) = if mcm {
+        // The NDBWMCM needs p = 1 or p >= 2, and sigma > 0.
+        let p = match p {
+            p if p < 1.5 => 1.0,
+            p if p < 2.0 => 2.0,
+            p => p,
+        };
+        (ModelKind::Mcm, p, sigma_b + 0.01)
+    } else {
+        (ModelKind::Shccm, p, sigma_b)
+    };
+    let g = if hunt_crossley_loading { -1.0 } else { g };
+    let map = BaseMap::new(kind, base(b_b, g * b_b, kappa, sigma_b, n, p)).unwrap();
+    let series = impact_at(&map, Zero, v0, &with_series()).unwrap();
+    let rk = impact_at(&map, Zero, v0, &runge_kutta(1e-11)).unwrap();
+    let reference = impact_at(&map, Zero, v0, &runge_kutta(1e-13)).unwrap();
+    prop_assert_eq!(series.separated(), reference.separated());
+    if series.series_steps > 0 && reference.separated() {
+        let err = |o: &Impact| {
+            let dt = (o.t_s.unwrap() - reference.t_s.unwrap()).abs();
+            ((o.e - reference.e).abs(), dt)
+        };
+        let ((se, st), (re, rt)) = (err(&series), err(&rk));
+        let allowed = 1e-10 * reference.t_s.unwrap().max(1.0)
+            + 1e-11 / force_rate(&map, v0, &reference.state);
+        prop_assert!(
+            se <= 3.0 * re + 1e-10,
+            "e: series {:e}, Runge-Kutta {:e}",
+            se,
+            re
+        );
+        prop_assert!(
+            st <= 3.0 * rt + allowed,
+            "T_s: series {:e}, Runge-Kutta {:e}, allowed {:e}",
+            st,
+            rt,
+            allowed
+        );
+    }
+    Ok(series.series_steps > 0 && reference.separated())
+}
+
+/// Of the 128 seeded cases above, those that took series steps and separated (measured: all).
+const SERIES_CASES: usize = 128;
 
 /// `|dF/dT|` at the state `y` (a central difference along the flow): a state error `δ` moves
 /// the separation time by about `δ / |dF/dT|`.
