@@ -41,7 +41,7 @@ use bw_models::{
     NondimParams, Settings, State, Stiffness,
 };
 use bwc_benches::{cor, side_by_side};
-use bwc_cli::plot::{chart, Series, SeriesLabelPosition};
+use bwc_cli::plot::{chart, Axis, Series, Style};
 use bwc_ode::{tableau, System, DOP853, VERN7};
 use std::fmt::Write as _;
 
@@ -422,49 +422,53 @@ fn main() {
                         rhs_ns,
                         in_time,
                     });
-                    pe.push((evals as f64, err.log10()));
-                    pt.push(((secs * 1e6).log10(), err.log10()));
+                    pe.push((evals as f64, err));
+                    pt.push((secs * 1e6, err));
                 }
                 let label = match (series, kinks) {
                     (true, _) => format!("{method} (series)"),
                     (false, true) => format!("{method} + stops at kinks"),
                     (false, false) => method.clone(),
                 };
+                let color = by_time.len();
                 if !series {
                     by_evals.push(Series {
                         label: label.clone(),
                         points: pe,
+                        style: Style::LineAndMarkers,
+                        color,
                     });
                 }
-                by_time.push(Series { label, points: pt });
+                by_time.push(Series {
+                    label,
+                    points: pt,
+                    style: Style::LineAndMarkers,
+                    color,
+                });
             }
         }
-        let title = format!("{name}: log10 error vs RHS evaluations");
+        let error = Axis {
+            label: "max(|error in e|, |error in T_s|) (-)",
+            log: true,
+        };
+        let title = format!("{name}: error vs RHS evaluations");
+        let evals = Axis {
+            label: "RHS evaluations per CoR",
+            log: true,
+        };
         std::fs::write(
             out.join(format!("{name}_evals.svg")),
-            chart(
-                &title,
-                "RHS evaluations",
-                "log10 max(|err e|, |err T_s|)",
-                &by_evals,
-                true,
-                SeriesLabelPosition::UpperRight,
-            )
-            .unwrap(),
+            chart(&title, evals, error, &by_evals).unwrap(),
         )
         .unwrap();
-        let title = format!("{name}: log10 error vs time");
+        let title = format!("{name}: error vs time");
+        let time = Axis {
+            label: "time per CoR (us)",
+            log: true,
+        };
         std::fs::write(
             out.join(format!("{name}_time.svg")),
-            chart(
-                &title,
-                "log10 time (us)",
-                "log10 max(|err e|, |err T_s|)",
-                &by_time,
-                true,
-                SeriesLabelPosition::UpperRight,
-            )
-            .unwrap(),
+            chart(&title, time, error, &by_time).unwrap(),
         )
         .unwrap();
         target.push_str(&rhs_target(name, &rows, &plain));

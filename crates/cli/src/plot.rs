@@ -1,102 +1,367 @@
-//! SVG line charts (plotters, SVG backend, no system fonts needed).
+//! SVG charts (plotters, SVG backend, no system fonts needed), drawn the way a paper's figures
+//! are: every axis with its quantity and unit, logarithmic axes where the values span decades,
+//! data as markers (with error bars where they carry a spread), models as lines, readable tick
+//! labels, the legend in the corner that hides the least.
+//!
+//! plotters' SVG backend places everything on integer pixels, which turns a nearly flat line
+//! into a staircase: charts are drawn [`SCALE`] times larger and shown at their nominal size
+//! through the SVG `viewBox`, so the steps are a fraction of a pixel.
 
 use plotters::coord::ranged1d::ValueFormatter;
-use plotters::coord::types::RangedCoordf64;
-pub use plotters::prelude::SeriesLabelPosition;
 use plotters::prelude::*;
 
-/// A named polyline.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Series {
-    /// Legend label.
-    pub label: String,
-    /// Points `(x, y)`; non-finite points are skipped.
-    pub points: Vec<(f64, f64)>,
+/// Supersampling factor of every chart.
+pub const SCALE: i32 = 4;
+/// Nominal size of a chart (px).
+const SIZE: (u32, u32) = (900, 560);
+
+/// Distinct colours (Tableau 10), picked by index.
+const COLORS: [RGBColor; 10] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
+    RGBColor(23, 190, 207),
+];
+
+/// Colour number `i` (cycling).
+pub fn color(i: usize) -> RGBColor {
+    COLORS[i % COLORS.len()]
 }
 
-/// Draws `series` on one chart and returns the SVG text. `markers` also draws the points;
-/// `legend` places the legend where the data leaves room.
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Style {
+    /// A line (a model).
+    Line,
+    /// Markers (data).
+    Markers,
+    /// A line with markers at its points (a model computed at few points).
+    LineAndMarkers,
+}
+
+/// A named series.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    /// Legend label, in words.
+    pub label: String,
+    /// Points `(x, y)`; non-finite points (and, on a log axis, non-positive ones) are skipped.
+    pub points: Vec<(f64, f64)>,
+    /// Line, markers or both.
+    pub style: Style,
+    /// Colour number ([`color`]): series that belong together share one.
+    pub color: usize,
+}
+
+/// An axis: its label with the unit, and its scale.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Axis<'a> {
+    /// Quantity and unit, e.g. `"v0 (m/s)"`.
+    pub label: &'a str,
+    /// Logarithmic scale.
+    pub log: bool,
+}
+
+impl<'a> Axis<'a> {
+    /// A linear axis.
+    pub fn linear(label: &'a str) -> Self {
+        Axis { label, log: false }
+    }
+
+    /// A logarithmic axis where `values` are positive and span more than `decades`
+    /// (a log-spaced sweep, costs over orders of magnitude); linear otherwise.
+    pub fn log_if_spanning(
+        label: &'a str,
+        values: impl IntoIterator<Item = f64>,
+        decades: f64,
+    ) -> Self {
+        let (mut lo, mut hi, mut positive) = (f64::INFINITY, 0.0f64, true);
+        for v in values.into_iter().filter(|v| v.is_finite()) {
+            positive &= v > 0.0;
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+        Axis {
+            label,
+            log: positive && lo > 0.0 && (hi / lo).log10() > decades,
+        }
+    }
+}
+
+/// A tick label that reads: plain decimals with as many digits as the tick spacing needs, or
+/// scientific notation for very small or large values.
+fn tick(v: f64, span: f64) -> String {
+    // Ticks are multiples of a step computed in floating point: zero can come out as 1e-18.
+    if v == 0.0 || v.abs() < 1e-9 * span {
+        return "0".into();
+    }
+    let a = v.abs();
+    if !(1e-3..1e5).contains(&a) {
+        let s = format!("{v:.2e}");
+        // 2.50e-5 -> 2.5e-5
+        let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+        let m = m.trim_end_matches('0').trim_end_matches('.');
+        return format!("{m}e{e}");
+    }
+    let digits = (-(span / 20.0).log10()).ceil().clamp(0.0, 6.0) as usize;
+    let s = format!("{v:.digits$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// [`tick`], and on a log axis only the ticks at 1, 2 and 5 times a power of ten (the others
+/// crowd each other near the top of a decade).
+fn log_tick(v: f64, span: f64, log: bool) -> String {
+    if log && v > 0.0 {
+        let mantissa = v / 10f64.powf(v.log10().floor());
+        let shown = [1.0, 2.0, 5.0, 10.0]
+            .iter()
+            .any(|m| (mantissa - m).abs() < 1e-6 * m);
+        if !shown {
+            return String::new();
+        }
+        return tick(v, v);
+    }
+    tick(v, span)
+}
+
+/// The range of the finite values (positive ones on a log axis), padded by 5 % (a factor 1.1
+/// on a log axis); `None` without any.
+fn padded(values: impl Iterator<Item = f64>, log: bool) -> Option<(f64, f64)> {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite() && (!log || *v > 0.0))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    if !lo.is_finite() {
+        return None;
+    }
+    Some(if log {
+        (lo / 1.1, hi * 1.1)
+    } else if hi > lo {
+        let p = 0.05 * (hi - lo);
+        (lo - p, hi + p)
+    } else {
+        let p = 0.5 * lo.abs().max(1e-12);
+        (lo - p, hi + p)
+    })
+}
+
+/// Shows the supersampled SVG at its nominal size.
+fn nominal_size(svg: String) -> String {
+    let (w, h) = SIZE;
+    let big = format!(
+        "<svg width=\"{}\" height=\"{}\" ",
+        w * SCALE as u32,
+        h * SCALE as u32
+    );
+    svg.replacen(&big, &format!("<svg width=\"{w}\" height=\"{h}\" "), 1)
+}
+
+/// Builds the chart of `$builder` over the ranges with the axes' scales and calls the generic
+/// `$draw(&mut chart, args...)` on it.
+macro_rules! with_axes {
+    ($builder:expr, $x:expr, $y:expr, $xr:expr, $yr:expr, $draw:ident($($arg:expr),*)) => {{
+        let ((x0, x1), (y0, y1)) = ($xr, $yr);
+        let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
+        match ($x.log, $y.log) {
+            (false, false) => {
+                $draw(&mut $builder.build_cartesian_2d(x0..x1, y0..y1).map_err(e)?, $($arg),*)
+            }
+            (true, false) => $draw(
+                &mut $builder.build_cartesian_2d((x0..x1).log_scale(), y0..y1).map_err(e)?,
+                $($arg),*
+            ),
+            (false, true) => $draw(
+                &mut $builder.build_cartesian_2d(x0..x1, (y0..y1).log_scale()).map_err(e)?,
+                $($arg),*
+            ),
+            (true, true) => $draw(
+                &mut $builder
+                    .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+                    .map_err(e)?,
+                $($arg),*
+            ),
+        }
+    }};
+}
+
+/// The caption, margins and label areas of every chart, at [`SCALE`].
+fn builder<'a, 'b>(
+    root: &'a DrawingArea<SVGBackend<'b>, plotters::coord::Shift>,
+    title: &str,
+) -> ChartBuilder<'a, 'b, SVGBackend<'b>> {
+    let mut b = ChartBuilder::on(root);
+    b.caption(title, ("sans-serif", 24 * SCALE))
+        .margin(16 * SCALE)
+        .x_label_area_size(52 * SCALE)
+        .y_label_area_size(84 * SCALE);
+    b
+}
+
+/// The mesh, tick labels and axis descriptions, at [`SCALE`].
+fn mesh<'a, X, Y>(
+    chart: &mut ChartContext<'a, SVGBackend<'a>, Cartesian2d<X, Y>>,
+    x: &Axis,
+    y: &Axis,
+    (xs, ys): (f64, f64),
+) -> Result<(), String>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let (xlog, ylog) = (x.log, y.log);
+    let fx = move |v: &f64| log_tick(*v, xs, xlog);
+    let fy = move |v: &f64| log_tick(*v, ys, ylog);
+    chart
+        .configure_mesh()
+        .x_desc(x.label)
+        .y_desc(y.label)
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fy)
+        .label_style(("sans-serif", 13 * SCALE))
+        .axis_desc_style(("sans-serif", 15 * SCALE))
+        .bold_line_style(BLACK.mix(0.15).stroke_width(SCALE as u32))
+        .light_line_style(BLACK.mix(0.03).stroke_width(SCALE as u32))
+        .axis_style(BLACK.stroke_width(SCALE as u32))
+        .set_all_tick_mark_size(5 * SCALE)
+        .draw()
+        .map_err(|e| e.to_string())
+}
+
+/// The legend, at [`SCALE`], in `corner`.
+fn legend<'a, X, Y>(
+    chart: &mut ChartContext<'a, SVGBackend<'a>, Cartesian2d<X, Y>>,
+    corner: SeriesLabelPosition,
+) -> Result<(), String>
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    chart
+        .configure_series_labels()
+        .position(corner)
+        .label_font(("sans-serif", 13 * SCALE))
+        .margin(10 * SCALE)
+        .legend_area_size(26 * SCALE)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.stroke_width(SCALE as u32))
+        .draw()
+        .map_err(|e| e.to_string())
+}
+
+/// Draws `series` on one chart with the axes `x` and `y` and returns the SVG text.
 ///
 /// # Errors
 /// The drawing backend's message.
-pub fn chart(
-    title: &str,
-    x_label: &str,
-    y_label: &str,
-    series: &[Series],
-    markers: bool,
-    legend: SeriesLabelPosition,
-) -> Result<String, String> {
-    let finite = |p: &&(f64, f64)| p.0.is_finite() && p.1.is_finite();
-    let pts = series.iter().flat_map(|s| s.points.iter().filter(finite));
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for &(x, y) in pts {
-        x0 = x0.min(x);
-        x1 = x1.max(x);
-        y0 = y0.min(y);
-        y1 = y1.max(y);
-    }
-    if !x0.is_finite() {
-        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
-    }
-    let pad = |a: f64, b: f64| {
-        if b > a {
-            0.05 * (b - a)
-        } else {
-            0.5 * a.abs().max(1e-12)
-        }
+pub fn chart(title: &str, x: Axis, y: Axis, series: &[Series]) -> Result<String, String> {
+    let keep = |p: &(f64, f64)| {
+        p.0.is_finite() && p.1.is_finite() && (!x.log || p.0 > 0.0) && (!y.log || p.1 > 0.0)
     };
-    let (px, py) = (pad(x0, x1), pad(y0, y1));
+    let points: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.points.iter().copied().filter(keep))
+        .collect();
+    let xr = padded(points.iter().map(|p| p.0), x.log).unwrap_or((0.1, 1.0));
+    let yr = padded(points.iter().map(|p| p.1), y.log).unwrap_or((0.1, 1.0));
+    let corner = legend_corner(&points, xr, yr, x.log, y.log);
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (900, 560)).into_drawing_area();
+        let (w, h) = SIZE;
+        let root = SVGBackend::with_string(&mut svg, (w * SCALE as u32, h * SCALE as u32))
+            .into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 24))
-            .margin(16)
-            .x_label_area_size(48)
-            .y_label_area_size(72)
-            .build_cartesian_2d((x0 - px)..(x1 + px), (y0 - py)..(y1 + py))
-            .map_err(|e| e.to_string())?;
-        chart
-            .configure_mesh()
-            .x_desc(x_label)
-            .y_desc(y_label)
-            .draw()
-            .map_err(|e| e.to_string())?;
-        for (i, s) in series.iter().enumerate() {
-            let color = Palette99::pick(i).to_rgba();
-            let points: Vec<(f64, f64)> = s.points.iter().filter(finite).copied().collect();
-            chart
-                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
-                .map_err(|e| e.to_string())?
-                .label(s.label.clone())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
-            if markers {
-                chart
-                    .draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))
-                    .map_err(|e| e.to_string())?;
-            }
-        }
-        if series.len() > 1 || series.first().is_some_and(|s| !s.label.is_empty()) {
-            chart
-                .configure_series_labels()
-                .position(legend)
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .draw()
-                .map_err(|e| e.to_string())?;
-        }
+        let mut b = builder(&root, title);
+        let spans = (xr.1 - xr.0, yr.1 - yr.0);
+        with_axes!(
+            b,
+            x,
+            y,
+            xr,
+            yr,
+            draw_chart((&x, &y), spans, series, &keep, corner)
+        )?;
         root.present().map_err(|e| e.to_string())?;
     }
-    Ok(svg)
+    Ok(nominal_size(svg))
+}
+
+/// The mesh, the series and the legend of [`chart`].
+fn draw_chart<'a, X, Y>(
+    chart: &mut ChartContext<'a, SVGBackend<'a>, Cartesian2d<X, Y>>,
+    (x, y): (&Axis, &Axis),
+    spans: (f64, f64),
+    series: &[Series],
+    keep: &dyn Fn(&(f64, f64)) -> bool,
+    corner: SeriesLabelPosition,
+) -> Result<(), String>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    mesh(chart, x, y, spans)?;
+    for s in series {
+        draw_series(chart, s, keep)?;
+    }
+    if series.len() > 1 || series.first().is_some_and(|s| !s.label.is_empty()) {
+        legend(chart, corner)?;
+    }
+    Ok(())
+}
+
+/// Most markers of one series: a dense measured curve is thinned to these, evenly.
+const MOST_MARKERS: usize = 160;
+
+/// One series in its style and colour, with its legend entry.
+fn draw_series<'a, X, Y>(
+    chart: &mut ChartContext<'a, SVGBackend<'a>, Cartesian2d<X, Y>>,
+    s: &Series,
+    keep: &dyn Fn(&(f64, f64)) -> bool,
+) -> Result<(), String>
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
+    let c = color(s.color);
+    let points: Vec<(f64, f64)> = s.points.iter().copied().filter(|p| keep(p)).collect();
+    let width = 2 * SCALE as u32;
+    let r = 3 * SCALE;
+    let legend_line = move |(x, y): (i32, i32)| {
+        PathElement::new(vec![(x, y), (x + 20 * SCALE, y)], c.stroke_width(width))
+    };
+    let legend_marker = move |(x, y): (i32, i32)| Circle::new((x + 10 * SCALE, y), r, c.filled());
+    if s.style != Style::Markers {
+        let drawn = chart
+            .draw_series(LineSeries::new(points.clone(), c.stroke_width(width)))
+            .map_err(e)?;
+        if !s.label.is_empty() {
+            drawn.label(s.label.clone()).legend(legend_line);
+        }
+    }
+    if s.style != Style::Line {
+        let every = points.len().div_ceil(MOST_MARKERS).max(1);
+        let drawn = chart
+            .draw_series(
+                points
+                    .iter()
+                    .step_by(every)
+                    .map(|&p| Circle::new(p, r, c.filled())),
+            )
+            .map_err(e)?;
+        if s.style == Style::Markers && !s.label.is_empty() {
+            drawn.label(s.label.clone()).legend(legend_marker);
+        }
+    }
+    Ok(())
 }
 
 /// Measured points of a fit chart: `(x, y, spread)`, the spread drawn as an error bar.
@@ -107,8 +372,6 @@ pub type Banded = [(f64, f64, f64, f64)];
 
 /// What a fit chart shows.
 struct FitLayers<'a> {
-    x_label: &'a str,
-    y_label: &'a str,
     data: (&'a str, &'a Measured),
     model: (&'a str, &'a Banded),
     band_label: &'a str,
@@ -172,60 +435,48 @@ pub fn fit_chart(
         )
         .collect();
     let layers = FitLayers {
-        x_label,
-        y_label,
         data,
         model,
         band_label,
-        corner: legend_corner(&drawn, (x0, x1), (y0, y1), log_x),
+        corner: legend_corner(&drawn, (x0, x1), (y0, y1), log_x, false),
     };
+    let xr = padded([x0, x1].into_iter(), log_x).expect("finite");
+    let (x, y) = (
+        Axis {
+            label: x_label,
+            log: log_x,
+        },
+        Axis::linear(y_label),
+    );
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (900, 560)).into_drawing_area();
+        let (w, h) = SIZE;
+        let root = SVGBackend::with_string(&mut svg, (w * SCALE as u32, h * SCALE as u32))
+            .into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let mut builder = ChartBuilder::on(&root);
-        builder
-            .caption(title, ("sans-serif", 24))
-            .margin(16)
-            .x_label_area_size(48)
-            .y_label_area_size(72);
-        if log_x {
-            let chart = builder
-                .build_cartesian_2d((x0 / 1.1..x1 * 1.1).log_scale(), y0..y1)
-                .map_err(|e| e.to_string())?;
-            draw_fit(chart, &layers)?;
-        } else {
-            let px = if x1 > x0 {
-                0.05 * (x1 - x0)
-            } else {
-                0.5 * x0.abs().max(1e-12)
-            };
-            let chart = builder
-                .build_cartesian_2d((x0 - px)..(x1 + px), y0..y1)
-                .map_err(|e| e.to_string())?;
-            draw_fit(chart, &layers)?;
-        }
+        let mut b = builder(&root, title);
+        let spans = (xr.1 - xr.0, y1 - y0);
+        with_axes!(b, x, y, xr, (y0, y1), draw_fit((&x, &y), spans, &layers))?;
         root.present().map_err(|e| e.to_string())?;
     }
-    Ok(svg)
+    Ok(nominal_size(svg))
 }
 
 /// Draws the layers of a fit chart on a chart with either x axis.
-fn draw_fit<'a, X>(
-    mut chart: ChartContext<'a, SVGBackend<'a>, Cartesian2d<X, RangedCoordf64>>,
+fn draw_fit<'a, X, Y>(
+    chart: &mut ChartContext<'a, SVGBackend<'a>, Cartesian2d<X, Y>>,
+    (x, y): (&Axis, &Axis),
+    spans: (f64, f64),
     l: &FitLayers,
 ) -> Result<(), String>
 where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
+    mesh(chart, x, y, spans)?;
     let e = |e: DrawingAreaErrorKind<std::io::Error>| e.to_string();
-    chart
-        .configure_mesh()
-        .x_desc(l.x_label)
-        .y_desc(l.y_label)
-        .draw()
-        .map_err(e)?;
-    let line = RGBColor(31, 119, 180);
+    let (width, r) = (2 * SCALE as u32, 3 * SCALE);
+    let line = color(0);
     let shade = line.mix(0.2).filled();
     let ok = |p: &&(f64, f64, f64, f64)| p.2.is_finite() && p.3.is_finite();
     let mut outline: Vec<(f64, f64)> = l.model.1.iter().filter(ok).map(|p| (p.0, p.3)).collect();
@@ -235,7 +486,9 @@ where
             .draw_series(std::iter::once(Polygon::new(outline, shade)))
             .map_err(e)?
             .label(l.band_label)
-            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 20, y + 5)], shade));
+            .legend(move |(x, y)| {
+                Rectangle::new([(x, y - 5 * SCALE), (x + 20 * SCALE, y + 5 * SCALE)], shade)
+            });
     }
     let curve = l
         .model
@@ -244,14 +497,20 @@ where
         .filter(|p| p.1.is_finite())
         .map(|p| (p.0, p.1));
     chart
-        .draw_series(LineSeries::new(curve, line.stroke_width(2)))
+        .draw_series(LineSeries::new(curve, line.stroke_width(width)))
         .map_err(e)?
         .label(l.model.0)
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], line.stroke_width(2)));
-    let mark = RGBColor(214, 39, 40);
+        .legend(move |(x, y)| {
+            PathElement::new(vec![(x, y), (x + 20 * SCALE, y)], line.stroke_width(width))
+        });
+    let mark = color(3);
     let bars = l.data.1.iter().filter_map(|p| {
-        p.2.filter(|s| *s > 0.0)
-            .map(|s| PathElement::new(vec![(p.0, p.1 - s), (p.0, p.1 + s)], mark.stroke_width(1)))
+        p.2.filter(|s| *s > 0.0).map(|s| {
+            PathElement::new(
+                vec![(p.0, p.1 - s), (p.0, p.1 + s)],
+                mark.stroke_width(SCALE as u32),
+            )
+        })
     });
     chart.draw_series(bars).map_err(e)?;
     chart
@@ -259,19 +518,12 @@ where
             l.data
                 .1
                 .iter()
-                .map(|p| Circle::new((p.0, p.1), 3, mark.filled())),
+                .map(|p| Circle::new((p.0, p.1), r, mark.filled())),
         )
         .map_err(e)?
         .label(l.data.0)
-        .legend(move |(x, y)| Circle::new((x + 10, y), 3, mark.filled()));
-    chart
-        .configure_series_labels()
-        .position(l.corner.clone())
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(e)?;
-    Ok(())
+        .legend(move |(x, y)| Circle::new((x + 10 * SCALE, y), r, mark.filled()));
+    legend(chart, l.corner.clone())
 }
 
 /// The corner of the plot whose quarter holds the fewest drawn points: where the legend hides
@@ -281,15 +533,17 @@ fn legend_corner(
     (x0, x1): (f64, f64),
     (y0, y1): (f64, f64),
     log_x: bool,
+    log_y: bool,
 ) -> SeriesLabelPosition {
-    let fx = |x: f64| {
-        if log_x {
-            (x / x0).ln() / (x1 / x0).ln()
+    let along = |v: f64, a: f64, b: f64, log: bool| {
+        if log {
+            (v / a).ln() / (b / a).ln()
         } else {
-            (x - x0) / (x1 - x0)
+            (v - a) / (b - a)
         }
     };
-    let fy = |y: f64| (y - y0) / (y1 - y0);
+    let fx = |x: f64| along(x, x0, x1, log_x);
+    let fy = |y: f64| along(y, y0, y1, log_y);
     let count = |right: bool, upper: bool| {
         points
             .iter()
@@ -309,4 +563,39 @@ fn legend_corner(
     .into_iter()
     .min_by_key(|c| c.1)
     .map_or(SeriesLabelPosition::UpperRight, |c| c.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tick_labels_read() {
+        assert_eq!(tick(6.94e-18, 0.1), "0");
+        assert_eq!(tick(0.25, 1.0), "0.25");
+        assert_eq!(tick(0.5, 1.0), "0.5");
+        assert_eq!(tick(350.0, 450.0), "350");
+        assert_eq!(tick(2.5e-5, 3e-5), "2.5e-5");
+        assert_eq!(tick(1e-10, 1e-5), "1e-10");
+        assert_eq!(log_tick(3e-5, 1.0, true), "");
+        assert_eq!(log_tick(5e-5, 1.0, true), "5e-5");
+        assert_eq!(log_tick(0.2, 1.0, true), "0.2");
+    }
+
+    #[test]
+    fn charts_are_drawn_large_and_shown_at_their_size() {
+        let series = [Series {
+            label: "line".into(),
+            points: vec![(0.0, 0.0), (1.0, 1e-3)],
+            style: Style::Line,
+            color: 0,
+        }];
+        let svg = chart("t", Axis::linear("x (m)"), Axis::linear("y (N)"), &series).unwrap();
+        assert!(
+            svg.starts_with("<svg width=\"900\" height=\"560\" viewBox=\"0 0 3600 2240\""),
+            "{}",
+            &svg[..80]
+        );
+        assert!(svg.contains("x (m)") && svg.contains("y (N)"));
+    }
 }

@@ -2,7 +2,7 @@
 
 use super::{FitReport, LoopReport};
 use crate::config::{FitConfig, LoopFitConfig};
-use crate::plot::{self, Series, SeriesLabelPosition};
+use crate::plot::{self, Axis, Series, Style};
 use crate::CliError;
 use bw_models::BaseParams;
 use bwc_identify::{BandPoint, Uncertainty};
@@ -159,6 +159,15 @@ pub fn slug(name: &str) -> String {
     }
 }
 
+/// The paper's name of a model given by its key (`"shccm"`, `"mcm"`).
+fn model_name(key: &str) -> &'static str {
+    if key == "mcm" {
+        "NDBWMCM"
+    } else {
+        "NDBWSHCCM"
+    }
+}
+
 /// Renders, per fit, a CSV of data vs model (with the band's limits where
 /// there are intervals) and SVG plots (CoR and duration against v0 with the band, the Pareto
 /// front).
@@ -197,7 +206,11 @@ pub fn render(
                 .iter()
                 .map(|c| (c.v0, c.e[0], c.e[1], c.e[2]))
                 .collect();
-            let label = format!("{} (J1 = {:.2e})", r.model, r.costs.j1.unwrap_or(f64::NAN));
+            let label = format!(
+                "{} fit (J1 = {:.2e})",
+                model_name(r.model),
+                r.costs.j1.unwrap_or(f64::NAN)
+            );
             let svg = plot::fit_chart(
                 &format!("{}: coefficient of restitution", r.name),
                 "impact speed v0 (m/s)",
@@ -224,8 +237,8 @@ pub fn render(
                 .map(|c| (c.v0, c.t_d[0], c.t_d[1], c.t_d[2]))
                 .collect();
             let label = format!(
-                "{} (J2 = {:.2e} s^2)",
-                r.model,
+                "{} fit (J2 = {:.2e} s^2)",
+                model_name(r.model),
                 r.costs.j2.unwrap_or(f64::NAN)
             );
             let svg = plot::fit_chart(
@@ -324,21 +337,31 @@ fn pareto_files(r: &FitReport, out: &Path, stem: &str) -> Result<Vec<(String, Ve
     }
     let svg_name = format!("{stem}_pareto.svg");
     let series = [Series {
-        label: "Pareto front".into(),
+        label: "Pareto front (one point per weight)".into(),
         points: r.pareto.iter().map(|p| (p.j1, p.j2)).collect(),
+        style: Style::LineAndMarkers,
+        color: 0,
     }];
-    let svg = plot::chart(
-        &format!("{}: Pareto front", r.name),
-        "J1",
-        "J2 (s^2)",
-        &series,
-        true,
-        SeriesLabelPosition::UpperRight,
-    )
-    .map_err(|message| CliError::Plot {
-        path: out.join(&svg_name),
-        message,
-    })?;
+    // Costs span orders of magnitude along a front: log axes where they do.
+    let (x, y) = (
+        Axis::log_if_spanning(
+            "J1, mean squared CoR error (-)",
+            r.pareto.iter().map(|p| p.j1),
+            1.0,
+        ),
+        Axis::log_if_spanning(
+            "J2, mean squared duration error (s^2)",
+            r.pareto.iter().map(|p| p.j2),
+            1.0,
+        ),
+    );
+    let svg =
+        plot::chart(&format!("{}: Pareto front", r.name), x, y, &series).map_err(|message| {
+            CliError::Plot {
+                path: out.join(&svg_name),
+                message,
+            }
+        })?;
     Ok(vec![
         (name, w.into_inner().expect("in-memory writer")),
         (svg_name, svg.into_bytes()),
@@ -396,23 +419,31 @@ pub fn render_loops(
                 })?;
             }
         }
+        // The data and the model at one speed share a colour.
+        let color = series.len() / 2;
         series.push(Series {
-            label: format!("data, v0 = {} m/s", l.v0),
+            label: format!("measured, v0 = {} m/s", l.v0),
             points: l.x.iter().zip(&l.f).map(|(x, f)| (-x * 1e3, *f)).collect(),
+            style: Style::Markers,
+            color,
         });
         series.push(Series {
-            label: format!("{}, v0 = {} m/s", r.model, l.v0),
+            label: format!(
+                "{} model, v0 = {} m/s",
+                model_name(r.model).trim_start_matches("ND"),
+                l.v0
+            ),
             points: c.iter().map(|(x, f)| (-x * 1e3, *f)).collect(),
+            style: Style::Line,
+            color,
         });
     }
     let svg_name = format!("{stem}_loops.svg");
     let svg = plot::chart(
         &format!("{}: loops (cost {:.2e})", r.name, r.cost),
-        "|x| (mm)",
-        "F (N)",
+        Axis::linear("compression |x| (mm)"),
+        Axis::linear("contact force F (N)"),
         &series,
-        false,
-        SeriesLabelPosition::UpperLeft,
     )
     .map_err(|message| CliError::Plot {
         path: out.join(&svg_name),

@@ -2,7 +2,8 @@
 //! rendered in memory first and then written to a temporary name and renamed, so that a failed
 //! run leaves no half-written file.
 
-use crate::plot::{self, Series, SeriesLabelPosition};
+mod figures;
+
 use crate::scene::{OutputSpec, Scene, System};
 use crate::simulate::{Outcome, Run};
 use crate::CliError;
@@ -152,6 +153,15 @@ impl Summary {
     }
 }
 
+/// Whether the states of a scene's runs are in SI units: trajectories of `[nondimensional]` and
+/// `[base]` systems are in the model's own (nondimensional) variables.
+pub(crate) fn si_states(scene: &Scene) -> bool {
+    scene
+        .systems
+        .iter()
+        .all(|s| matches!(s.system, System::Physical { .. } | System::Bodies { .. }))
+}
+
 /// The unit of every JSON key of a run and of every CSV column (`"1"`: dimensionless; the
 /// nondimensional quantities are in the scales of Table 1).
 pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
@@ -161,11 +171,7 @@ pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
         Some(_) => "s or nondimensional (each run's time_unit)",
         None => "s",
     };
-    // Trajectories of [nondimensional] and [base] systems are in the model's own variables.
-    let si = scene
-        .systems
-        .iter()
-        .all(|s| matches!(s.system, System::Physical { .. } | System::Bodies { .. }));
+    let si = si_states(scene);
     let (m, ms, n) = if si { ("m", "m/s", "N") } else { (nd, nd, nd) };
     serde_json::json!({
         "runs": {"v0": "m/s", "e": "1", "t_s": t, "t_d": "s", "T_c": "s", "stiff_from": t,
@@ -233,37 +239,8 @@ pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Ve
             w.into_inner().expect("in-memory writer"),
         ));
         if spec.plots {
-            let by_system = group(runs, |r| (r.v0.unwrap_or(f64::NAN), r.e));
-            files.push((
-                "cor.svg".into(),
-                plot::chart(
-                    "Coefficient of restitution",
-                    "v0 (m/s)",
-                    "e",
-                    &by_system,
-                    true,
-                    SeriesLabelPosition::UpperRight,
-                )
-                .map_err(plot_err("cor.svg"))?
-                .into_bytes(),
-            ));
-            if runs.iter().any(|r| r.t_d.is_some()) {
-                let by_system = group(runs, |r| {
-                    (r.v0.unwrap_or(f64::NAN), r.t_d.unwrap_or(f64::NAN))
-                });
-                files.push((
-                    "duration.svg".into(),
-                    plot::chart(
-                        "Contact duration",
-                        "v0 (m/s)",
-                        "t_d (s)",
-                        &by_system,
-                        true,
-                        SeriesLabelPosition::UpperRight,
-                    )
-                    .map_err(plot_err("duration.svg"))?
-                    .into_bytes(),
-                ));
+            for f in figures::sweep(scene, runs) {
+                files.push(f.map_err(|(name, m)| plot_err(&name)(m))?);
             }
         }
     }
@@ -321,7 +298,9 @@ pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Ve
             w.into_inner().expect("in-memory writer"),
         ));
         if spec.plots {
-            files.extend(time_histories(runs, bodies).map_err(plot_err("trajectory plots"))?);
+            for f in figures::time_histories(scene, runs, bodies) {
+                files.push(f.map_err(|(name, m)| plot_err(&name)(m))?);
+            }
         }
     }
 
@@ -343,32 +322,7 @@ pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Ve
         }
         files.push(("loop.csv".into(), w.into_inner().expect("in-memory writer")));
         if spec.plots {
-            let si = runs.iter().all(|r| r.time_unit == "s");
-            let (xlabel, ylabel, scale) = if si {
-                ("|x| (mm)", "F (N)", 1e3)
-            } else {
-                ("|X|", "F", 1.0)
-            };
-            let series: Vec<Series> = runs
-                .iter()
-                .map(|r| Series {
-                    label: r.label(),
-                    points: r.trajectory.iter().map(|s| (-s.x * scale, s.f)).collect(),
-                })
-                .collect();
-            files.push((
-                "loops.svg".into(),
-                plot::chart(
-                    "Force-compression loops",
-                    xlabel,
-                    ylabel,
-                    &series,
-                    false,
-                    SeriesLabelPosition::UpperLeft,
-                )
-                .map_err(plot_err("loops.svg"))?
-                .into_bytes(),
-            ));
+            files.push(figures::loops(scene, runs).map_err(|(name, m)| plot_err(&name)(m))?);
         }
     }
     Ok(files)
@@ -376,95 +330,4 @@ pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Ve
 
 fn opt(v: Option<f64>) -> String {
     v.map(|x| x.to_string()).unwrap_or_default()
-}
-
-/// One series per system: points `f(run)` over its runs.
-fn group(runs: &[Run], f: impl Fn(&Run) -> (f64, f64)) -> Vec<Series> {
-    let mut out: Vec<Series> = Vec::new();
-    for r in runs {
-        let label = r.name.clone().unwrap_or_else(|| r.model.name().to_string());
-        match out.iter_mut().find(|s| s.label == label) {
-            Some(s) => s.points.push(f(r)),
-            None => out.push(Series {
-                label,
-                points: vec![f(r)],
-            }),
-        }
-    }
-    out
-}
-
-/// The paper's Figs. 3-5: displacements, velocities and forces against time.
-fn time_histories(runs: &[Run], bodies: bool) -> Result<Vec<(String, Vec<u8>)>, String> {
-    let unit = if runs.iter().all(|r| r.time_unit == "s") {
-        "t (s)"
-    } else {
-        "T"
-    };
-    let mut disp = Vec::new();
-    let mut vel = Vec::new();
-    let mut force = Vec::new();
-    for r in runs {
-        let tag = if runs.len() > 1 {
-            format!(" ({})", r.label())
-        } else {
-            String::new()
-        };
-        let series = |name: &str, f: &dyn Fn(&crate::simulate::Sample) -> f64| Series {
-            label: format!("{name}{tag}"),
-            points: r.trajectory.iter().map(|s| (s.t, f(s))).collect(),
-        };
-        if bodies {
-            disp.push(series("x_m_1", &|s| s.bodies.map_or(f64::NAN, |b| b.x_m_1)));
-            disp.push(series("x_m_2", &|s| s.bodies.map_or(f64::NAN, |b| b.x_m_2)));
-            disp.push(series("x_m", &|s| s.bodies.map_or(f64::NAN, |b| b.x_m)));
-            vel.push(series("v_m_1", &|s| s.bodies.map_or(f64::NAN, |b| b.v_m_1)));
-            vel.push(series("v_m_2", &|s| s.bodies.map_or(f64::NAN, |b| b.v_m_2)));
-            vel.push(series("v_m", &|s| s.bodies.map_or(f64::NAN, |b| b.v_m)));
-            force.push(series("u_1", &|s| s.bodies.map_or(f64::NAN, |b| b.u_1)));
-            force.push(series("u_2", &|s| s.bodies.map_or(f64::NAN, |b| b.u_2)));
-        }
-        disp.push(series("x", &|s| s.x));
-        vel.push(series("v", &|s| s.v));
-        force.push(series("u", &|s| s.u));
-        force.push(series("F", &|s| s.f));
-    }
-    Ok(vec![
-        (
-            "displacements.svg".into(),
-            plot::chart(
-                "Displacements",
-                unit,
-                "displacement",
-                &disp,
-                false,
-                SeriesLabelPosition::LowerRight,
-            )?
-            .into_bytes(),
-        ),
-        (
-            "velocities.svg".into(),
-            plot::chart(
-                "Velocities",
-                unit,
-                "velocity",
-                &vel,
-                false,
-                SeriesLabelPosition::LowerRight,
-            )?
-            .into_bytes(),
-        ),
-        (
-            "forces.svg".into(),
-            plot::chart(
-                "Forces",
-                unit,
-                "force",
-                &force,
-                false,
-                SeriesLabelPosition::MiddleRight,
-            )?
-            .into_bytes(),
-        ),
-    ])
 }
