@@ -242,7 +242,7 @@ fn run(
                 r.name,
                 r.model,
                 r.costs.j1.map_or("-".into(), |j| format!("{j:.3e}")),
-                r.costs.j2.map_or("-".into(), |j| format!("{j:.3e}")),
+                r.costs.j2.map_or("-".into(), |j| format!("{j:.3e} s^2")),
                 r.evaluations,
                 r.wall_s
             );
