@@ -273,14 +273,8 @@ pub fn chart(title: &str, x: Axis, y: Axis, series: &[Series]) -> Result<String,
     let xr = padded(points.iter().map(|p| p.0), x.log).unwrap_or((0.1, 1.0));
     let yr = padded(points.iter().map(|p| p.1), y.log).unwrap_or((0.1, 1.0));
     let corner = legend_corner(&points, xr, yr, x.log, y.log);
-    let mut svg = String::new();
-    {
-        let (w, h) = SIZE;
-        let root = SVGBackend::with_string(&mut svg, (w * SCALE as u32, h * SCALE as u32))
-            .into_drawing_area();
-        root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let mut b = builder(&root, title);
-        let spans = (xr.1 - xr.0, yr.1 - yr.0);
+    let spans = (xr.1 - xr.0, yr.1 - yr.0);
+    svg(title, |b| {
         with_axes!(
             b,
             x,
@@ -288,10 +282,26 @@ pub fn chart(title: &str, x: Axis, y: Axis, series: &[Series]) -> Result<String,
             xr,
             yr,
             draw_chart((&x, &y), spans, series, &keep, corner)
-        )?;
+        )
+    })
+}
+
+/// A chart's SVG text: `draw` builds and draws it on a [`builder`] at [`SCALE`], shown at its
+/// nominal size.
+fn svg(
+    title: &str,
+    draw: impl FnOnce(&mut ChartBuilder<'_, '_, SVGBackend<'_>>) -> Result<(), String>,
+) -> Result<String, String> {
+    let mut text = String::new();
+    {
+        let (w, h) = SIZE;
+        let root = SVGBackend::with_string(&mut text, (w * SCALE as u32, h * SCALE as u32))
+            .into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        draw(&mut builder(&root, title))?;
         root.present().map_err(|e| e.to_string())?;
     }
-    Ok(nominal_size(svg))
+    Ok(nominal_size(text))
 }
 
 /// The mesh, the series and the legend of [`chart`].
@@ -448,18 +458,10 @@ pub fn fit_chart(
         },
         Axis::linear(y_label),
     );
-    let mut svg = String::new();
-    {
-        let (w, h) = SIZE;
-        let root = SVGBackend::with_string(&mut svg, (w * SCALE as u32, h * SCALE as u32))
-            .into_drawing_area();
-        root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let mut b = builder(&root, title);
-        let spans = (xr.1 - xr.0, y1 - y0);
-        with_axes!(b, x, y, xr, (y0, y1), draw_fit((&x, &y), spans, &layers))?;
-        root.present().map_err(|e| e.to_string())?;
-    }
-    Ok(nominal_size(svg))
+    let spans = (xr.1 - xr.0, y1 - y0);
+    svg(title, |b| {
+        with_axes!(b, x, y, xr, (y0, y1), draw_fit((&x, &y), spans, &layers))
+    })
 }
 
 /// Draws the layers of a fit chart on a chart with either x axis.

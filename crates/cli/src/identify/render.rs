@@ -159,6 +159,70 @@ pub fn slug(name: &str) -> String {
     }
 }
 
+/// A fitted quantity with a chart of its own.
+#[derive(Clone, Copy)]
+enum Quantity {
+    /// `e`.
+    Cor,
+    /// `t_d` (s).
+    Duration,
+}
+
+impl Quantity {
+    fn suffix(self) -> &'static str {
+        match self {
+            Quantity::Cor => "cor",
+            Quantity::Duration => "t_d",
+        }
+    }
+}
+
+/// The chart of one fitted quantity: the data (with their spread), the fitted curve and its band.
+fn fit_figure(
+    f: &FitConfig,
+    r: &FitReport,
+    q: Quantity,
+    band_label: &str,
+    log_x: bool,
+) -> Result<String, String> {
+    let points = f.data.points.iter();
+    let (data, model, label, title, y): (Vec<_>, Vec<_>, _, _, _) = match q {
+        Quantity::Cor => (
+            points
+                .filter_map(|p| p.e.map(|e| (p.v0, e, p.spread)))
+                .collect(),
+            r.curve
+                .iter()
+                .map(|c| (c.v0, c.e[0], c.e[1], c.e[2]))
+                .collect(),
+            format!("J1 = {:.2e}", r.costs.j1.unwrap_or(f64::NAN)),
+            "coefficient of restitution",
+            "coefficient of restitution e (-)",
+        ),
+        Quantity::Duration => (
+            points
+                .filter_map(|p| p.t_d.map(|t| (p.v0, t, None)))
+                .collect(),
+            r.curve
+                .iter()
+                .map(|c| (c.v0, c.t_d[0], c.t_d[1], c.t_d[2]))
+                .collect(),
+            format!("J2 = {:.2e} s^2", r.costs.j2.unwrap_or(f64::NAN)),
+            "contact duration",
+            "contact duration t_d (s)",
+        ),
+    };
+    plot::fit_chart(
+        &format!("{}: {title}", r.name),
+        "impact speed v0 (m/s)",
+        y,
+        ("measured", &data),
+        (&format!("{} fit ({label})", model_name(r.model)), &model),
+        band_label,
+        log_x,
+    )
+}
+
 /// The paper's name of a model given by its key (`"shccm"`, `"mcm"`).
 fn model_name(key: &str) -> &'static str {
     if key == "mcm" {
@@ -193,64 +257,16 @@ pub fn render(
             "95 % confidence band"
         };
         let log_x = spans_decade(f);
-        if f.data.has_cor() {
-            let name = format!("{stem}_cor.svg");
-            let data: Vec<_> = f
-                .data
-                .points
-                .iter()
-                .filter_map(|p| p.e.map(|e| (p.v0, e, p.spread)))
-                .collect();
-            let model: Vec<_> = r
-                .curve
-                .iter()
-                .map(|c| (c.v0, c.e[0], c.e[1], c.e[2]))
-                .collect();
-            let label = format!(
-                "{} fit (J1 = {:.2e})",
-                model_name(r.model),
-                r.costs.j1.unwrap_or(f64::NAN)
-            );
-            let svg = plot::fit_chart(
-                &format!("{}: coefficient of restitution", r.name),
-                "impact speed v0 (m/s)",
-                "coefficient of restitution e (-)",
-                ("measured", &data),
-                (&label, &model),
-                band_label,
-                log_x,
-            )
-            .map_err(perr(&name))?;
-            files.push((name, svg.into_bytes()));
-        }
-        if f.data.has_durations() && r.uses_input_scales {
-            let name = format!("{stem}_t_d.svg");
-            let data: Vec<_> = f
-                .data
-                .points
-                .iter()
-                .filter_map(|p| p.t_d.map(|t| (p.v0, t, None)))
-                .collect();
-            let model: Vec<_> = r
-                .curve
-                .iter()
-                .map(|c| (c.v0, c.t_d[0], c.t_d[1], c.t_d[2]))
-                .collect();
-            let label = format!(
-                "{} fit (J2 = {:.2e} s^2)",
-                model_name(r.model),
-                r.costs.j2.unwrap_or(f64::NAN)
-            );
-            let svg = plot::fit_chart(
-                &format!("{}: contact duration", r.name),
-                "impact speed v0 (m/s)",
-                "contact duration t_d (s)",
-                ("measured", &data),
-                (&label, &model),
-                band_label,
-                log_x,
-            )
-            .map_err(perr(&name))?;
+        let quantities = [
+            (f.data.has_cor(), Quantity::Cor),
+            (
+                f.data.has_durations() && r.uses_input_scales,
+                Quantity::Duration,
+            ),
+        ];
+        for (_, q) in quantities.into_iter().filter(|(shown, _)| *shown) {
+            let name = format!("{stem}_{}.svg", q.suffix());
+            let svg = fit_figure(f, r, q, band_label, log_x).map_err(perr(&name))?;
             files.push((name, svg.into_bytes()));
         }
         if !r.pareto.is_empty() {
