@@ -42,6 +42,7 @@ mod models;
 mod params;
 mod power;
 mod scaling;
+pub mod sequence;
 pub mod series;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};

@@ -24,6 +24,7 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod bounces;
 pub mod config;
 mod error;
 pub mod identify;

@@ -46,6 +46,8 @@ pub struct Run {
     pub series_steps: u64,
     /// Sampled trajectory (only when an output asks for it).
     pub trajectory: Vec<Sample>,
+    /// The contacts of a `[sequence]` scene with the displacement (m) at each separation.
+    pub bounces: Vec<crate::bounces::Bounced>,
 }
 
 /// How a run ended.
@@ -106,6 +108,29 @@ pub struct Sample {
 }
 
 impl Run {
+    /// A run of `spec` at `v0` that has not happened yet: outcome failed, no results.
+    pub fn new(spec: &SystemSpec, v0: Option<f64>, time_unit: &'static str) -> Self {
+        Run {
+            name: spec.name.clone(),
+            model: spec.kind,
+            v0,
+            t_s: None,
+            e: f64::NAN,
+            outcome: Outcome::Failed,
+            error: None,
+            rest: None,
+            t_c: None,
+            nondimensional: None,
+            t_d: None,
+            time_unit,
+            stats: Stats::default(),
+            stiff_from: None,
+            series_steps: 0,
+            trajectory: Vec::new(),
+            bounces: Vec::new(),
+        }
+    }
+
     /// A label for messages and legends: the name and/or the speed.
     pub fn label(&self) -> String {
         // Speeds to 6 significant digits (log-spaced sweeps have long decimals).
@@ -123,6 +148,13 @@ impl Run {
 /// run stands alone: one that fails is returned with [`Outcome::Failed`] and its error, and the
 /// others are unaffected.
 pub fn run(scene: &Scene, progress: Option<&(dyn Fn() + Sync)>) -> Vec<Run> {
+    if let Some(seq) = &scene.sequence {
+        return scene
+            .systems
+            .iter()
+            .map(|s| crate::bounces::run(s, seq, &scene.settings))
+            .collect();
+    }
     let speeds: Vec<Option<f64>> = if scene.speeds.is_empty() {
         vec![None]
     } else {
@@ -158,28 +190,15 @@ fn failed(spec: &SystemSpec, v0: Option<f64>, error: &ModelError, settings: &Set
         System::Bodies { bodies, .. } => Some(bodies.impact_speed()),
         _ => v0,
     };
-    Run {
-        name: spec.name.clone(),
-        model: spec.kind,
-        v0,
-        t_s: None,
-        e: f64::NAN,
-        outcome: Outcome::Failed,
-        error: Some(format!("{error}; {}", hint(error, settings))),
-        rest: None,
-        t_c: scaling.as_ref().and_then(|s| s.t_c),
-        nondimensional: scaling.map(|s| s.nondimensional),
-        t_d: None,
-        time_unit: time_unit(spec),
-        stats: Stats::default(),
-        stiff_from: None,
-        series_steps: 0,
-        trajectory: Vec::new(),
-    }
+    let mut run = Run::new(spec, v0, time_unit(spec));
+    run.error = Some(format!("{error}; {}", hint(error, settings)));
+    run.t_c = scaling.as_ref().and_then(|s| s.t_c);
+    run.nondimensional = scaling.map(|s| s.nondimensional);
+    run
 }
 
 /// The setting that would help a run that failed with `error`.
-fn hint(error: &ModelError, settings: &Settings) -> String {
+pub(crate) fn hint(error: &ModelError, settings: &Settings) -> String {
     use bwc_ode::Error as Ode;
     let solver = match error {
         ModelError::Solver(bwc_events::Error::Solver(e)) => Some(e),
@@ -263,6 +282,7 @@ fn run_one(
             stiff_from: impact.stiff_from.map(|t| t * scale),
             series_steps: impact.series_steps,
             trajectory,
+            bounces: Vec::new(),
         }
     };
     match &spec.system {

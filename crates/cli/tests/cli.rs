@@ -1052,3 +1052,144 @@ fn identify_coverage_shards_and_threads() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("CoR-only"));
 }
+
+/// The Table 4 baseball contact law dropped from 1 m: `[sequence]` with the given extra keys.
+fn drop_scene(extra: &str) -> String {
+    format!(
+        "model = \"shccm\"\n[sequence]\nh0 = 1.0\n{extra}\n[physical]\nm = 0.145\nk = 117080063.0\nc = 5854003.0\nn = 1.1\np = 1.7\nalpha = 0.1\nbeta = 981.05\ngamma = -961.4\nA = 0.925\n"
+    )
+}
+
+#[test]
+fn a_reset_sequence_is_single_impacts_and_ballistic_flights() {
+    let dir = scratch("sequence");
+    let scene = dir.join("drop.toml");
+    std::fs::write(&scene, drop_scene("bounces = 4")).unwrap();
+    let out_dir = dir.join("out");
+    let v = json(&simulate(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--json",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]));
+    let bounces = v["runs"][0]["bounces"].as_array().unwrap();
+    assert_eq!(bounces.len(), 4);
+    let g = 9.81;
+    let f = |b: &serde_json::Value, k: &str| b[k].as_f64().unwrap();
+    // Dropped from rest: the first contact at sqrt(2 h0 / g) with speed sqrt(2 g h0).
+    let (mut t, mut v_in) = ((2.0 / g as f64).sqrt(), (2.0 * g as f64).sqrt());
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs();
+    for (k, b) in bounces.iter().enumerate() {
+        assert_eq!(b["n"], k + 1);
+        assert!(
+            close(f(b, "t_contact"), t) && close(f(b, "v_in"), v_in),
+            "{b}"
+        );
+        // The same contact alone: one impact at v_in under the input -m g.
+        let single = dir.join(format!("single{k}.toml"));
+        let text = drop_scene("").replace(
+            "[sequence]\nh0 = 1.0\n",
+            &format!("v0 = [{v_in:e}]\n[input]\nkind = \"gravity\"\nm = 0.145\ng = 9.81\n"),
+        );
+        std::fs::write(&single, text).unwrap();
+        let one = json(&simulate(&["run", single.to_str().unwrap(), "--json"]));
+        let run = &one["runs"][0];
+        let (e, t_s) = (f(run, "e"), f(run, "t_s"));
+        assert!(
+            close(f(b, "e"), e) && close(f(b, "t_s"), t_s),
+            "{b} vs {run}"
+        );
+        let v_out = e * v_in;
+        assert!(close(f(b, "v_out"), v_out) && close(f(b, "apex"), v_out * v_out / (2.0 * g)));
+        if k + 1 < bounces.len() {
+            let interval = t_s + 2.0 * v_out / g;
+            assert!(close(f(b, "interval"), interval), "{b}");
+            t += interval;
+            v_in = v_out;
+        } else {
+            assert!(b["interval"].is_null());
+        }
+    }
+    let csv = std::fs::read_to_string(out_dir.join("bounces.csv")).unwrap();
+    assert!(csv.starts_with("n,t_contact,v_in,v_out,e,t_s,apex,interval,x_s,outcome\n"));
+    assert_eq!(csv.lines().count(), 5);
+    assert!(out_dir.join("height.svg").exists());
+}
+
+#[test]
+fn carried_state_changes_the_later_contacts_and_rest_ends_a_sequence() {
+    let dir = scratch("carry");
+    let run = |name: &str, text: String| {
+        let scene = dir.join(name);
+        std::fs::write(&scene, text).unwrap();
+        json(&simulate(&["run", scene.to_str().unwrap(), "--json"]))["runs"][0].clone()
+    };
+    let reset = run("reset.toml", drop_scene("bounces = 3"));
+    let carry = run("carry.toml", drop_scene("bounces = 3\npolicy = \"carry\""));
+    let e = |r: &serde_json::Value, k: usize| r["bounces"][k]["e"].as_f64().unwrap();
+    // The first contact starts unloaded either way; the second from the residual deformation.
+    assert_eq!(e(&reset, 0), e(&carry, 0));
+    assert!(
+        (e(&reset, 1) - e(&carry, 1)).abs() > 1e-3,
+        "{reset} {carry}"
+    );
+    // A stiff dashpot swallows a 1 mm drop: the body rests on the surface.
+    let rest = run(
+        "rest.toml",
+        drop_scene("bounces = 5")
+            .replace("h0 = 1.0", "h0 = 0.001")
+            .replace("c = 5854003.0", "c = 5.0e9"),
+    );
+    assert_eq!(rest["outcome"], "settled");
+    let last = rest["bounces"].as_array().unwrap().last().unwrap().clone();
+    assert_eq!(last["outcome"], "settled");
+    assert!(last["interval"].is_null() && last["t_s"].is_null());
+}
+
+#[test]
+fn bad_sequences_are_clear_errors() {
+    rejects(
+        "seq-h0",
+        &drop_scene("").replace("h0 = 1.0", "h0 = -1.0"),
+        Some(3),
+        &["[sequence].h0", "> 0 (m)"],
+    );
+    rejects(
+        "seq-g",
+        &drop_scene("g = 0.0"),
+        Some(4),
+        &["[sequence].g", "> 0"],
+    );
+    rejects(
+        "seq-bounces",
+        &drop_scene("bounces = 0"),
+        Some(4),
+        &["[sequence].bounces", "1 <= bounces"],
+    );
+    rejects(
+        "seq-drag",
+        &drop_scene("drag = nan"),
+        Some(4),
+        &["[sequence].drag", "finite"],
+    );
+    rejects(
+        "seq-policy",
+        &drop_scene("policy = \"keep\""),
+        Some(4),
+        &["[sequence].policy", "\"reset\" or \"carry\""],
+    );
+    let bodies = "model = \"shccm\"\n[sequence]\nh0 = 1.0\n[bodies]\nm1 = 1\nm2 = \"inf\"\nv1 = -1\nv2 = 0\n[physical]\nk = 1e6\nc = 1e3\nn = 1.5\np = 1.5\nalpha = 0.5\nbeta = 1e4\ngamma = 0\nA = 1\n";
+    rejects(
+        "seq-bodies",
+        bodies,
+        Some(4),
+        &["[bodies]", "fixed surface"],
+    );
+    rejects(
+        "seq-v0",
+        &format!("v0 = [1.0]\n{}", drop_scene("")),
+        Some(1),
+        &["v0", "[sequence].h0"],
+    );
+}

@@ -99,10 +99,13 @@ fn run(
     let runs = bwc_cli::with_threads(threads, || Ok(simulate::run(&scene, Some(&tick))))?;
     bar.finish_and_clear();
     report(&scene, &runs);
-    let summary = output::Summary::new(&runs).with_provenance(&scene, &runs);
+    let summary =
+        output::Summary::new(&runs, scene.sequence.is_some()).with_provenance(&scene, &runs);
     // The results are printed before the files are written: a failed write loses nothing.
     if json {
         bwc_cli::out!("{summary}");
+    } else if scene.sequence.is_some() {
+        bounce_table(&runs);
     } else {
         table(&runs);
     }
@@ -211,6 +214,42 @@ fn table(runs: &[simulate::Run]) {
             ts,
             td,
             r.stats.rhs_evals
+        );
+    }
+}
+
+/// The contacts of a sequence, with the unit of every column.
+fn bounce_table(runs: &[simulate::Run]) {
+    bwc_cli::out!(
+        "{:>4} {:>14} {:>12} {:>12} {:>10} {:>14} {:>12} {:>12} {:>10}",
+        "n",
+        "t_contact (s)",
+        "v_in (m/s)",
+        "v_out (m/s)",
+        "e (-)",
+        "t_s (s)",
+        "apex (m)",
+        "interval (s)",
+        "outcome"
+    );
+    for (b, _) in runs.iter().flat_map(|r| &r.bounces) {
+        let opt =
+            |v: Option<f64>, digits: usize| v.map_or("-".to_string(), |x| format!("{x:.digits$e}"));
+        bwc_cli::out!(
+            "{:>4} {:>14.6} {:>12.6} {:>12.6} {:>10.6} {:>14} {:>12.6} {:>12} {:>10}",
+            b.n,
+            b.t_contact,
+            b.v_in,
+            b.v_out,
+            b.e,
+            opt(b.t_s, 6),
+            b.apex,
+            opt(b.interval, 6),
+            match b.end {
+                bw_models::sequence::BounceEnd::Separated => "separated",
+                bw_models::sequence::BounceEnd::Settled => "settled",
+                bw_models::sequence::BounceEnd::Horizon => "horizon",
+            }
         );
     }
 }

@@ -219,3 +219,77 @@ pub(super) fn time_histories(scene: &Scene, runs: &[Run], bodies: bool) -> Vec<F
         })
         .collect()
 }
+
+/// `height.svg`: the height of the body's contact point above the surface (m) from release,
+/// the flights drawn from their closed forms and each contact as the step from the touchdown
+/// height to the separation height.
+pub(super) fn height(scene: &Scene, runs: &[Run]) -> Figure {
+    use bw_models::sequence::{Arc, Policy, Start};
+    let Some(seq) = scene.sequence else {
+        return Err(("height.svg".into(), "not a sequence".into()));
+    };
+    let flight = seq.settings.flight;
+    let mut series = Vec::new();
+    for (i, r) in runs.iter().enumerate() {
+        let mut points = Vec::new();
+        if let (Start::Height(h0), Some((first, _))) = (seq.start, r.bounces.first()) {
+            let drop = Arc {
+                apex: 0.0,
+                t_up: 0.0,
+                t_down: first.t_contact,
+                v_land: first.v_in,
+            };
+            points.extend(arc_points(first.t_contact, |t| {
+                h0 + flight.height(0.0, &drop, t)
+            }));
+        }
+        // Under "reset" each contact starts where the last one separated; under "carry" the
+        // displacement is counted from the first contact's surface.
+        let mut base = 0.0;
+        for (b, x_s) in &r.bounces {
+            let t0 = b.t_contact;
+            let top = match seq.settings.policy {
+                Policy::Reset => base + x_s,
+                Policy::Carry => *x_s,
+            };
+            points.push((t0, base));
+            let Some(t_s) = b.t_s else { continue };
+            points.push((t0 + t_s, top));
+            if let Some(interval) = b.interval {
+                let arc = flight.arc(b.v_out);
+                let offset = |(t, h): (f64, f64)| (t0 + t_s + t, top + h);
+                points.extend(
+                    arc_points(interval - t_s, |t| flight.height(b.v_out, &arc, t))
+                        .into_iter()
+                        .map(offset),
+                );
+            }
+            base = top;
+        }
+        series.push(Series {
+            label: r.label(),
+            points,
+            style: Style::Line,
+            color: i,
+        });
+    }
+    figure(
+        "height.svg",
+        plot::chart(
+            "Height of the body above the surface",
+            Axis::linear("time from release t (s)"),
+            Axis::linear("height (m)"),
+            &series,
+        ),
+    )
+}
+
+/// `(t, h(t))` at 60 points of `[0, span]`.
+fn arc_points(span: f64, h: impl Fn(f64) -> f64) -> Vec<(f64, f64)> {
+    (0..=60)
+        .map(|k| {
+            let t = span * f64::from(k) / 60.0;
+            (t, h(t))
+        })
+        .collect()
+}

@@ -56,6 +56,56 @@ pub struct RunSummary {
     pub t_c: Option<f64>,
     /// The nondimensional parameters the run integrated; null for a failed run.
     pub nondimensional: Option<NondimSummary>,
+    /// The contacts of a `[sequence]` scene (absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bounces: Option<Vec<BounceSummary>>,
+}
+
+/// One contact of a sequence. Times in s (`t_contact` from release), speeds in m/s, heights in m.
+#[derive(Debug, Serialize)]
+pub struct BounceSummary {
+    /// Number of the contact, from 1.
+    pub n: usize,
+    /// Onset of the contact (s from release).
+    pub t_contact: f64,
+    /// Impact speed (m/s).
+    pub v_in: f64,
+    /// Rebound speed (m/s).
+    pub v_out: f64,
+    /// `v_out / v_in`.
+    pub e: f64,
+    /// Contact duration (s), null without separation.
+    pub t_s: Option<f64>,
+    /// Top of the next flight above the separation point (m).
+    pub apex: f64,
+    /// From this contact's onset to the next one's (s), null for the last.
+    pub interval: Option<f64>,
+    /// Displacement at separation (m; negative: below where the contact began).
+    pub x_s: f64,
+    /// `"separated"`, `"settled"` or `"horizon"`.
+    pub outcome: &'static str,
+}
+
+impl BounceSummary {
+    fn of((b, x_s): &crate::bounces::Bounced) -> Self {
+        use bw_models::sequence::BounceEnd;
+        BounceSummary {
+            n: b.n,
+            t_contact: b.t_contact,
+            v_in: b.v_in,
+            v_out: b.v_out,
+            e: b.e,
+            t_s: b.t_s,
+            apex: b.apex,
+            interval: b.interval,
+            x_s: *x_s,
+            outcome: match b.end {
+                BounceEnd::Separated => "separated",
+                BounceEnd::Settled => "settled",
+                BounceEnd::Horizon => "horizon",
+            },
+        }
+    }
 }
 
 /// Where a settled contact came to rest, in the run's units (`time_unit`; N and m for SI
@@ -99,8 +149,8 @@ pub struct Summary {
 }
 
 impl Summary {
-    /// Summarises runs.
-    pub fn new(runs: &[Run]) -> Self {
+    /// Summarises runs (with their bounces when `sequence`).
+    pub fn new(runs: &[Run], sequence: bool) -> Self {
         Summary {
             runs: runs
                 .iter()
@@ -137,6 +187,7 @@ impl Summary {
                         n: q.n,
                         p: q.p,
                     }),
+                    bounces: sequence.then(|| r.bounces.iter().map(BounceSummary::of).collect()),
                 })
                 .collect(),
         }
@@ -184,6 +235,8 @@ pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
             "F": n, "z": m, "r": m, "y": m, "x_m_1": "m", "x_m_2": "m", "x_m": "m",
             "v_m_1": "m/s", "v_m_2": "m/s", "v_m": "m/s", "u_1": "N", "u_2": "N"},
         "loop.csv": {"v_0": "m/s", "x": m, "F": n, "name": "text"},
+        "bounces.csv": {"n": "count", "t_contact": "s", "v_in": "m/s", "v_out": "m/s", "e": "1",
+            "t_s": "s", "apex": "m", "interval": "s", "x_s": "m", "outcome": "text"},
     })
 }
 
@@ -194,6 +247,7 @@ pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
 pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Vec<u8>)>, CliError> {
     let spec: OutputSpec = scene.output;
     let mut files = Vec::new();
+
     let several_systems = scene.systems.len() > 1;
     let several_runs = runs.len() > 1;
     let sweep = spec.sweep || scene.speeds.len() > 1;
@@ -211,6 +265,15 @@ pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Ve
             message,
         }
     };
+
+    if scene.sequence.is_some() {
+        files.push((
+            "bounces.csv".into(),
+            bounces_csv(runs).map_err(csv_err("bounces.csv"))?,
+        ));
+        let height = figures::height(scene, runs);
+        files.push(height.map_err(|(name, m)| plot_err(&name)(m))?);
+    }
 
     if sweep {
         let mut w = csv::Writer::from_writer(Vec::new());
@@ -326,6 +389,38 @@ pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Ve
         }
     }
     Ok(files)
+}
+
+/// `bounces.csv`: the columns of [`BounceSummary`], one row per contact.
+fn bounces_csv(runs: &[Run]) -> Result<Vec<u8>, csv::Error> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record([
+        "n",
+        "t_contact",
+        "v_in",
+        "v_out",
+        "e",
+        "t_s",
+        "apex",
+        "interval",
+        "x_s",
+        "outcome",
+    ])?;
+    for b in runs.iter().flat_map(|r| &r.bounces).map(BounceSummary::of) {
+        w.write_record([
+            b.n.to_string(),
+            b.t_contact.to_string(),
+            b.v_in.to_string(),
+            b.v_out.to_string(),
+            b.e.to_string(),
+            opt(b.t_s),
+            b.apex.to_string(),
+            opt(b.interval),
+            b.x_s.to_string(),
+            b.outcome.to_string(),
+        ])?;
+    }
+    Ok(w.into_inner().expect("in-memory writer"))
 }
 
 fn opt(v: Option<f64>) -> String {

@@ -16,6 +16,7 @@ impl Scene {
             "v0": self.speeds,
             "solver": settings(&self.settings),
             "output": output(&self.output),
+            "sequence": self.sequence.map(|q| sequence(&q)),
         })
     }
 }
@@ -114,4 +115,15 @@ pub(crate) fn settings(s: &Settings) -> Value {
 fn output(o: &OutputSpec) -> Value {
     json!({"trajectory": o.trajectory, "dt": o.dt, "loops": o.loops, "sweep": o.sweep,
         "plots": o.plots})
+}
+
+fn sequence(q: &super::SequenceSpec) -> Value {
+    use bw_models::sequence::{Policy, Start};
+    let (h0, v0) = match q.start {
+        Start::Height(h) => (Some(h), None),
+        Start::Speed(v) => (None, Some(v)),
+    };
+    let s = &q.settings;
+    json!({"h0": h0, "v0": v0, "g": s.flight.g, "drag": s.flight.drag, "bounces": s.bounces,
+        "policy": match s.policy { Policy::Reset => "reset", Policy::Carry => "carry" }})
 }

@@ -17,9 +17,11 @@
 mod bodies;
 pub(crate) mod describe;
 pub(crate) mod raw;
+mod sequence;
 
 use crate::tables::{model_kind, read_text, signal, solver_settings, span, syntax_error, Ctx};
 use bodies::bodies;
+pub use sequence::SequenceSpec;
 
 use crate::signal::Signal;
 use crate::CliError;
@@ -45,6 +47,8 @@ pub struct Scene {
     pub settings: Settings,
     /// What to write.
     pub output: OutputSpec,
+    /// `[sequence]`: repeated impacts under gravity instead of one impact per speed.
+    pub sequence: Option<SequenceSpec>,
 }
 
 /// One system of a scene.
@@ -174,9 +178,10 @@ impl Scene {
             })
         };
 
+        let sequence = sequence::sequence(&ctx, &raw)?;
         let speeds = parse_speeds(&ctx, &raw)?;
         let uses_speeds = raw.base.is_some() || (raw.physical.is_some() && raw.bodies.is_none());
-        if uses_speeds && speeds.is_empty() {
+        if uses_speeds && speeds.is_empty() && sequence.is_none() {
             return Err(ctx.invalid(
                 &descriptions[0].1,
                 "v0",
@@ -330,6 +335,7 @@ impl Scene {
             speeds,
             settings: solver_settings(&ctx, &raw.solver, "[solver]", Settings::default())?,
             output: output(&ctx, &raw)?,
+            sequence,
         })
     }
 }

@@ -87,6 +87,19 @@ pub struct RawScene {
     pub input: Option<Spanned<RawInput>>,
     pub solver: Option<Spanned<RawSolver>>,
     pub output: Option<Spanned<RawOutput>>,
+    pub sequence: Option<Spanned<RawSequence>>,
+}
+
+/// `[sequence]`: repeated impacts of a body dropped on a fixed surface.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSequence {
+    pub h0: Option<Num>,
+    pub v0: Option<Num>,
+    pub g: Option<Num>,
+    pub bounces: Option<Spanned<i64>>,
+    pub drag: Option<Num>,
+    pub policy: Option<Spanned<String>>,
 }
 
 /// `v0 = { from = 0.1, to = 6.0, count = 40, spacing = "log" }`.

@@ -1,0 +1,139 @@
+//! `[sequence]`: a body dropped from `h0` (or arriving at `v0`) bounces on a fixed surface under
+//! gravity, each contact the scene's `[physical]` model with input `u = -m g`.
+
+use super::raw::RawScene;
+use crate::tables::{span, Ctx};
+use crate::CliError;
+use bw_models::sequence::{Flight, Policy, SequenceSettings, Start};
+
+/// A validated `[sequence]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SequenceSpec {
+    /// Dropped from a height, or arriving at a speed.
+    pub start: Start,
+    /// Gravity, drag, bounces and policy.
+    pub settings: SequenceSettings,
+}
+
+/// Most bounces of one sequence.
+const MOST_BOUNCES: i64 = 100_000;
+
+/// The scene's `[sequence]`, if any, checked against the rest of the scene.
+pub(super) fn sequence(ctx: &Ctx, raw: &RawScene) -> Result<Option<SequenceSpec>, CliError> {
+    let Some(seq) = &raw.sequence else {
+        return Ok(None);
+    };
+    let t = seq.span();
+    let r = seq.get_ref();
+    let conflict = |what: &Option<std::ops::Range<usize>>, key: &str, why: &str| match what {
+        Some(s) => Err(ctx.invalid(s, key, why.to_string())),
+        None => Ok(()),
+    };
+    conflict(
+        &span(&raw.bodies),
+        "[bodies]",
+        "not with [sequence], which drops one body on a fixed surface: describe its contact with [physical]",
+    )?;
+    conflict(
+        &span(&raw.nondimensional),
+        "[nondimensional]",
+        "not with [sequence], whose flights need SI units: describe the contact with [physical]",
+    )?;
+    conflict(
+        &span(&raw.base),
+        "[base]",
+        "not with [sequence]: describe the contact with [physical] (SI units and the mass)",
+    )?;
+    conflict(
+        &raw.v0.as_ref().map(|v| v.span()),
+        "v0",
+        "not with [sequence]: give [sequence].h0 (drop height) or [sequence].v0 (first impact speed)",
+    )?;
+    conflict(
+        &span(&raw.input),
+        "[input]",
+        "not with [sequence]: gravity -m g is the input of every contact ([sequence].g)",
+    )?;
+    let positive = |v: &Option<crate::tables::Num>, key: &str, unit: &str| {
+        v.as_ref()
+            .map(|x| {
+                let value = ctx.num(x, key)?;
+                if value > 0.0 {
+                    Ok(value)
+                } else {
+                    Err(ctx.invalid(
+                        &x.span(),
+                        key,
+                        format!("{value} is not admissible: > 0 ({unit})"),
+                    ))
+                }
+            })
+            .transpose()
+    };
+    let start = match (
+        positive(&r.h0, "[sequence].h0", "m")?,
+        positive(&r.v0, "[sequence].v0", "m/s")?,
+    ) {
+        (Some(h), None) => Start::Height(h),
+        (None, Some(v)) => Start::Speed(v),
+        (None, None) => {
+            return Err(ctx.invalid(
+                &t,
+                "[sequence].h0",
+                "missing: give h0 (drop height, m) or v0 (first impact speed, m/s)",
+            ))
+        }
+        (Some(_), Some(_)) => {
+            let s = span(&r.v0).unwrap_or(t);
+            return Err(ctx.invalid(&s, "[sequence].v0", "give h0 or v0, not both"));
+        }
+    };
+    let g = positive(&r.g, "[sequence].g", "m/s^2")?.unwrap_or(9.81);
+    let drag = match &r.drag {
+        None => 0.0,
+        Some(d) => {
+            let v = ctx.num(d, "[sequence].drag")?;
+            if v < 0.0 {
+                return Err(ctx.invalid(
+                    &d.span(),
+                    "[sequence].drag",
+                    format!("{v} is not admissible: drag >= 0 (1/m)"),
+                ));
+            }
+            v
+        }
+    };
+    let bounces = match &r.bounces {
+        None => 10,
+        Some(b) if (1..=MOST_BOUNCES).contains(b.get_ref()) => *b.get_ref() as usize,
+        Some(b) => {
+            return Err(ctx.invalid(
+                &b.span(),
+                "[sequence].bounces",
+                format!(
+                    "{} is not admissible: 1 <= bounces <= {MOST_BOUNCES}",
+                    b.get_ref()
+                ),
+            ))
+        }
+    };
+    let policy = match r.policy.as_ref().map(|p| (p.get_ref().as_str(), p.span())) {
+        None | Some(("reset", _)) => Policy::Reset,
+        Some(("carry", _)) => Policy::Carry,
+        Some((other, s)) => {
+            return Err(ctx.invalid(
+                &s,
+                "[sequence].policy",
+                format!("\"{other}\" is not a policy: \"reset\" or \"carry\""),
+            ))
+        }
+    };
+    Ok(Some(SequenceSpec {
+        start,
+        settings: SequenceSettings {
+            flight: Flight { g, drag },
+            bounces,
+            policy,
+        },
+    }))
+}
