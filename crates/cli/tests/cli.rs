@@ -1075,10 +1075,10 @@ fn a_reset_sequence_is_single_impacts_and_ballistic_flights() {
     ]));
     let bounces = v["runs"][0]["bounces"].as_array().unwrap();
     assert_eq!(bounces.len(), 4);
-    let g = 9.81;
+    let g: f64 = 9.81;
     let f = |b: &serde_json::Value, k: &str| b[k].as_f64().unwrap();
     // Dropped from rest: the first contact at sqrt(2 h0 / g) with speed sqrt(2 g h0).
-    let (mut t, mut v_in) = ((2.0 / g as f64).sqrt(), (2.0 * g as f64).sqrt());
+    let (mut t, mut v_in) = ((2.0 / g).sqrt(), (2.0 * g).sqrt());
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs();
     for (k, b) in bounces.iter().enumerate() {
         assert_eq!(b["n"], k + 1);
