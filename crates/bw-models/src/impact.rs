@@ -4,8 +4,8 @@
 use crate::models::CollisionModel;
 use crate::params::check;
 use crate::series::SeriesRun;
-use crate::{ModelError, State};
-use bwc_events::{Condition, Locator, Step, Switches, Values, MAX_FUNCTIONS};
+use crate::{ModelError, Separation, State};
+use bwc_events::{Locator, Step, Switches, Values, MAX_FUNCTIONS};
 use bwc_ode::{Jacobian, Matrix, Method, Options, Solver, Stats, Stepper, System, Tableau, DOP853};
 
 /// Solver settings of an impact. Tolerances, steps and the horizon are in the model's natural
@@ -173,21 +173,6 @@ pub enum Sampling {
     },
 }
 
-/// Separation condition `F <= 0 <= v`.
-struct Separation<'a, M>(&'a M);
-
-impl<const N: usize, M: CollisionModel<N>> Condition<N> for Separation<'_, M> {
-    fn count(&self) -> usize {
-        2
-    }
-    fn values(&self, _t: f64, y: &State<N>) -> Values {
-        [self.0.force(y), self.0.velocity(y), 0.0, 0.0]
-    }
-    fn holds(&self, _start: &Values, g: &Values) -> bool {
-        g[0] <= 0.0 && g[1] >= 0.0
-    }
-}
-
 /// The model's non-smooth points, or none.
 struct Kinks<'a, M> {
     model: &'a M,
@@ -293,7 +278,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
         s
     };
     let mut locator = Locator::new(
-        Separation(model),
+        Separation(|_t: f64, y: &State<N>| (model.force(y), model.velocity(y))),
         Kinks {
             model,
             enabled: settings.stop_at_kinks,

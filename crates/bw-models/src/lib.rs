@@ -42,6 +42,7 @@ mod models;
 mod params;
 mod power;
 mod scaling;
+mod separation;
 pub mod sequence;
 pub mod series;
 
@@ -54,6 +55,7 @@ pub use models::{
 pub use params::{BaseParams, ModelKind, Nondim, NondimParams, Physical, PhysicalParams};
 pub use power::Pow;
 pub use scaling::{base_params, impact_at, nondimensionalize, BaseMap, InputScaling, Scales};
+pub use separation::{separated, Separation};
 
 /// A model state on the stack.
 pub type State<const N: usize> = bwc_ode::State<N>;

@@ -233,6 +233,9 @@ pub struct Locator<C, S> {
     resume_h: f64,
     /// Function values at the end of the last step (each is evaluated once per step).
     last: Option<Last>,
+    /// Whether the terminal condition can fire: false after an event until the condition has
+    /// ceased to hold, so that continuing past an event does not report it again.
+    armed: bool,
 }
 
 /// Boundary and switching values at the end of a step, valid while the integrator has not
@@ -258,7 +261,17 @@ impl<C, S> Locator<C, S> {
             pending: None,
             resume_h: 0.0,
             last: None,
+            armed: true,
         }
+    }
+
+    /// The locator for an integration that restarts at an event this condition reported (or
+    /// at any state where it holds): the condition fires again only after it has ceased to
+    /// hold. The same locator continues past its own events this way without being told:
+    /// after a [`Step::Event`], keep calling [`Locator::step`] (or [`Locator::run`]).
+    pub fn after_event(mut self) -> Self {
+        self.armed = false;
+        self
     }
 
     /// The terminal condition.
@@ -291,6 +304,9 @@ impl<C, S> Locator<C, S> {
                 });
             }
         }
+        // Disarmed (just after an event), the step looks for switching points only.
+        let armed = self.armed;
+        let nc = if armed { nc } else { 0 };
         let (t0, y0, f0) = (it.t(), *it.y(), *it.derivative());
         // The values at the end of the previous step, unless the integrator moved since.
         let (g_start, mut s_start, rate_start) = match self.last.take() {
@@ -322,6 +338,9 @@ impl<C, S> Locator<C, S> {
         let (t1, y1, f1) = (it.t(), *it.y(), *it.derivative());
         let g_end = self.condition.values(t1, &y1);
         let s_end = self.switches.values(t1, &y1);
+        if !armed && !self.condition.holds(&g_end, &g_end) {
+            self.armed = true;
+        }
         let h = t1 - t0;
         let rate_end = if nc > 0 {
             interior::rates(&self.condition, nc, (t1, &y1, &f1), &g_end, h)
@@ -441,9 +460,9 @@ impl<C, S> Locator<C, S> {
                         // like |x|^p with non-integer p vanishes exactly at separation).
                         if t < t1 {
                             it.retake_to(t)?;
-                            return Ok(Step::Event { t, y: *it.y() });
+                            return Ok(self.fired(Step::Event { t, y: *it.y() }));
                         }
-                        return Ok(Step::Event { t, y });
+                        return Ok(self.fired(Step::Event { t, y }));
                     }
                     // A boundary crossed without entering the set. Unless a switching point
                     // falls on the same instant, keep scanning the rest of the step (if any is
@@ -479,12 +498,12 @@ impl<C, S> Locator<C, S> {
                     {
                         if b.hi < t1 {
                             it.retake_to(b.hi)?;
-                            return Ok(Step::Event {
+                            return Ok(self.fired(Step::Event {
                                 t: b.hi,
                                 y: *it.y(),
-                            });
+                            }));
                         }
-                        return Ok(Step::Event { t: t1, y: y1 });
+                        return Ok(self.fired(Step::Event { t: t1, y: y1 }));
                     }
                 }
                 self.forced[index] = Some(-s_class[index]);
@@ -499,15 +518,22 @@ impl<C, S> Locator<C, S> {
             }
             // The condition may hold at the switching point itself (a boundary function that
             // reaches zero there).
-            if self
-                .condition
-                .holds(&g_start, &self.condition.values(t, it.y()))
+            if armed
+                && self
+                    .condition
+                    .holds(&g_start, &self.condition.values(t, it.y()))
             {
-                return Ok(Step::Event { t, y: *it.y() });
+                return Ok(self.fired(Step::Event { t, y: *it.y() }));
             }
             self.resume(it);
             return Ok(Step::Switched { index, t });
         }
+    }
+
+    /// Disarms the condition after reporting `event` (see [`Locator::after_event`]).
+    fn fired<const N: usize>(&mut self, event: Step<N>) -> Step<N> {
+        self.armed = false;
+        event
     }
 
     /// After a stop at a switching point: resume with the step size that fitted before it

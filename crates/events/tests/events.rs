@@ -272,3 +272,69 @@ fn a_crossing_and_back_inside_one_step_is_found() {
         assert_eq!(it.stats().accepted, 1, "one step to the event (retaken)");
     }
 }
+
+/// `y <= 0 <= y'` on the harmonic oscillator `y'' = -y`, `y(0) = 0`, `y'(0) = 1`
+/// (`y = sin t`): it first holds at `3π/2` and holds until `2π`; again from `3π/2 + 2π`.
+struct Rebound;
+
+impl Condition<2> for Rebound {
+    fn count(&self) -> usize {
+        2
+    }
+    fn values(&self, _t: f64, y: &State<2>) -> Values {
+        [y[0], y[1], 0.0, 0.0]
+    }
+    fn holds(&self, _start: &Values, g: &Values) -> bool {
+        g[0] <= 0.0 && g[1] >= 0.0
+    }
+}
+
+#[test]
+fn events_are_reported_once_when_continuing_past_them() {
+    let f = |_t: f64, y: &State<2>| State::<2>::new(y[1], -y[0]);
+    let start = State::<2>::new(0.0, 1.0);
+    let opts = Options::new(1e-12, 1e-14);
+    let tau = 2.0 * std::f64::consts::PI;
+    // The same locator, stepping on after each event.
+    let mut it = Integrator::new(f, &DOP853, 0.0, start, opts).unwrap();
+    let mut locator = Locator::new(Rebound, NoSwitches);
+    let mut times = Vec::new();
+    while it.t() < 3.0 * tau {
+        if let Step::Event { t, .. } = locator.step(&mut it, 3.0 * tau).unwrap() {
+            times.push(t);
+        }
+    }
+    assert_eq!(times.len(), 3, "{times:?}");
+    for (k, t) in times.iter().enumerate() {
+        let exact = 0.75 * tau + k as f64 * tau;
+        assert!((t - exact).abs() < 1e-9, "{t} vs {exact}");
+    }
+    // A new locator restarted at the event state: told so, it waits for the next one.
+    let mut it = Integrator::new(f, &DOP853, 0.0, start, opts).unwrap();
+    let Outcome::Event { t, y } = Locator::new(Rebound, NoSwitches).run(&mut it, tau).unwrap()
+    else {
+        panic!("no event");
+    };
+    let mut again = Integrator::new(f, &DOP853, t, y, opts).unwrap();
+    let next = Locator::new(Rebound, NoSwitches)
+        .after_event()
+        .run(&mut again, 3.0 * tau)
+        .unwrap();
+    let Outcome::Event { t: t2, .. } = next else {
+        panic!("no second event");
+    };
+    assert!((t2 - (t + tau)).abs() < 1e-9, "{t2}");
+    // A crossing is an instant: continuing past one needs nothing (sin t crosses 0 upwards at
+    // 2π and 4π; not at 0, where it starts).
+    let mut it = Integrator::new(f, &DOP853, 0.0, start, opts).unwrap();
+    let mut up = Locator::new(
+        Crossing::new(|_t: f64, y: &State<2>| y[0], Direction::Up),
+        NoSwitches,
+    );
+    let mut ups = Vec::new();
+    while let Outcome::Event { t, .. } = up.run(&mut it, 2.5 * tau).unwrap() {
+        ups.push(t);
+    }
+    assert_eq!(ups.len(), 2, "{ups:?}");
+    assert!((ups[0] - tau).abs() < 1e-9 && (ups[1] - 2.0 * tau).abs() < 1e-9);
+}

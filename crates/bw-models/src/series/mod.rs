@@ -46,7 +46,7 @@ mod jet;
 
 use crate::impact::{at_rest, pad, Impact, Settings};
 use crate::models::CollisionModel;
-use crate::State;
+use crate::{separated, State};
 use bwc_ode::{Integrator, Options, Stats};
 use jet::{Expand, Jet, Series};
 
@@ -274,7 +274,7 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
     loop {
         let force = force_here.take().unwrap_or_else(|| model.force(&y));
         let velocity_now = velocity(&y);
-        if force <= 0.0 && velocity_now >= 0.0 && t > 0.0 {
+        if t > 0.0 && separated(force, velocity_now) {
             // The separation, reached at the end of the last step or at its event.
             stats.events += 1;
             return Some(SeriesRun::Done(Impact {
@@ -303,7 +303,7 @@ pub(crate) fn impact<M: Expand<N>, const N: usize>(
             let met = class(model.kinks(t, &y)[0]) != rate_class
                 || y[M::BASE] == 0.0
                 || y[M::Z] == 0.0
-                || (model.force(&y) <= 0.0 && velocity(&y) >= 0.0);
+                || separated(model.force(&y), velocity(&y));
             if met {
                 // The start step met an event: the Runge-Kutta path retakes it.
                 return hand_over(t_start, &y_start, stats_start, series_steps);
