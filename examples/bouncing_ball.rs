@@ -8,7 +8,8 @@
 
 use bw_models::input::Constant;
 use bw_models::sequence::{drop_sequence, Contact, Flight, Policy, SequenceSettings, Start};
-use bw_models::{impact, Bwshccl, Bwshccm, ModelKind, Physical, PhysicalParams, Separation};
+use bw_models::Separation;
+use bw_models::{impact, Bwshccl, Bwshccm, ContactLaw, ModelKind, Physical, PhysicalParams};
 use bw_models::{Settings, State};
 use bwc_events::{Locator, Outcome, SwitchAt};
 use bwc_ode::{Integrator, Options, DOP853};
@@ -36,14 +37,21 @@ fn params() -> Result<PhysicalParams, bw_models::ModelError> {
 fn contact(law: &Bwshccl, v_in: f64) -> Result<(f64, f64), Box<dyn std::error::Error>> {
     // State (x, z, v): the law's displacements (m) and the ball's velocity (m/s, up positive).
     let rhs = |_t: f64, s: &State<3>| {
-        let (d, force) = law.eval(&State::<2>::new(s[0], s[1]), s[2]);
+        let (d, force) = ContactLaw::eval(law, &State::<2>::new(s[0], s[1]), s[2]);
         State::<3>::new(d[0], d[1], force / M - G)
     };
-    let force = |_t: f64, s: &State<3>| (law.eval(&State::<2>::new(s[0], s[1]), s[2]).1, s[2]);
-    // Stop exactly where the right-hand side is not smooth: v = 0 and z = 0.
-    let kinks = SwitchAt(|_t: f64, s: &State<3>| [s[2], s[1]]);
+    let force = |_t: f64, s: &State<3>| {
+        (
+            ContactLaw::eval(law, &State::<2>::new(s[0], s[1]), s[2]).1,
+            s[2],
+        )
+    };
+    // Stop exactly where the law is not smooth (its rate and z cross zero).
+    let kinks = SwitchAt(|_t: f64, s: &State<3>| law.kinks(&State::<2>::new(s[0], s[1]), s[2]));
     let options = Options::new(1e-12, 1e-17);
-    let mut it = Integrator::new(rhs, &DOP853, 0.0, State::<3>::new(0.0, 0.0, -v_in), options)?;
+    let onset = law.onset();
+    let start = State::<3>::new(onset[0], onset[1], -v_in);
+    let mut it = Integrator::new(rhs, &DOP853, 0.0, start, options)?;
     match Locator::new(Separation(force), kinks).run(&mut it, 1.0)? {
         Outcome::Event { t, y } => Ok((t, y[2])),
         Outcome::Horizon { .. } => Err("the ball did not separate within 1 s".into()),

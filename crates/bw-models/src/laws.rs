@@ -5,6 +5,7 @@
 use crate::params::{ModelKind, PhysicalParams};
 use crate::power::{Pow, Powers};
 use crate::{ModelError, State};
+use bwc_ode::Matrix;
 
 /// Bouc-Wen hysteresis `ż = A w - β |z|^(n-1) z |w| - γ |z|^n w`, with `zn()` giving `|z|^n`.
 ///
@@ -131,9 +132,127 @@ impl Bwmcl {
     }
 }
 
+/// The derivatives of a law's state rate `ṡ` and force `F` with respect to its state `s` and
+/// its input `u` (units of `ṡ`, `F` per unit of `s`, `u`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LawJacobian<const N: usize> {
+    /// `∂ṡ/∂s`.
+    pub rate_state: Matrix<N>,
+    /// `∂ṡ/∂u`.
+    pub rate_input: State<N>,
+    /// `∂F/∂s`.
+    pub force_state: State<N>,
+    /// `∂F/∂u`.
+    pub force_input: f64,
+}
+
+/// A collision law as a force element another simulator can hold: a state `s` of `N`
+/// displacements (m), driven by the relative velocity `u` (m/s, negative while the bodies
+/// approach), giving the contact force `F` (N, positive pushing the bodies apart). A contact
+/// starts from [`ContactLaw::onset`] and ends where [`crate::separated`] holds for `F` and the
+/// relative velocity.
+pub trait ContactLaw<const N: usize> {
+    /// The state at the onset of a contact: the law at rest, all displacements zero.
+    fn onset(&self) -> State<N> {
+        State::<N>::zeros()
+    }
+
+    /// The state derivative `ṡ` (m/s) and the force `F` (N) at state `s` with input `u`.
+    fn eval(&self, s: &State<N>, u: f64) -> (State<N>, f64);
+
+    /// Functions whose zeros are the non-smooth points of [`ContactLaw::eval`]: the rate
+    /// across the hysteretic element (m/s) and `z` (m). An integrator that stops exactly at
+    /// them keeps its order (`bwc_events::Switches`).
+    fn kinks(&self, s: &State<N>, u: f64) -> [f64; 2];
+
+    /// The derivatives of `ṡ` and `F` at `(s, u)`, by forward differences with steps
+    /// `√ε max(|v|, 1e-9)` (relative accuracy about 1e-8; the laws are not differentiable at
+    /// their kinks).
+    fn jacobian(&self, s: &State<N>, u: f64) -> LawJacobian<N> {
+        let (rate, force) = self.eval(s, u);
+        let step = |v: f64| f64::EPSILON.sqrt() * v.abs().max(1e-9);
+        let mut rate_state = Matrix::<N>::zeros();
+        let mut force_state = State::<N>::zeros();
+        for c in 0..N {
+            let mut sc = *s;
+            sc[c] += step(s[c]);
+            let h = sc[c] - s[c];
+            let (r, f) = self.eval(&sc, u);
+            rate_state.set_column(c, &((r - rate) / h));
+            force_state[c] = (f - force) / h;
+        }
+        let du = (u + step(u)) - u;
+        let (r, f) = self.eval(s, u + du);
+        LawJacobian {
+            rate_state,
+            rate_input: (r - rate) / du,
+            force_state,
+            force_input: (f - force) / du,
+        }
+    }
+}
+
+impl ContactLaw<2> for Bwshccl {
+    fn eval(&self, s: &State<2>, u: f64) -> (State<2>, f64) {
+        Bwshccl::eval(self, s, u)
+    }
+    fn kinks(&self, s: &State<2>, u: f64) -> [f64; 2] {
+        [u, s[1]]
+    }
+}
+
+impl ContactLaw<3> for Bwmcl {
+    fn eval(&self, s: &State<3>, u: f64) -> (State<3>, f64) {
+        Bwmcl::eval(self, s, u)
+    }
+    fn kinks(&self, s: &State<3>, u: f64) -> [f64; 2] {
+        [Bwmcl::eval(self, s, u).0[1], s[2]]
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::hysteresis;
+    use super::*;
+    use crate::Physical;
+
+    #[test]
+    fn jacobians_of_the_laws_match_closed_forms() {
+        // BWSHCCL with n = p = 1 away from its kinks (x, z < 0, u < 0, loading γ = -β):
+        // F = -α k x - (1-α) k z - c |x| u, ż = A u.
+        let law = Physical {
+            k: 2e5,
+            c: 40.0,
+            n: 1.0,
+            p: 1.0,
+            alpha: 0.3,
+            beta: 50.0,
+            gamma: -50.0,
+            a: 1.0,
+        };
+        let shccl = Bwshccl::new(&PhysicalParams::new(ModelKind::Shccm, law).unwrap()).unwrap();
+        let (s, u) = (State::<2>::new(-1e-3, -8e-4), -0.7);
+        let j = ContactLaw::jacobian(&shccl, &s, u);
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-6 * b.abs().max(1.0);
+        // ∂F/∂x = -α k + c u (|x| = -x), ∂F/∂z = -(1-α) k, ∂F/∂u = -c |x|.
+        assert!(
+            close(j.force_state[0], -0.3 * 2e5 + 40.0 * u),
+            "{:?}",
+            j.force_state
+        );
+        assert!(close(j.force_state[1], -0.7 * 2e5));
+        assert!(close(j.force_input, -40.0 * 1e-3), "{}", j.force_input);
+        assert!(close(j.rate_input[0], 1.0) && close(j.rate_input[1], 1.0));
+        assert_eq!(ContactLaw::kinks(&shccl, &s, u), [u, s[1]]);
+        assert_eq!(ContactLaw::onset(&shccl), State::<2>::zeros());
+        // BWMCL: F = -c ṙ, ẏ = u - ṙ; its rate kink is ẏ.
+        let mcl = Bwmcl::new(&PhysicalParams::new(ModelKind::Mcm, law).unwrap()).unwrap();
+        let s3 = State::<3>::new(0.0, -1e-3, -8e-4);
+        let (rate, _) = ContactLaw::eval(&mcl, &s3, u);
+        assert_eq!(ContactLaw::kinks(&mcl, &s3, u), [rate[1], s3[2]]);
+        let j3 = ContactLaw::jacobian(&mcl, &s3, u);
+        // ∂F/∂y = -α k (p = 1), ∂ẏ/∂u = 1.
+        assert!(close(j3.force_state[1], -0.3 * 2e5) && close(j3.rate_input[1], 1.0));
+    }
 
     #[test]
     fn hysteresis_skips_the_power_only_where_its_factor_vanishes() {

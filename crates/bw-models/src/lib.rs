@@ -48,7 +48,7 @@ pub mod series;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use impact::{impact, simulate, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES};
-pub use laws::{Bwmcl, Bwshccl};
+pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};
 pub use models::{
     Bwmcm, BwmcmEarlier, Bwshccm, CollisionModel, Ndbwmcm, NdbwmcmEarlier, Ndbwshccm,
 };
