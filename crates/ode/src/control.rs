@@ -45,6 +45,9 @@ impl Limits {
                 state: y.as_slice().to_vec(),
             });
         }
+        if t_end <= t || t_end.is_nan() {
+            return Err(Error::NotAhead { t, t_end });
+        }
         let remaining = t_end - t;
         let mut h = h.min(self.max_step);
         let last = remaining <= h * (1.0 + 1e-12);

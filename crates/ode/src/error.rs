@@ -24,6 +24,23 @@ pub enum Error {
         /// Initial state.
         state: Vec<f64>,
     },
+    /// A step was asked to end at or before the current time: the integrators step forward in
+    /// time only.
+    #[error("t_end = {t_end} is not after t = {t}: the integrators step forward in time only (to integrate backwards, substitute s = -t: solve y' = -f(-s, y) forwards in s)")]
+    NotAhead {
+        /// Current time.
+        t: f64,
+        /// The requested end.
+        t_end: f64,
+    },
+    /// A user-supplied tableau is not a usable explicit Runge-Kutta pair.
+    #[error("tableau {name}: {reason}")]
+    InvalidTableau {
+        /// The tableau's name.
+        name: &'static str,
+        /// What is wrong.
+        reason: String,
+    },
     /// The step size fell below the minimum step (or below round-off relative to `t`).
     #[error("step size {h:e} too small at t = {t} (state {state:?})")]
     StepSizeTooSmall {

@@ -10,7 +10,7 @@ pub const MAX_STAGES: usize = 21;
 /// real stability boundary (see [`crate::tableau::StiffnessTest`]).
 const STIFF_FRACTION: f64 = 0.6;
 /// Most rows of any built-in interpolant.
-const MAX_ROWS: usize = 8;
+pub(crate) const MAX_ROWS: usize = 8;
 
 /// Work done by a solve.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -156,8 +156,9 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
     /// Starts an integration at `(t0, y0)`.
     ///
     /// # Errors
-    /// [`Error::InvalidOption`] for inadmissible options, [`Error::NonFiniteInitialValue`] for a
-    /// non-finite `t0`, `y0` or `f(t0, y0)`.
+    /// [`Error::InvalidOption`] for inadmissible options, [`Error::InvalidTableau`] for a
+    /// user-supplied tableau the engine cannot take ([`Tableau::validate`]),
+    /// [`Error::NonFiniteInitialValue`] for a non-finite `t0`, `y0` or `f(t0, y0)`.
     pub fn new(
         f: F,
         tableau: &'static Tableau,
@@ -166,6 +167,13 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         options: Options<N>,
     ) -> Result<Self, Error> {
         options.validate()?;
+        // The built-in methods are known to fit; a user's tableau is checked once here.
+        if !crate::tableau::all()
+            .iter()
+            .any(|t| std::ptr::eq(*t, tableau))
+        {
+            tableau.validate()?;
+        }
         if !t0.is_finite() || !y0.iter().all(|v| v.is_finite()) {
             return Err(Error::NonFiniteInitialValue {
                 t: t0,

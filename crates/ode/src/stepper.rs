@@ -37,6 +37,23 @@ pub trait Stepper<const N: usize> {
     /// # Errors
     /// As [`Integrator::retake_to`].
     fn retake_to(&mut self, t_stop: f64) -> Result<(), Error>;
+    /// One accepted adaptive step, ending at `t_end` at the latest.
+    ///
+    /// # Errors
+    /// As [`Integrator::step`].
+    fn step(&mut self, t_end: f64) -> Result<(), Error> {
+        self.step_aiming(t_end, &mut |_| None)
+    }
+    /// Steps until `t = t_end` exactly (nothing if `t_end` is not ahead).
+    ///
+    /// # Errors
+    /// As [`Integrator::step`].
+    fn integrate_to(&mut self, t_end: f64) -> Result<(), Error> {
+        while self.t() < t_end {
+            self.step(t_end)?;
+        }
+        Ok(())
+    }
 }
 
 macro_rules! delegate_stepper {

@@ -90,6 +90,79 @@ impl Tableau {
     pub fn total_stages(&self) -> usize {
         self.c.len()
     }
+
+    /// Checks that the tableau fits the engine: at most [`crate::MAX_STAGES`] stages in all,
+    /// strictly lower-triangular rows, one node per stage, `stages` weights, error and
+    /// interpolant rows no longer than the stages, the fsal and stiffness stages in range,
+    /// and every coefficient finite. (The built-in methods pass; their consistency as
+    /// Runge-Kutta pairs is tested separately.)
+    ///
+    /// # Errors
+    /// [`crate::Error::InvalidTableau`] naming the first problem.
+    pub fn validate(&self) -> Result<(), crate::Error> {
+        let bad = |reason: String| {
+            Err(crate::Error::InvalidTableau {
+                name: self.name,
+                reason,
+            })
+        };
+        let total = self.total_stages();
+        if total == 0 || total > crate::MAX_STAGES {
+            return bad(format!(
+                "{total} stages in all; the engine takes 1 to {}",
+                crate::MAX_STAGES
+            ));
+        }
+        if self.a.len() != total {
+            return bad(format!("{} rows of a for {total} nodes c", self.a.len()));
+        }
+        if let Some(i) = (0..total).find(|&i| self.a[i].len() != i) {
+            return bad(format!(
+                "row {i} of a has {} entries; an explicit method's has {i}",
+                self.a[i].len()
+            ));
+        }
+        if self.stages == 0 || self.stages > total || self.b.len() != self.stages {
+            return bad(format!(
+                "{} weights b for {} stages of {total}",
+                self.b.len(),
+                self.stages
+            ));
+        }
+        if self.fsal >= total || self.stiffness.stage >= self.stages {
+            return bad(format!(
+                "fsal stage {} or stiffness stage {} out of range",
+                self.fsal, self.stiffness.stage
+            ));
+        }
+        let weights: Vec<&[f64]> = match self.error {
+            ErrorEstimate::Embedded(e) => vec![e],
+            ErrorEstimate::Hairer853 { e5, e3 } => vec![e5, e3],
+        };
+        if weights.iter().any(|e| e.len() > total) {
+            return bad("error weights longer than the stages".into());
+        }
+        let rows = self.interpolant.rows;
+        if rows.len() > crate::integrator::MAX_ROWS || rows.iter().any(|r| r.len() > total) {
+            return bad(format!(
+                "{} interpolant rows (at most {}) or a row longer than the stages",
+                rows.len(),
+                crate::integrator::MAX_ROWS
+            ));
+        }
+        let all = self
+            .c
+            .iter()
+            .chain(self.b)
+            .chain(self.a.iter().copied().flatten());
+        let all = all
+            .chain(weights.into_iter().flatten())
+            .chain(rows.iter().copied().flatten());
+        if all.clone().any(|v| !v.is_finite()) {
+            return bad("a coefficient is not finite".into());
+        }
+        Ok(())
+    }
 }
 
 /// All built-in methods, in order of increasing order.
@@ -103,6 +176,46 @@ mod tests {
 
     /// Structural consistency: row sums equal the nodes, weights sum to one, error weights sum
     /// to zero, interpolant at θ = 1 reproduces the solution.
+    #[test]
+    fn a_tableau_the_engine_cannot_take_is_an_error() {
+        for t in all() {
+            t.validate().unwrap();
+        }
+        // 22 stages: one more than the engine holds.
+        static C: [f64; 22] = [0.0; 22];
+        static ROWS: [&[f64]; 22] = [&[]; 22];
+        let big: &'static Tableau = Box::leak(Box::new(Tableau {
+            c: &C,
+            a: &ROWS,
+            ..crate::DOPRI5
+        }));
+        let err = big.validate().unwrap_err().to_string();
+        assert!(
+            err.contains("22 stages") && err.contains("1 to 21"),
+            "{err}"
+        );
+        let f = |_t: f64, y: &crate::State<1>| *y;
+        let made = crate::Integrator::new(
+            f,
+            big,
+            0.0,
+            crate::State::<1>::new(1.0),
+            crate::Options::new(1e-6, 1e-9),
+        );
+        assert!(matches!(made, Err(crate::Error::InvalidTableau { .. })));
+        // A row that is not lower-triangular.
+        static A_BAD: [&[f64]; 7] = [&[], &[0.2], &[0.1, 0.1, 0.1], &[], &[], &[], &[]];
+        let bad = Tableau {
+            a: &A_BAD,
+            ..crate::DOPRI5
+        };
+        assert!(bad
+            .validate()
+            .unwrap_err()
+            .to_string()
+            .contains("row 2 of a has 3 entries"));
+    }
+
     #[test]
     fn tableaux_are_consistent() {
         for t in all() {

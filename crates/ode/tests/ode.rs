@@ -489,3 +489,26 @@ fn stiffness_is_detected_and_the_solver_switches() {
         explicit.stats()
     );
 }
+
+#[test]
+fn steps_backwards_in_time_are_refused_with_the_way_round() {
+    let f = |_t: f64, y: &State<1>| -*y;
+    let mut it = Integrator::new(
+        f,
+        &DOP853,
+        1.0,
+        State::<1>::new(1.0),
+        Options::new(1e-8, 1e-10),
+    )
+    .unwrap();
+    let err = it.step(0.5).unwrap_err();
+    assert!(
+        matches!(err, Error::NotAhead { t, t_end } if t == 1.0 && t_end == 0.5),
+        "{err}"
+    );
+    assert!(err.to_string().contains("substitute s = -t"), "{err}");
+    // Nothing was done; forward steps still work, and integrate_to on the Stepper trait too.
+    assert_eq!((it.t(), it.stats().accepted), (1.0, 0));
+    bwc_ode::Stepper::integrate_to(&mut it, 2.0).unwrap();
+    assert!((it.y()[0] - (-1.0f64).exp()).abs() < 1e-8);
+}
