@@ -41,6 +41,7 @@
 
 mod coverage;
 mod data;
+mod drops;
 mod fit;
 mod identifiability;
 mod lm;
@@ -51,6 +52,7 @@ mod uncertainty;
 
 pub use coverage::{coverage, replicate, study, CoverageTask, Replicate};
 pub use data::{Dataset, Point};
+pub use drops::{DropData, DropKind, DropObjective, DropRow, DropSetup};
 pub use fit::{
     at_bound, fit, minimize, Budget, Convergence, CubeProblem, FitResult, Minimum, POLISH_ROUNDS,
 };
