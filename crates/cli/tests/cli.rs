@@ -1193,3 +1193,81 @@ fn bad_sequences_are_clear_errors() {
         &["v0", "[sequence].h0"],
     );
 }
+
+#[test]
+fn drop_tests_are_fitted_from_their_intervals() {
+    // Intervals of a Hunt-Crossley contact (B_b = Γ_b = 0, σ = σ_b v): e(σ) is the root of
+    // σ - ln(1+σ) = -σe - ln(1-σe); instantaneous contacts, so interval_n = 2 v_(n+1) / g.
+    let hunt_crossley_e = |sigma: f64| {
+        let g = |e: f64| sigma - sigma.ln_1p() + sigma * e + (-sigma * e).ln_1p();
+        let (mut lo, mut hi) = (1e-12, 1.0 - 1e-12);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if g(mid) > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    };
+    let (g, sigma_b) = (9.81f64, 0.05);
+    let mut csv = String::from("# synthetic\nh0,bounce_n,interval_s\n");
+    for h0 in [0.3, 0.6] {
+        let mut v = (2.0 * g * h0).sqrt();
+        for n in 1..=3 {
+            v *= hunt_crossley_e(sigma_b * v);
+            csv.push_str(&format!("{h0},{n},{}\n", 2.0 * v / g));
+        }
+    }
+    let dir = scratch("drops");
+    std::fs::write(dir.join("drops.csv"), csv).unwrap();
+    let config = dir.join("drops.toml");
+    std::fs::write(
+        &config,
+        "[[fit]]\nname = \"hc\"\nmodel = \"shccm\"\ndata = \"drops.csv\"\n[fit.fixed]\nB_b = 0.0\ng = 0.0\nkappa = 0.5\nn = 1.5\np = 1.5\n[fit.bounds]\nsigma_b = [0.01, 0.1]\n[fit.params]\nB_b = 0.0\nGamma_b = 0.0\nkappa = 0.5\nsigma_b = 0.05\nn = 1.5\np = 1.5\n",
+    )
+    .unwrap();
+    let out_dir = dir.join("out");
+    let eval = json(&identify(&[
+        "eval",
+        config.to_str().unwrap(),
+        "--json",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]));
+    let f = &eval["fits"][0];
+    assert!(f["J_drop"].as_f64().unwrap() < 1e-18, "{f}");
+    assert_eq!(f["J_drop_unit"], "s^2");
+    assert_eq!(f["drops"].as_array().unwrap().len(), 6);
+    assert!(f["J1"].is_null() && f["J2"].is_null());
+    let written = std::fs::read_to_string(out_dir.join("hc_drops.csv")).unwrap();
+    assert!(
+        written.starts_with("h0,bounce_n,measured,model\n"),
+        "{written}"
+    );
+    let run = json(&identify(&["run", config.to_str().unwrap(), "--json"]));
+    let f = &run["fits"][0];
+    assert!(
+        (f["params"]["sigma_b"].as_f64().unwrap() - sigma_b).abs() < 1e-6,
+        "{f}"
+    );
+    assert!(f["convergence"]["agreeing"].as_u64().unwrap() >= 2);
+    // A drop-test fit has one cost: objectives on J1 or J2 are a mistake.
+    let bad = dir.join("bad.toml");
+    let text = std::fs::read_to_string(&config).unwrap();
+    std::fs::write(
+        &bad,
+        text.replace(
+            "data = \"drops.csv\"\n",
+            "data = \"drops.csv\"\nobjectives = { J1 = 1.0 }\n",
+        ),
+    )
+    .unwrap();
+    let out = identify(&["run", bad.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        out.status.code() == Some(1) && err.contains(":5:") && err.contains("J_drop"),
+        "{err}"
+    );
+}

@@ -237,12 +237,18 @@ fn run(
     } else {
         for r in &reports {
             let p = r.params;
+            let costs = match &r.drop {
+                Some(d) => format!("J_drop = {:.3e} {}", d.cost, d.unit()),
+                None => format!(
+                    "J1 = {}, J2 = {}",
+                    r.costs.j1.map_or("-".into(), |j| format!("{j:.3e}")),
+                    r.costs.j2.map_or("-".into(), |j| format!("{j:.3e} s^2"))
+                ),
+            };
             bwc_cli::out!(
-                "{} ({}): J1 = {}, J2 = {}, {} evaluations, {:.2} s",
+                "{} ({}): {costs}, {} evaluations, {:.2} s",
                 r.name,
                 r.model,
-                r.costs.j1.map_or("-".into(), |j| format!("{j:.3e}")),
-                r.costs.j2.map_or("-".into(), |j| format!("{j:.3e} s^2")),
                 r.evaluations,
                 r.wall_s
             );

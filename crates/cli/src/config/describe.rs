@@ -33,6 +33,15 @@ fn fit(f: &FitConfig) -> Value {
         "start": f.start,
         "params": f.params.as_ref().map(base),
         "pareto": f.pareto.map(|count| json!({"count": count})),
+        "drops": f.drops.as_ref().map(|d| json!({
+            "kind": match d.data.kind {
+                bwc_identify::DropKind::Intervals => "intervals",
+                bwc_identify::DropKind::Heights => "heights",
+            },
+            "rows": d.data.rows.len(),
+            "sequence": {"m": d.setup.m, "g": d.setup.flight.g, "drag": d.setup.flight.drag,
+                "timed_contacts": d.setup.timed_contacts},
+        })),
     })
 }
 

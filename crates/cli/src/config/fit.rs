@@ -17,6 +17,8 @@ use super::FitConfig;
 /// A `[[fit]]` validated up to its data.
 pub(super) struct Draft {
     fit: FitConfig,
+    /// For a drop-test fit, its `[fit.sequence]` (the data are read later).
+    setup: Option<bwc_identify::DropSetup>,
     data_path: PathBuf,
     objective_span: Range<usize>,
     pareto_span: Range<usize>,
@@ -35,6 +37,17 @@ impl Draft {
     /// `objectives` for a weight on a quantity the data lack, at `[fit.pareto]` without both.
     pub(super) fn with_data(self, ctx: &Ctx) -> Result<FitConfig, CliError> {
         let mut fit = self.fit;
+        if let Some(setup) = self.setup {
+            let data = bwc_identify::DropData::load(&self.data_path).map_err(|source| {
+                CliError::Identify {
+                    path: ctx.path.to_owned(),
+                    fit: fit.name.clone(),
+                    source,
+                }
+            })?;
+            fit.drops = Some(super::DropFit { data, setup });
+            return Ok(fit);
+        }
         fit.data = Dataset::load(&self.data_path).map_err(|source| CliError::Identify {
             path: ctx.path.to_owned(),
             fit: fit.name.clone(),
@@ -63,15 +76,34 @@ pub(super) fn parse_fit(
     let t = f.span();
     let r = f.get_ref();
     let (name, kind, data_path) = head(ctx, dir, r, &t, index)?;
-    let weights = objectives(ctx, r)?;
-    columns_for(ctx, r, &data_path, weights)?;
+    let drop = header_of(&data_path).is_some_and(|h| bwc_identify::DropData::is_drop_header(&h));
+    let weights = if drop {
+        drop_objectives(ctx, r)?
+    } else {
+        objectives(ctx, r)?
+    };
+    if !drop {
+        columns_for(ctx, r, &data_path, weights)?;
+    }
     let known = known(ctx, r)?;
     let input = match &r.input {
         Some(i) => signal(ctx, i, "[fit.input]", known.map(|k| k.m))?,
         None => Signal::zero(),
     };
-    let uses_input_scales =
-        !bw_models::input::Input::is_zero(&input) || weights.j2 > 0.0 || known.is_some();
+    let scales_given = r
+        .bounds
+        .as_ref()
+        .is_some_and(|b| b.get_ref().by_name()[6..].iter().any(|q| q.is_some()))
+        || r.fixed
+            .as_ref()
+            .is_some_and(|b| b.get_ref().by_name()[6..].iter().any(|q| q.is_some()));
+    let uses_input_scales = !bw_models::input::Input::is_zero(&input)
+        || weights.j2 > 0.0
+        || known.is_some()
+        || (drop && scales_given);
+    let setup = drop
+        .then(|| drop_setup(ctx, r, &t, uses_input_scales))
+        .transpose()?;
     let space = space(ctx, r, &t, &name, kind, known, uses_input_scales)?;
     let scales = Scales {
         kind,
@@ -122,7 +154,9 @@ pub(super) fn parse_fit(
             params,
             uses_input_scales,
             pareto,
+            drops: None,
         },
+        setup,
         data_path,
         objective_span: r.objectives.as_ref().map_or(t.clone(), |o| o.span()),
         pareto_span: r.pareto.as_ref().map_or(t.clone(), |p| p.span()),
@@ -213,6 +247,80 @@ fn header_of(path: &Path) -> Option<Vec<String>> {
         .from_path(path)
         .ok()?;
     Some(reader.headers().ok()?.iter().map(String::from).collect())
+}
+
+/// A drop-test fit has one cost, `J_drop`: `objectives` must not weigh `J1` or `J2`.
+fn drop_objectives(ctx: &Ctx, r: &RawFit) -> Result<Weights, CliError> {
+    if let Some(o) = &r.objectives {
+        return Err(ctx.invalid(
+            &o.span(),
+            "[[fit]].objectives",
+            "not for drop-test data (intervals or rebound heights): their cost is J_drop",
+        ));
+    }
+    Ok(Weights { j1: 1.0, j2: 0.0 })
+}
+
+/// `[fit.sequence]` of a drop-test fit: `m` (kg; required when contacts feel gravity, i.e.
+/// with `U_b` and `T_b`), `g` (m/s², default 9.81), `drag` (1/m, default 0).
+fn drop_setup(
+    ctx: &Ctx,
+    r: &RawFit,
+    t: &Range<usize>,
+    timed: bool,
+) -> Result<bwc_identify::DropSetup, CliError> {
+    let span = r.sequence.as_ref().map_or(t.clone(), |s| s.span());
+    let q = r.sequence.as_ref().map(|s| s.get_ref());
+    let value = |v: Option<&Num>,
+                 key: &str,
+                 ok: fn(f64) -> bool,
+                 allowed: &str|
+     -> Result<Option<f64>, CliError> {
+        let Some(v) = v else { return Ok(None) };
+        let x = ctx.num(v, key)?;
+        if ok(x) {
+            Ok(Some(x))
+        } else {
+            Err(ctx.invalid(&v.span(), key, format!("{x} is not admissible: {allowed}")))
+        }
+    };
+    let m = value(
+        q.and_then(|q| q.m.as_ref()),
+        "[fit.sequence].m",
+        |x| x > 0.0,
+        "m > 0 (kg)",
+    )?;
+    let g = value(
+        q.and_then(|q| q.g.as_ref()),
+        "[fit.sequence].g",
+        |x| x > 0.0,
+        "g > 0 (m/s^2)",
+    )?;
+    let drag = value(
+        q.and_then(|q| q.drag.as_ref()),
+        "[fit.sequence].drag",
+        |x| x >= 0.0,
+        "drag >= 0 (1/m)",
+    )?;
+    let m = match (m, timed) {
+        (Some(m), _) => m,
+        (None, false) => 0.0,
+        (None, true) => {
+            return Err(ctx.invalid(
+                &span,
+                "[fit.sequence].m",
+                "missing: with U_b and T_b the contacts feel gravity -m g: give the mass (kg)",
+            ))
+        }
+    };
+    Ok(bwc_identify::DropSetup {
+        m: if timed { m } else { m.max(f64::MIN_POSITIVE) },
+        flight: bw_models::sequence::Flight {
+            g: g.unwrap_or(9.81),
+            drag: drag.unwrap_or(0.0),
+        },
+        timed_contacts: timed,
+    })
 }
 
 /// `[fit.known]`: `m`, `k`.

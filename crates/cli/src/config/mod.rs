@@ -58,6 +58,16 @@ struct RawFit {
     optimizer: Option<Spanned<RawOptimizer>>,
     solver: Option<Spanned<RawSolver>>,
     pareto: Option<Spanned<RawPareto>>,
+    sequence: Option<Spanned<RawDropSequence>>,
+}
+
+/// `[fit.sequence]` of a drop-test fit: the ball's mass, gravity and air drag.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawDropSequence {
+    m: Option<Num>,
+    g: Option<Num>,
+    drag: Option<Num>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -191,6 +201,18 @@ pub struct FitConfig {
     pub uses_input_scales: bool,
     /// Number of weights of a Pareto sweep, if asked for.
     pub pareto: Option<usize>,
+    /// For a drop-test fit (data of intervals or rebound heights): the data and the physics
+    /// around the contacts; `data` is then empty.
+    pub drops: Option<DropFit>,
+}
+
+/// The drop tests of a `[[fit]]` and `[fit.sequence]`.
+#[derive(Debug, Clone)]
+pub struct DropFit {
+    /// Intervals or rebound heights.
+    pub data: bwc_identify::DropData,
+    /// Mass, gravity, drag, and whether contacts are timed and forced.
+    pub setup: bwc_identify::DropSetup,
 }
 
 /// A validated config.

@@ -2,9 +2,11 @@
 //! [`run_loop_fit`], [`eval_loop_fit`]); [`render`] turns their reports into JSON, CSV and SVG.
 
 mod coverage;
+mod drops;
 mod render;
 
 pub use coverage::{coverage_summary, coverage_task, run_coverage, CoverageReport};
+pub use drops::DropOutcome;
 pub use render::{loop_summary, render, render_loops, slug, summary, units};
 
 use crate::config::FitConfig;
@@ -66,6 +68,8 @@ pub struct FitReport {
     pub band: Vec<BandPoint>,
     /// Warnings about this fit: data, convergence, bounds, intervals.
     pub warnings: Vec<String>,
+    /// For a drop-test fit: `J_drop` and the rows with the model's values.
+    pub drop: Option<DropOutcome>,
 }
 
 /// Speeds of a report's model curve: 60 on a log grid from half the slowest to twice the
@@ -162,6 +166,9 @@ pub fn run_fit(
     seed: u64,
     progress: &(dyn Fn() + Sync),
 ) -> Result<FitReport, CliError> {
+    if let Some(d) = &f.drops {
+        return drops::run_drop_fit(config, f, d, seed);
+    }
     let clock = Instant::now();
     let err = fail(config, &f.name);
     let objective = Objective::new(&f.space, &f.data, &f.input, f.settings, f.weights)
@@ -254,6 +261,7 @@ pub fn run_fit(
         curve,
         band,
         warnings,
+        drop: None,
     })
 }
 
@@ -263,6 +271,9 @@ pub fn run_fit(
 /// [`CliError::Invalid`] when the fit has no `[fit.params]`; [`CliError::Identify`] when a
 /// simulation fails.
 pub fn eval_fit(config: &Path, f: &FitConfig) -> Result<FitReport, CliError> {
+    if let Some(d) = &f.drops {
+        return drops::eval_drop_fit(config, f, d);
+    }
     let clock = Instant::now();
     let err = fail(config, &f.name);
     let params = f.params.ok_or_else(|| CliError::Invalid {
@@ -293,6 +304,7 @@ pub fn eval_fit(config: &Path, f: &FitConfig) -> Result<FitReport, CliError> {
         curve,
         band: Vec::new(),
         warnings: f.data.warnings.clone(),
+        drop: None,
     })
 }
 

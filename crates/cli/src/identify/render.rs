@@ -45,6 +45,18 @@ pub fn summary(reports: &[FitReport]) -> Value {
                 Some(Err(why)) => v["intervals"] = json!({"method": null, "error": why}),
                 None => {}
             }
+            if let Some(d) = &r.drop {
+                v["J_drop"] = json!(d.cost);
+                v["J_drop_unit"] = json!(d.unit());
+                v["drops"] = d
+                    .rows
+                    .iter()
+                    .map(|(row, model)| {
+                        json!({"h0": row.h0, "bounce_n": row.bounce_n, "measured": row.value,
+                            "model": if model.is_finite() { json!(model) } else { Value::Null }})
+                    })
+                    .collect();
+            }
             v["warnings"] = json!(r.warnings);
             if !r.pareto.is_empty() {
                 v["pareto"] = r.pareto.iter().map(|p| json!({"w": p.w, "J1": p.j1, "J2": p.j2, "params": params_json(&p.params, r.uses_input_scales)})).collect();
@@ -246,6 +258,10 @@ pub fn render(
     let mut files = Vec::new();
     for (f, r) in fits.iter().zip(reports) {
         let stem = slug(&r.name);
+        if let Some(d) = &r.drop {
+            files.extend(drop_files(r, d, out, &stem)?);
+            continue;
+        }
         files.push(data_csv(f, r, out, &format!("{stem}.csv"))?);
         let perr = |name: &str| {
             let path = out.join(name);
@@ -481,7 +497,10 @@ pub fn units() -> serde_json::Value {
     });
     serde_json::json!({
         "params": params,
-        "J1": "1", "J2": "s^2", "wall_s": "s",
+        "J1": "1", "J2": "s^2", "J_drop": "s^2 (intervals) or m^2 (rebound heights)", "wall_s": "s",
+        "drops": {"h0": "m", "bounce_n": "count", "measured": "s or m", "model": "s or m"},
+        "<fit>_drops.csv": {"h0": "m", "bounce_n": "count", "measured": "s (interval) or m (h1)",
+            "model": "s (interval) or m (h1)"},
         "<fit>.csv": {"v_0": "m/s", "e": "1", "e_model": "1", "t_d": "s", "t_d_model": "s",
             "e_lo": "1", "e_hi": "1", "t_d_lo": "s", "t_d_hi": "s"},
         "<fit>_pareto.csv": {"w": "1", "J1": "1", "J2": "s^2", "B_b": params["B_b"],
@@ -489,4 +508,114 @@ pub fn units() -> serde_json::Value {
             "p": "1", "U_b": params["U_b"], "T_b": params["T_b"]},
         "<loop fit>_loops.csv": {"v_0": "m/s", "source": "data or model", "x": "m", "F": "N"},
     })
+}
+
+/// `<stem>_drops.csv` (h0, bounce_n, measured, model) and `<stem>_drops.svg`: measured
+/// intervals against the bounce number, one colour per release height, the model as a line
+/// (or the rebound heights against the release height).
+fn drop_files(
+    r: &FitReport,
+    d: &super::DropOutcome,
+    out: &Path,
+    stem: &str,
+) -> Result<Vec<(String, Vec<u8>)>, CliError> {
+    let name = format!("{stem}_drops.csv");
+    let cerr = |source| CliError::Csv {
+        path: out.join(&name),
+        source,
+    };
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(["h0", "bounce_n", "measured", "model"])
+        .map_err(cerr)?;
+    for (row, model) in &d.rows {
+        let model = if model.is_finite() {
+            model.to_string()
+        } else {
+            String::new()
+        };
+        w.write_record([
+            row.h0.to_string(),
+            row.bounce_n.to_string(),
+            row.value.to_string(),
+            model,
+        ])
+        .map_err(|source| CliError::Csv {
+            path: out.join(&name),
+            source,
+        })?;
+    }
+    let mut series = Vec::new();
+    let (x, y, title) = match d.kind {
+        bwc_identify::DropKind::Intervals => {
+            let mut heights: Vec<f64> = d.rows.iter().map(|(row, _)| row.h0).collect();
+            heights.sort_by(f64::total_cmp);
+            heights.dedup();
+            for (i, h0) in heights.iter().enumerate() {
+                let rows: Vec<_> = d.rows.iter().filter(|(row, _)| row.h0 == *h0).collect();
+                series.push(Series {
+                    label: format!("measured, h0 = {h0} m"),
+                    points: rows
+                        .iter()
+                        .map(|(row, _)| (row.bounce_n as f64, row.value))
+                        .collect(),
+                    style: Style::Markers,
+                    color: i,
+                });
+                let mut model: Vec<(f64, f64)> = rows
+                    .iter()
+                    .map(|(row, m)| (row.bounce_n as f64, *m))
+                    .collect();
+                model.sort_by(|a, b| a.0.total_cmp(&b.0));
+                model.dedup_by(|a, b| a.0 == b.0);
+                series.push(Series {
+                    label: format!("{} fit, h0 = {h0} m", model_name(r.model)),
+                    points: model,
+                    style: Style::LineAndMarkers,
+                    color: i,
+                });
+            }
+            (
+                "bounce number n",
+                "interval from impact n to n + 1 (s)",
+                "bounce intervals",
+            )
+        }
+        bwc_identify::DropKind::Heights => {
+            series.push(Series {
+                label: "measured".into(),
+                points: d.rows.iter().map(|(row, _)| (row.h0, row.value)).collect(),
+                style: Style::Markers,
+                color: 3,
+            });
+            let mut model: Vec<(f64, f64)> = d.rows.iter().map(|(row, m)| (row.h0, *m)).collect();
+            model.sort_by(|a, b| a.0.total_cmp(&b.0));
+            model.dedup_by(|a, b| a.0 == b.0);
+            series.push(Series {
+                label: format!("{} fit", model_name(r.model)),
+                points: model,
+                style: Style::LineAndMarkers,
+                color: 0,
+            });
+            (
+                "release height h0 (m)",
+                "rebound height h1 (m)",
+                "rebound heights",
+            )
+        }
+    };
+    let svg_name = format!("{stem}_drops.svg");
+    let svg = plot::chart(
+        &format!("{}: {title} (J_drop = {:.2e} {})", r.name, d.cost, d.unit()),
+        Axis::linear(x),
+        Axis::linear(y),
+        &series,
+    )
+    .map_err(|message| CliError::Plot {
+        path: out.join(&svg_name),
+        message,
+    })?;
+    Ok(vec![
+        (name, w.into_inner().expect("in-memory writer")),
+        (svg_name, svg.into_bytes()),
+    ])
 }

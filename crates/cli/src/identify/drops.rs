@@ -1,0 +1,114 @@
+//! Fits and evaluations of drop-test data ([`crate::config::DropFit`]): the bounce sequence
+//! simulated at each release height, the cost `J_drop` (s² for intervals, m² for heights).
+
+use super::{fail, search_warnings, FitReport};
+use crate::config::{DropFit, FitConfig};
+use crate::CliError;
+use bw_models::Settings;
+use bwc_identify::{at_bound, minimize, Costs, DropKind, DropObjective, DropRow};
+use std::path::Path;
+use std::time::Instant;
+
+/// The drop-test part of a report: the cost and every row with the model's value.
+#[derive(Debug, Clone)]
+pub struct DropOutcome {
+    /// Intervals or heights.
+    pub kind: DropKind,
+    /// `J_drop` at the default (accurate) solver settings.
+    pub cost: f64,
+    /// Each measured row and the model's value (s or m; NaN where the sequence ended first).
+    pub rows: Vec<(DropRow, f64)>,
+}
+
+impl DropOutcome {
+    /// The unit of `J_drop`.
+    pub fn unit(&self) -> &'static str {
+        match self.kind {
+            DropKind::Intervals => "s^2",
+            DropKind::Heights => "m^2",
+        }
+    }
+}
+
+/// The outcome at a point of the unit cube, at the default solver settings.
+fn outcome(f: &FitConfig, d: &DropFit, s: &[f64], config: &Path) -> Result<DropOutcome, CliError> {
+    let err = fail(config, &f.name);
+    let exact =
+        DropObjective::new(&f.space, &d.data, d.setup, Settings::default()).map_err(&err)?;
+    let predicted = exact.predict(s).map_err(&err)?;
+    Ok(DropOutcome {
+        kind: d.data.kind,
+        cost: exact.cost_of(&predicted),
+        rows: d.data.rows.iter().copied().zip(predicted).collect(),
+    })
+}
+
+/// A report without the CoR and duration parts of other fits.
+fn report(f: &FitConfig, params: bw_models::BaseParams, drop: DropOutcome) -> FitReport {
+    FitReport {
+        name: f.name.clone(),
+        model: f.kind.name(),
+        params,
+        uses_input_scales: f.uses_input_scales,
+        costs: Costs { j1: None, j2: None },
+        evaluations: 1,
+        wall_s: 0.0,
+        predictions: Vec::new(),
+        identifiability: None,
+        convergence: None,
+        at_bound: Vec::new(),
+        pareto: Vec::new(),
+        uncertainty: None,
+        curve: Vec::new(),
+        band: Vec::new(),
+        warnings: Vec::new(),
+        drop: Some(drop),
+    }
+}
+
+/// Fits a drop-test `[[fit]]` from its bounds (the converging search of every fit).
+///
+/// # Errors
+/// [`CliError::Identify`] naming the fit when the search or the final evaluation fails.
+pub fn run_drop_fit(
+    config: &Path,
+    f: &FitConfig,
+    d: &DropFit,
+    seed: u64,
+) -> Result<FitReport, CliError> {
+    let clock = Instant::now();
+    let err = fail(config, &f.name);
+    let objective = DropObjective::new(&f.space, &d.data, d.setup, f.settings).map_err(&err)?;
+    let m = minimize(&objective, &f.budget, seed ^ f.seed, f.start.as_deref()).map_err(&err)?;
+    let bound = at_bound(&f.space.free_names(), &m.point);
+    let mut r = report(
+        f,
+        f.space.decode(&m.point),
+        outcome(f, d, &m.point, config)?,
+    );
+    r.warnings = search_warnings(f, &m.convergence, &bound, &m.point);
+    r.evaluations = m.evaluations;
+    r.convergence = Some(m.convergence);
+    r.at_bound = bound;
+    r.wall_s = clock.elapsed().as_secs_f64();
+    Ok(r)
+}
+
+/// `J_drop` at a drop-test fit's `[fit.params]`.
+///
+/// # Errors
+/// [`CliError::Invalid`] without `[fit.params]`; [`CliError::Identify`] when they are outside
+/// the space or a simulation fails.
+pub fn eval_drop_fit(config: &Path, f: &FitConfig, d: &DropFit) -> Result<FitReport, CliError> {
+    let clock = Instant::now();
+    let params = f.params.ok_or_else(|| CliError::Invalid {
+        path: config.to_owned(),
+        line: 1,
+        key: format!("[fit.params] of \"{}\"", f.name),
+        message: "missing: `eval` needs the parameters to evaluate".into(),
+    })?;
+    let s = f.space.encode(&params).map_err(fail(config, &f.name))?;
+    let mut r = report(f, params, outcome(f, d, &s, config)?);
+    r.wall_s = clock.elapsed().as_secs_f64();
+    Ok(r)
+}
