@@ -31,7 +31,7 @@ pub struct Settings {
     /// What to do about stiffness (a nearly rigid dashpot in the MCM, large `B` and `n`).
     pub stiffness: Stiffness,
     /// Integrate CoR evaluations ([`impact`]: no samples) of the nondimensional models under a
-    /// constant input by Taylor series between the non-smooth points ([`crate::series`]), with
+    /// constant input by Taylor series between the non-smooth points, with
     /// `method` for the steps next to the points where a base vanishes and onto the separation;
     /// runs that path declines (stiff, time-varying input, ill-conditioned roots) take the
     /// Runge-Kutta path. Not with [`Stiffness::Rosenbrock`]. On by default: faster at equal error
@@ -241,7 +241,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
     sink(0.0, &y0);
     if sampling == Sampling::None && settings.series && settings.stiffness != Stiffness::Rosenbrock
     {
-        match model.series_impact(settings) {
+        match model.series_impact(crate::series::Private(()), settings) {
             Some(SeriesRun::Done(out)) => {
                 if let Some(t) = out.t_s {
                     sink(t, &State::<N>::from_fn(|i, _| out.state[i]));

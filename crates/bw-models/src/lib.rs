@@ -15,7 +15,7 @@
 //! * one impact ([`impact`], [`simulate`]): separation `t_s = inf{t > 0 : F <= 0 <= v}`,
 //!   `e = v(t_s)/v0` (0 without separation) and `t_d = t_s`; by default CoR evaluations of
 //!   the nondimensional models under a constant input by Taylor series of order 16 between the
-//!   non-smooth points ([`Settings::series`], [`series`]), everything else by DOP853 with stops
+//!   non-smooth points ([`Settings::series`]; a private part of the crate), everything else by DOP853 with stops
 //!   at the kinks, switching to RODAS4 with the model's Jacobian ([`CollisionModel::jacobian`])
 //!   when the run turns stiff ([`Stiffness`]), and stopping early once a contact under a
 //!   constant input has settled ([`Impact::settled_at`]).
@@ -44,7 +44,7 @@ mod power;
 mod scaling;
 mod separation;
 pub mod sequence;
-pub mod series;
+mod series;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use impact::{impact, simulate, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES};

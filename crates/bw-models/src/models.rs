@@ -25,11 +25,11 @@ pub trait CollisionModel<const N: usize>: System<N> {
     /// A time from which the input is constant (model time units; `-inf` for a constant
     /// input), if any (see [`Input::constant_after`]).
     fn input_constant_after(&self) -> Option<f64>;
-    /// One impact by Taylor series ([`crate::series`]): finished, or handed over to the
-    /// Runge-Kutta path at some state; `None` where that path does not apply (the default:
-    /// models without it). Called by [`crate::simulate`] for CoR evaluations when
-    /// [`Settings::series`] is set; the settings are validated.
-    fn series_impact(&self, _settings: &Settings) -> Option<SeriesRun> {
+    /// The crate's Taylor-series fast path of the nondimensional models (a private detail:
+    /// its argument cannot be named outside the crate, so other models keep the default,
+    /// `None`, and the Runge-Kutta path).
+    #[doc(hidden)]
+    fn series_impact(&self, _: crate::series::Private, _settings: &Settings) -> Option<SeriesRun> {
         None
     }
     /// Whether the input is constant at all times.
@@ -220,7 +220,7 @@ impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
     fn kinks(&self, _t: f64, y: &State<3>) -> [f64; 2] {
         [y[2], y[1]]
     }
-    fn series_impact(&self, settings: &Settings) -> Option<SeriesRun> {
+    fn series_impact(&self, _: crate::series::Private, settings: &Settings) -> Option<SeriesRun> {
         crate::series::impact(self, settings)
     }
     fn jacobian(&self, _t: f64, y: &State<3>) -> Matrix<3> {
@@ -334,7 +334,7 @@ impl<I: Input> CollisionModel<4> for Ndbwmcm<I> {
     fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
         [y[3] + self.k.sigma * self.force_of(y), y[2]]
     }
-    fn series_impact(&self, settings: &Settings) -> Option<SeriesRun> {
+    fn series_impact(&self, _: crate::series::Private, settings: &Settings) -> Option<SeriesRun> {
         crate::series::impact(self, settings)
     }
     fn jacobian(&self, _t: f64, y: &State<4>) -> Matrix<4> {

@@ -87,6 +87,10 @@ pub const FORCE_MARGIN: f64 = 1e3;
 /// handed to the Runge-Kutta path, whose stops at the kinks and RODAS4 handle such runs.
 pub const MAX_STALLED: u32 = 2;
 
+/// The key to [`crate::CollisionModel`]'s hidden fast path: constructible only in this crate.
+#[derive(Debug, Clone, Copy)]
+pub struct Private(pub(crate) ());
+
 /// What the series path made of an impact ([`crate::CollisionModel::series_impact`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SeriesRun {
