@@ -124,7 +124,9 @@ impl Settings {
     }
 }
 
-/// The outcome of one impact.
+/// The outcome of one impact, in the model's units: seconds and SI states for [`crate::Bwshccm`]
+/// and [`crate::Bwmcm`], nondimensional for the ND models. `e = v(t_s) / v0 >= 0` with the
+/// relative velocity `v` positive as the bodies part.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Impact {
     /// Separation time `t_s` in the model's time unit (s for SI models), `None` when the bodies

@@ -73,6 +73,9 @@ impl Coefficients {
 /// The Bouc-Wen-Simon-Hunt-Crossley collision law: a nonlinear dashpot in parallel with a
 /// Bouc-Wen element, `ẋ = u`, `ż = A u - β|z|^(n-1) z |u| - γ|z|^n u`,
 /// `F = -α k |x|^(p-1) x - (1-α) k |z|^(p-1) z - c |x|^p u`.
+///
+/// Units and signs: `x`, `z` in m (`x < 0` in compression), `u` in m/s (the relative velocity,
+/// negative while the bodies approach), `F` in N (positive pushes them apart).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bwshccl(pub(crate) Coefficients);
 
@@ -105,6 +108,10 @@ impl Bwshccl {
 /// The Bouc-Wen-Maxwell collision law: a linear dashpot in series with a Bouc-Wen element,
 /// `ṙ = (k/c)(α |y|^(p-1) y + (1-α) |z|^(p-1) z)`, `ẏ = u - ṙ`,
 /// `ż = A ẏ - β|z|^(n-1) z |ẏ| - γ|z|^n ẏ`, `F = -c ṙ`.
+///
+/// Units and signs: `r`, `y`, `z` in m (`x = r + y < 0` in compression), `u` in m/s (the
+/// relative velocity, negative while the bodies approach), `F` in N (positive pushes them
+/// apart).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bwmcl(pub(crate) Coefficients);
 

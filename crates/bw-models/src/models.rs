@@ -138,6 +138,8 @@ impl NdCoefficients {
 /// NDBWSHCCM (eq:EBWSHCCM_nd), states `(X, Z, V)`:
 /// `X' = V`, `Z' = V - B|Z|^(n-1) Z |V| - Γ|Z|^n V`,
 /// `V' = -κ|X|^(p-1) X - (1-κ)|Z|^(p-1) Z - σ|X|^p V + U(T)`.
+/// Units and signs: nondimensional (Table 1's scales); `X < 0` in compression, `V(0) = -1`,
+/// `F > 0` pushes the bodies apart, `U > 0` pulls them apart.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ndbwshccm<I> {
     pub(crate) k: NdCoefficients,
@@ -247,6 +249,8 @@ impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
 /// `R' = σ(κ|Y|^(p-1) Y + (1-κ)|Z|^(p-1) Z)`, `Y' = V - R'`,
 /// `Z' = Y' - B|Z|^(n-1) Z |Y'| - Γ|Z|^n Y'`, `V' = -κ|Y|^(p-1) Y - (1-κ)|Z|^(p-1) Z + U(T)`;
 /// `X = R + Y`, `F = -κ|Y|^(p-1) Y - (1-κ)|Z|^(p-1) Z`.
+/// Units and signs: nondimensional (Table 1's scales); `X < 0` in compression, `V(0) = -1`,
+/// `F > 0` pushes the bodies apart, `U > 0` pulls them apart.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ndbwmcm<I> {
     pub(crate) k: NdCoefficients,
@@ -445,6 +449,9 @@ impl CollisionModel<4> for NdbwmcmEarlier {
 
 /// BWSHCCM (eq:EBWSHCCM) in SI units, states `(x, z, v)`: the BWSHCCL driven by `v`, and
 /// `m v̇ = F + u(t)`.
+/// Units and signs: `x`, `r`, `y`, `z` in m with `x < 0` in compression (the bodies overlap),
+/// `v` in m/s (relative velocity, `v(0) = -v0 < 0` as the bodies approach), `F` in N (positive
+/// pushes the bodies apart), `u` in N (the relative input, positive pulls them apart), `m` in kg.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bwshccm<I> {
     law: Bwshccl,
@@ -517,6 +524,9 @@ impl<I: Input> CollisionModel<3> for Bwshccm<I> {
 
 /// BWMCM in the Lipschitz form (eq:EBWMCM) in SI units, states `(r, y, z, v)`: the BWMCL
 /// driven by `v`, and `m v̇ = F + u(t)`; `x = r + y`.
+/// Units and signs: `x`, `r`, `y`, `z` in m with `x < 0` in compression (the bodies overlap),
+/// `v` in m/s (relative velocity, `v(0) = -v0 < 0` as the bodies approach), `F` in N (positive
+/// pushes the bodies apart), `u` in N (the relative input, positive pulls them apart), `m` in kg.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bwmcm<I> {
     law: Bwmcl,
