@@ -1,0 +1,377 @@
+//! The walk of one impact by Taylor series: from contact, step after step (a start step where
+//! a base vanishes, else an expansion, its step size, the earliest event inside the step and
+//! what that event does) until the separation, rest, or a hand-over to the Runge-Kutta path.
+
+use super::jet::{Expand, Jet, Series};
+use super::{
+    class, eval_d, reach_root, root, start_step, step_size, step_tolerance, SeriesRun, Target,
+    FORCE_MARGIN, MAX_GROWTH, MAX_SERIES_STEPS, MAX_STALLED,
+};
+use crate::impact::{at_rest, pad, Impact, Settings};
+use crate::{separated, State};
+use bwc_ode::Stats;
+
+/// What ends a step early.
+#[derive(Clone, Copy, PartialEq)]
+enum Event {
+    Rate,
+    Z,
+    Base,
+    Force,
+    Velocity,
+}
+
+/// An event function of a step: which, its class at the step's start, whether it is watched.
+type Watched = (Event, i8, bool);
+
+/// The state of the walk.
+pub(super) struct SeriesPath<'a, M, const N: usize> {
+    model: &'a M,
+    settings: &'a Settings,
+    /// The constant input.
+    u: f64,
+    t: f64,
+    y: State<N>,
+    stats: Stats,
+    series_steps: u64,
+    /// The last step's size: a step may be at most `MAX_GROWTH` times it.
+    h_last: f64,
+    /// Sign of the rate across the hysteretic element: the branch of the expansion.
+    rate_class: i8,
+    jet: Jet<N>,
+    /// Event steps in a row that did not advance the time (a sliding mode: the rate across the
+    /// hysteretic element stays at zero and its sign flips at every step).
+    stalled: u32,
+    /// The force where this step starts, if the last step computed it already (at its end, or
+    /// zero at a located root).
+    force_here: Option<f64>,
+}
+
+/// What lies ahead in a step: an event at `s`, or its end (the state and event values there).
+enum Ahead<const N: usize> {
+    Event(f64, Event),
+    End([f64; N], [f64; 5]),
+}
+
+/// What a phase of the walk decided.
+enum Next {
+    /// Go on with the next step.
+    Step,
+    /// The impact is over, or handed over.
+    Finish(SeriesRun),
+}
+
+impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
+    /// The walk at contact (after the model's contact series, where it has one), or `None`
+    /// for a time-varying input.
+    pub(super) fn start(model: &'a M, settings: &'a Settings) -> Option<Self> {
+        if !model.input_is_constant() {
+            return None;
+        }
+        let y = model.initial_state();
+        let mut path = Self {
+            model,
+            settings,
+            u: model.input(0.0),
+            t: 0.0,
+            y,
+            stats: Stats::default(),
+            series_steps: 0,
+            h_last: f64::INFINITY,
+            rate_class: class(model.kinks(0.0, &y)[0]),
+            jet: Jet::new(),
+            stalled: 0,
+            force_here: None,
+        };
+        if let Some((t1, y1)) = model.contact_step(path.u, settings) {
+            path.series_steps += 1;
+            path.stats.accepted += 1;
+            (path.t, path.y, path.h_last) = (t1, y1, t1);
+            if model.velocity(&path.y) == 0.0 {
+                // It ended on the maximum compression.
+                path.stats.events += 1;
+                path.rate_class = -path.rate_class;
+            }
+        }
+        Some(path)
+    }
+
+    /// Steps until the impact is over or handed over.
+    pub(super) fn run(mut self) -> SeriesRun {
+        loop {
+            let next = match self.ended() {
+                Some(done) => Next::Finish(done),
+                None if self.y[M::BASE] == 0.0 || self.y[M::Z] == 0.0 => self.leave_zero(),
+                None => self.series_step(),
+            };
+            if let Next::Finish(run) = next {
+                return run;
+            }
+        }
+    }
+
+    /// The Runge-Kutta path continues from here.
+    fn hand_over(&self) -> SeriesRun {
+        SeriesRun::HandOver {
+            t: self.t,
+            state: pad(&self.y),
+            stats: self.stats,
+            series_steps: self.series_steps,
+        }
+    }
+
+    /// The separation where the step starts, or a limit that hands the impact over.
+    fn ended(&mut self) -> Option<SeriesRun> {
+        let (model, settings) = (self.model, self.settings);
+        let force = self
+            .force_here
+            .take()
+            .unwrap_or_else(|| model.force(&self.y));
+        let velocity = model.velocity(&self.y);
+        if self.t > 0.0 && separated(force, velocity) {
+            // The separation, reached at the end of the last step or at its event.
+            self.stats.events += 1;
+            return Some(SeriesRun::Done(Impact {
+                t_s: Some(self.t),
+                e: velocity.max(0.0) / model.impact_speed(),
+                state: pad(&self.y),
+                settled_at: None,
+                stiff_from: None,
+                series_steps: self.series_steps,
+                stats: self.stats,
+            }));
+        }
+        let limit = self.series_steps >= MAX_SERIES_STEPS
+            || self.stats.accepted >= settings.max_steps
+            || self.t >= settings.t_max;
+        self.force_here = Some(force);
+        limit.then(|| self.hand_over())
+    }
+
+    /// Where a base vanishes: one step of the explicit method leaves the point; the Runge-Kutta
+    /// path retakes it if it met an event.
+    fn leave_zero(&mut self) -> Next {
+        self.force_here = None;
+        let (model, settings) = (self.model, self.settings);
+        let (t_start, y_start, stats_start) = (self.t, self.y, self.stats);
+        let Some((t, y)) = start_step(model, settings, self.t, &self.y, &mut self.stats) else {
+            (self.t, self.y, self.stats) = (t_start, y_start, stats_start);
+            return Next::Finish(self.hand_over());
+        };
+        (self.t, self.y) = (t, y);
+        self.h_last = t - t_start;
+        let met = class(model.kinks(t, &y)[0]) != self.rate_class
+            || y[M::BASE] == 0.0
+            || y[M::Z] == 0.0
+            || separated(model.force(&y), model.velocity(&y));
+        if met {
+            (self.t, self.y, self.stats) = (t_start, y_start, stats_start);
+            return Next::Finish(self.hand_over());
+        }
+        Next::Step
+    }
+
+    /// One expansion: rest, or a step to its end or to the earliest event inside it.
+    fn series_step(&mut self) -> Next {
+        let force = self.force_here.take().expect("set by ended()");
+        let (model, settings) = (self.model, self.settings);
+        model.expand(&self.y, f64::from(self.rate_class), self.u, &mut self.jet);
+        // At rest under the constant input: an equilibrium, the contact has settled.
+        let rate_of_change = State::<N>::from_fn(|i, _| self.jet.state[i][1]);
+        if at_rest(model, &rate_of_change, settings.atol) {
+            return Next::Finish(SeriesRun::Done(Impact {
+                t_s: None,
+                e: 0.0,
+                state: pad(&self.y),
+                settled_at: Some(self.t),
+                stiff_from: None,
+                series_steps: self.series_steps,
+                stats: self.stats,
+            }));
+        }
+        self.series_steps += 1;
+        self.stats.accepted += 1;
+        let tol = step_tolerance(&self.y, settings);
+        let h = step_size(&self.jet, tol)
+            .min(MAX_GROWTH * self.h_last)
+            .min(settings.max_step)
+            .min(settings.t_max - self.t);
+        self.h_last = h;
+        let velocity = model.velocity(&self.y);
+        let watch: [Watched; 5] = [
+            (Event::Force, 1, force > 0.0),
+            (Event::Velocity, -1, !M::RATE_IS_VELOCITY && velocity < 0.0),
+            (Event::Rate, self.rate_class, true),
+            (Event::Z, class(self.y[M::Z]), true),
+            (Event::Base, class(self.y[M::BASE]), true),
+        ];
+        match self.earliest_event(h, tol, &watch) {
+            Ahead::End(end, at_end) => {
+                self.y = State::<N>::from(end);
+                self.force_here = Some(at_end[0]);
+                self.t += h;
+                self.stalled = 0;
+                Next::Step
+            }
+            Ahead::Event(s, event) => self.apply_event(s, event),
+        }
+    }
+
+    /// The state and the event values at `s` in the step, from their series; near zero the
+    /// force from the state instead (its sign is exact where the force has a multiple root,
+    /// e.g. -|X|^(p-1) X at X = 0). Only its sign is used away from zero, where the series'
+    /// value (error about the tolerance) has the sign of the force.
+    fn values(&self, s: f64, tol: f64) -> ([f64; N], [f64; 5]) {
+        let (ys, rate, series_force) = if M::RATE_IS_VELOCITY {
+            self.jet.with_force_at::<true>(s)
+        } else {
+            self.jet.with_force_at::<false>(s)
+        };
+        let force = if series_force.abs() > FORCE_MARGIN * tol {
+            series_force
+        } else {
+            self.model.force(&State::<N>::from(ys))
+        };
+        (ys, [force, ys[N - 1], rate, ys[M::Z], ys[M::BASE]])
+    }
+
+    /// The series of an event function.
+    fn series_of(&self, event: Event) -> &Series {
+        let jet = &self.jet;
+        match event {
+            Event::Force => &jet.force,
+            Event::Velocity => &jet.state[N - 1],
+            Event::Rate if M::RATE_IS_VELOCITY => &jet.state[N - 1],
+            Event::Rate => &jet.rate,
+            Event::Z => &jet.state[M::Z],
+            Event::Base => &jet.state[M::BASE],
+        }
+    }
+
+    /// The earliest root in the step of `h`: searched where a class has changed (in the first
+    /// half of the step if one has changed there already), then again up to the root found,
+    /// until no function changes earlier (a function may cross and cross back inside a long
+    /// step). Ties go to the function listed first (the separation).
+    fn earliest_event(&self, h: f64, tol: f64, watch: &[Watched; 5]) -> Ahead<N> {
+        let changed = |at: &[f64; 5]| {
+            watch
+                .iter()
+                .zip(at)
+                .any(|(&(_, start, on), v)| on && class(*v) != start)
+        };
+        let (end, at_end) = self.values(h, tol);
+        let (_, at_mid) = self.values(0.5 * h, tol);
+        let (mut upto, mut at) = if changed(&at_mid) {
+            (0.5 * h, at_mid)
+        } else {
+            (h, at_end)
+        };
+        let mut first: Option<(f64, Event)> = None;
+        for _ in 0..8 {
+            let mut best: Option<(f64, Event)> = None;
+            for (&(event, start, on), v) in watch.iter().zip(&at) {
+                if !on || class(*v) == start {
+                    continue;
+                }
+                let c = self.series_of(event);
+                let s = if event == Event::Force {
+                    root(|s| (self.values(s, tol).1[0], eval_d(c, s).1), upto, start)
+                } else {
+                    root(|s| eval_d(c, s), upto, start)
+                };
+                if best.is_none_or(|(b, _)| s < b) {
+                    best = Some((s, event));
+                }
+            }
+            let Some((s, _)) = best else { break };
+            first = best;
+            if s >= upto {
+                break;
+            }
+            upto = s;
+            at = self.values(upto, tol).1;
+        }
+        match first {
+            Some((s, event)) => Ahead::Event(s, event),
+            None => Ahead::End(end, at_end),
+        }
+    }
+
+    /// The step ends at the event at `s`: onto a zero of a base by the explicit method (the
+    /// series converge slowest there), across a sign change of the rate, or onto the force's
+    /// root (by the explicit method near a zero of a base, where the force can vanish with
+    /// it).
+    fn apply_event(&mut self, s: f64, event: Event) -> Next {
+        let (model, settings) = (self.model, self.settings);
+        if self.t + s > self.t {
+            self.stalled = 0;
+        } else {
+            self.stalled += 1;
+            if self.stalled > MAX_STALLED {
+                return Next::Finish(self.hand_over());
+            }
+        }
+        let at_root = State::<N>::from(self.jet.state_at(s));
+        let start = (self.t, &self.y);
+        let reached = match event {
+            Event::Z | Event::Base => {
+                self.stats.events += 1;
+                let i = if event == Event::Z { M::Z } else { M::BASE };
+                reach_root(
+                    model,
+                    settings,
+                    start,
+                    self.t + s,
+                    Target::Component(i),
+                    &mut self.stats,
+                )
+            }
+            Event::Rate => {
+                self.stats.events += 1;
+                self.rate_class = -self.rate_class;
+                let mut y = at_root;
+                if M::RATE_IS_VELOCITY {
+                    y[N - 1] = 0.0;
+                }
+                Some((self.t + s, y))
+            }
+            Event::Force if at_root[N - 1] >= 0.0 => {
+                // A separation near a zero of a base (one no farther from zero, by its slope,
+                // than the root from the step's start): the explicit method takes the state.
+                let near_a_base_zero = [M::BASE, M::Z].iter().any(|&i| {
+                    let (b, db) = eval_d(&self.jet.state[i], s);
+                    b.abs() <= s * db.abs()
+                });
+                if near_a_base_zero {
+                    reach_root(
+                        model,
+                        settings,
+                        start,
+                        self.t + s,
+                        Target::Force,
+                        &mut self.stats,
+                    )
+                } else {
+                    Some((self.t + s, at_root))
+                }
+            }
+            Event::Velocity | Event::Force => {
+                let mut y = at_root;
+                if event == Event::Velocity {
+                    y[N - 1] = 0.0;
+                }
+                Some((self.t + s, y))
+            }
+        };
+        let Some((t, y)) = reached else {
+            return Next::Finish(self.hand_over());
+        };
+        (self.t, self.y) = (t, y);
+        // The separation F <= 0 <= V is checked where the next step starts; at a located root
+        // of the force, F is zero to rounding, either sign.
+        if event == Event::Force && model.velocity(&self.y) >= 0.0 {
+            self.force_here = Some(0.0);
+        }
+        Next::Step
+    }
+}
