@@ -80,14 +80,14 @@ fn library() -> Result<Vec<(f64, f64)>, Box<dyn std::error::Error>> {
         bounces: BOUNCES,
         policy: Policy::Reset,
     };
-    let one = |v_in: f64, _: Option<&[f64; 4]>| {
+    let one = |v_in: f64, _: Option<&()>| {
         let model = Bwshccm::new(&params, M, v_in, Constant(-M * G))?;
         let out = impact(&model, &Settings::default())?;
         Ok(Contact {
             t_s: out.t_s,
             v_out: out.e * v_in,
             settled: out.settled_at.is_some(),
-            state: out.state,
+            state: (),
         })
     };
     let bounces = drop_sequence(Start::Height(H0), &settings, one)?;

@@ -86,7 +86,7 @@ pub mod cor {
     //! One CoR evaluation of the paper's Table 3 models (DSS (1)), the unit of work of the
     //! identification.
     use bw_models::{
-        impact_at, input::Zero, BaseMap, BaseParams, Impact, ModelError, ModelKind, Settings,
+        impact_at, input::Zero, BaseMap, BaseParams, Cor, ModelError, ModelKind, Settings,
     };
 
     /// Table 3, DSS (1), NDBWSHCCM.
@@ -122,7 +122,7 @@ pub mod cor {
     }
 
     /// One CoR evaluation at impact speed `v0` (m/s).
-    pub fn evaluate(map: &BaseMap, v0: f64, settings: &Settings) -> Result<Impact, ModelError> {
+    pub fn evaluate(map: &BaseMap, v0: f64, settings: &Settings) -> Result<Cor, ModelError> {
         impact_at(map, Zero, v0, settings)
     }
 }

@@ -37,7 +37,7 @@
 
 use bw_models::input::Zero;
 use bw_models::{
-    impact, impact_at, BaseMap, BaseParams, Impact, ModelKind, Ndbwmcm, Ndbwshccm, Nondim,
+    impact, impact_at, BaseMap, BaseParams, Cor, ModelKind, Ndbwmcm, Ndbwshccm, Nondim,
     NondimParams, Settings, State, Stiffness,
 };
 use bwc_benches::{cor, side_by_side};
@@ -47,7 +47,7 @@ use std::fmt::Write as _;
 
 type Case = (
     &'static str,
-    Box<dyn Fn(&Settings) -> Result<Vec<Impact>, String>>,
+    Box<dyn Fn(&Settings) -> Result<Vec<Cor>, String>>,
     Vec<(Option<f64>, Option<f64>)>,
 );
 
@@ -115,7 +115,7 @@ fn plain_dop853(rtol: f64) -> Settings {
 }
 
 /// The largest errors in `e` and in `T_s` of a case's runs against its references.
-fn errors(outs: &[Impact], refs: &[(Option<f64>, Option<f64>)]) -> (f64, f64) {
+fn errors(outs: &[Cor], refs: &[(Option<f64>, Option<f64>)]) -> (f64, f64) {
     let (mut ee, mut et) = (0.0f64, 0.0f64);
     for (o, (e_ref, t_ref)) in outs.iter().zip(refs) {
         if let Some(e) = e_ref {
@@ -226,7 +226,7 @@ fn main() {
         )
         .unwrap();
         let model = Ndbwshccm::new(&params, Zero).unwrap();
-        move |s: &Settings| Ok(vec![impact(&model, s).map_err(|e| e.to_string())?])
+        move |s: &Settings| Ok(vec![impact(&model, s).map_err(|e| e.to_string())?.cor()])
     };
     #[allow(clippy::excessive_precision)]
     cases.push((

@@ -124,18 +124,19 @@ impl Settings {
     }
 }
 
-/// The outcome of one impact, in the model's units: seconds and SI states for [`crate::Bwshccm`]
-/// and [`crate::Bwmcm`], nondimensional for the ND models. `e = v(t_s) / v0 >= 0` with the
-/// relative velocity `v` positive as the bodies part.
+/// The outcome of one impact of a model with `N` states, in the model's units: seconds and SI
+/// states for [`crate::Bwshccm`] (`x, z, v`) and [`crate::Bwmcm`] (`r, y, z, v`),
+/// nondimensional for the ND models. `e = v(t_s) / v0 >= 0` with the relative velocity `v`
+/// positive as the bodies part.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Impact {
+pub struct Impact<const N: usize> {
     /// Separation time `t_s` in the model's time unit (s for SI models), `None` when the bodies
     /// had not separated by the horizon.
     pub t_s: Option<f64>,
     /// Coefficient of restitution `e = v(t_s) / v0` (0 without separation).
     pub e: f64,
     /// State at separation (at the horizon, or where the contact settled, without separation).
-    pub state: [f64; 4],
+    pub state: State<N>,
     /// Without separation: the time at which the contact had settled (at rest with the force
     /// balancing a constant input, an equilibrium), if the simulation stopped there early.
     pub settled_at: Option<f64>,
@@ -149,7 +150,7 @@ pub struct Impact {
     pub stats: Stats,
 }
 
-impl Impact {
+impl<const N: usize> Impact<N> {
     /// Whether the bodies separated.
     pub fn separated(&self) -> bool {
         self.t_s.is_some()
@@ -158,6 +159,43 @@ impl Impact {
     /// Contact duration `t_d = t_s - t_0 = t_s`.
     pub fn duration(&self) -> Option<f64> {
         self.t_s
+    }
+
+    /// The outcome without the state.
+    pub fn cor(&self) -> Cor {
+        Cor {
+            t_s: self.t_s,
+            e: self.e,
+            settled_at: self.settled_at,
+            stiff_from: self.stiff_from,
+            series_steps: self.series_steps,
+            stats: self.stats,
+        }
+    }
+}
+
+/// An impact's outcome without its state: what a CoR evaluation of either model gives
+/// ([`crate::impact_at`]). Fields as in [`Impact`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cor {
+    /// Separation time in the model's time unit, `None` without separation.
+    pub t_s: Option<f64>,
+    /// Coefficient of restitution (0 without separation).
+    pub e: f64,
+    /// Where the contact settled, if it did.
+    pub settled_at: Option<f64>,
+    /// When the run switched to RODAS4.
+    pub stiff_from: Option<f64>,
+    /// Steps taken by Taylor series.
+    pub series_steps: u64,
+    /// Solver statistics.
+    pub stats: Stats,
+}
+
+impl Cor {
+    /// Whether the bodies separated.
+    pub fn separated(&self) -> bool {
+        self.t_s.is_some()
     }
 }
 
@@ -201,14 +239,6 @@ impl<const N: usize, M: CollisionModel<N>> Switches<N> for Kinks<'_, M> {
     }
 }
 
-pub(crate) fn pad<const N: usize>(y: &State<N>) -> [f64; 4] {
-    let mut out = [0.0; 4];
-    for (o, v) in out.iter_mut().zip(y.iter()) {
-        *o = *v;
-    }
-    out
-}
-
 /// Coefficient of restitution, separation time and statistics of one impact; stores nothing and
 /// allocates nothing.
 ///
@@ -217,7 +247,7 @@ pub(crate) fn pad<const N: usize>(y: &State<N>) -> [f64; 4] {
 pub fn impact<M: CollisionModel<N>, const N: usize>(
     model: &M,
     settings: &Settings,
-) -> Result<Impact, ModelError> {
+) -> Result<Impact<N>, ModelError> {
     simulate(model, settings, Sampling::None, |_, _| {})
 }
 
@@ -232,7 +262,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
     settings: &Settings,
     sampling: Sampling,
     mut sink: impl FnMut(f64, &State<N>),
-) -> Result<Impact, ModelError> {
+) -> Result<Impact<N>, ModelError> {
     settings.validate()?;
     if let Sampling::Grid { dt } = sampling {
         check("dt", dt, dt > 0.0, "grid spacing dt > 0")?;
@@ -246,7 +276,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
         match model.series_impact(crate::series::Private(()), settings) {
             Some(SeriesRun::Done(out)) => {
                 if let Some(t) = out.t_s {
-                    sink(t, &State::<N>::from_fn(|i, _| out.state[i]));
+                    sink(t, &out.state);
                 }
                 return Ok(out);
             }
@@ -256,7 +286,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
                 stats,
                 series_steps: steps,
             }) => {
-                (t0, y0) = (t, State::<N>::from_fn(|i, _| state[i]));
+                (t0, y0) = (t, state);
                 (done, series_steps) = (stats, steps);
             }
             None => {}
@@ -304,7 +334,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
                 return Ok(Impact {
                     t_s: Some(t),
                     e,
-                    state: pad(&y),
+                    state: y,
                     stats: stats(&it),
                     settled_at: None,
                     stiff_from: it.switched_at(),
@@ -322,7 +352,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
                     return Ok(Impact {
                         t_s: None,
                         e: 0.0,
-                        state: pad(it.y()),
+                        state: *it.y(),
                         stats: stats(&it),
                         settled_at: Some(it.t()),
                         stiff_from: it.switched_at(),
@@ -335,7 +365,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
     Ok(Impact {
         t_s: None,
         e: 0.0,
-        state: pad(it.y()),
+        state: *it.y(),
         stats: stats(&it),
         settled_at: None,
         stiff_from: it.switched_at(),

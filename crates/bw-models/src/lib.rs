@@ -47,7 +47,7 @@ pub mod sequence;
 mod series;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
-pub use impact::{impact, simulate, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES};
+pub use impact::{impact, simulate, Cor, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES};
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};
 pub use models::{
     Bwmcm, BwmcmEarlier, Bwshccm, CollisionModel, Ndbwmcm, NdbwmcmEarlier, Ndbwshccm,

@@ -29,7 +29,11 @@ pub trait CollisionModel<const N: usize>: System<N> {
     /// its argument cannot be named outside the crate, so other models keep the default,
     /// `None`, and the Runge-Kutta path).
     #[doc(hidden)]
-    fn series_impact(&self, _: crate::series::Private, _settings: &Settings) -> Option<SeriesRun> {
+    fn series_impact(
+        &self,
+        _: crate::series::Private,
+        _settings: &Settings,
+    ) -> Option<SeriesRun<N>> {
         None
     }
     /// Whether the input is constant at all times.
@@ -222,7 +226,11 @@ impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
     fn kinks(&self, _t: f64, y: &State<3>) -> [f64; 2] {
         [y[2], y[1]]
     }
-    fn series_impact(&self, _: crate::series::Private, settings: &Settings) -> Option<SeriesRun> {
+    fn series_impact(
+        &self,
+        _: crate::series::Private,
+        settings: &Settings,
+    ) -> Option<SeriesRun<3>> {
         crate::series::impact(self, settings)
     }
     fn jacobian(&self, _t: f64, y: &State<3>) -> Matrix<3> {
@@ -338,7 +346,11 @@ impl<I: Input> CollisionModel<4> for Ndbwmcm<I> {
     fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
         [y[3] + self.k.sigma * self.force_of(y), y[2]]
     }
-    fn series_impact(&self, _: crate::series::Private, settings: &Settings) -> Option<SeriesRun> {
+    fn series_impact(
+        &self,
+        _: crate::series::Private,
+        settings: &Settings,
+    ) -> Option<SeriesRun<4>> {
         crate::series::impact(self, settings)
     }
     fn jacobian(&self, _t: f64, y: &State<4>) -> Matrix<4> {

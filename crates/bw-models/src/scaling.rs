@@ -250,7 +250,7 @@ pub fn impact_at<I: crate::input::Input>(
     u: I,
     v0: f64,
     settings: &crate::Settings,
-) -> Result<crate::Impact, ModelError> {
+) -> Result<crate::Cor, ModelError> {
     let (nd, s) = map.at(v0)?;
     let input = crate::input::Scaled {
         inner: u,
@@ -258,7 +258,11 @@ pub fn impact_at<I: crate::input::Input>(
         time_scale: s.time_scale,
     };
     match map.kind() {
-        ModelKind::Shccm => crate::impact(&crate::Ndbwshccm::new(&nd, input)?, settings),
-        ModelKind::Mcm => crate::impact(&crate::Ndbwmcm::new(&nd, input)?, settings),
+        ModelKind::Shccm => {
+            crate::impact(&crate::Ndbwshccm::new(&nd, input)?, settings).map(|i| i.cor())
+        }
+        ModelKind::Mcm => {
+            crate::impact(&crate::Ndbwmcm::new(&nd, input)?, settings).map(|i| i.cor())
+        }
     }
 }

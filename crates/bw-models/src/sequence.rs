@@ -11,8 +11,8 @@
 //! ```
 //! use bw_models::sequence::{drop_sequence, Contact, Flight, Policy, SequenceSettings, Start};
 //! // A contact that returns 80 % of the speed after 1 ms.
-//! let contact = |v_in: f64, _: Option<&[f64; 4]>| {
-//!     Ok(Contact { t_s: Some(1e-3), v_out: 0.8 * v_in, settled: false, state: [0.0; 4] })
+//! let contact = |v_in: f64, _: Option<&()>| {
+//!     Ok(Contact { t_s: Some(1e-3), v_out: 0.8 * v_in, settled: false, state: () })
 //! };
 //! let settings = SequenceSettings {
 //!     flight: Flight { g: 9.81, drag: 0.0 },
@@ -145,18 +145,18 @@ pub enum Start {
     Speed(f64),
 }
 
-/// What one contact gave: the caller's simulation of an impact.
+/// What one contact gave: the caller's simulation of an impact, with the state `S` it hands to
+/// the next contact under [`Policy::Carry`] (`()` where nothing carries over).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Contact {
+pub struct Contact<S> {
     /// Contact duration (s), `None` without separation (settled, or the horizon).
     pub t_s: Option<f64>,
     /// Speed at separation (m/s, upwards), 0 without separation.
     pub v_out: f64,
     /// Without separation: whether the contact came to rest (else its horizon came first).
     pub settled: bool,
-    /// The law's state at separation (the model's components first), carried to the next
-    /// contact under [`Policy::Carry`].
-    pub state: [f64; 4],
+    /// The law's state at separation, carried to the next contact under [`Policy::Carry`].
+    pub state: S,
 }
 
 /// How a bounce ended.
@@ -205,10 +205,10 @@ pub const REST_FRACTION: f64 = 1e-9;
 /// # Errors
 /// [`ModelError::InvalidParameter`] / [`ModelError::InvalidSetting`] for a non-positive height,
 /// speed or `g`, a negative or non-finite drag, or no bounces; the first error of `contact`.
-pub fn drop_sequence(
+pub fn drop_sequence<S>(
     start: Start,
     settings: &SequenceSettings,
-    mut contact: impl FnMut(f64, Option<&[f64; 4]>) -> Result<Contact, ModelError>,
+    mut contact: impl FnMut(f64, Option<&S>) -> Result<Contact<S>, ModelError>,
 ) -> Result<Vec<Bounce>, ModelError> {
     let flight = settings.flight;
     flight.validate()?;
@@ -230,29 +230,30 @@ pub fn drop_sequence(
         }
     };
     let rest = REST_FRACTION * v_in;
-    let mut carried: Option<[f64; 4]> = None;
+    let mut carried: Option<S> = None;
     let mut out: Vec<Bounce> = Vec::with_capacity(settings.bounces);
     for n in 1..=settings.bounces {
         let c = contact(v_in, carried.as_ref())?;
-        let flies = c.t_s.is_some() && c.v_out > rest;
-        let end = match c.t_s {
+        let (t_s, v_out) = (c.t_s, c.v_out);
+        let flies = t_s.is_some() && v_out > rest;
+        let end = match t_s {
             Some(_) if flies => BounceEnd::Separated,
             None if !c.settled => BounceEnd::Horizon,
             _ => BounceEnd::Settled,
         };
-        let arc = flies.then(|| flight.arc(c.v_out));
+        let arc = flies.then(|| flight.arc(v_out));
         let last = n == settings.bounces || !flies;
         let interval = match (&arc, last) {
-            (Some(a), false) => Some(c.t_s.unwrap_or(0.0) + a.t_up + a.t_down),
+            (Some(a), false) => Some(t_s.unwrap_or(0.0) + a.t_up + a.t_down),
             _ => None,
         };
         out.push(Bounce {
             n,
             t_contact: t,
             v_in,
-            v_out: c.v_out,
-            e: c.v_out / v_in,
-            t_s: c.t_s,
+            v_out,
+            e: v_out / v_in,
+            t_s,
             apex: arc.map_or(0.0, |a| a.apex),
             interval,
             end,
@@ -370,12 +371,12 @@ mod tests {
             bounces: 10,
             policy: Policy::Reset,
         };
-        let contact = |v: f64, _: Option<&[f64; 4]>| {
+        let contact = |v: f64, _: Option<&()>| {
             Ok(Contact {
                 t_s: if v > 1.0 { Some(1e-3) } else { None },
                 v_out: if v > 1.0 { 0.5 * v } else { 0.0 },
                 settled: false,
-                state: [0.0; 4],
+                state: (),
             })
         };
         let b = drop_sequence(Start::Speed(3.0), &settings, contact).unwrap();

@@ -70,8 +70,8 @@ fn elastic_limit_both_models() {
             let mcm =
                 Ndbwmcm::new(&nd(ModelKind::Mcm, 0.0, 0.0, 0.6, 1e-17, 2.0, p), Zero).unwrap();
             for (name, out) in [
-                ("shccm", impact(&shccm, &s).unwrap()),
-                ("mcm", impact(&mcm, &s).unwrap()),
+                ("shccm", impact(&shccm, &s).unwrap().cor()),
+                ("mcm", impact(&mcm, &s).unwrap().cor()),
             ] {
                 let ts = out.t_s.expect("separates");
                 assert!(
@@ -140,17 +140,13 @@ const CROSS_SPEEDS: [f64; 4] = [2.15, 3.03, 4.18, 5.02];
 const BASEBALL_MASS: f64 = 0.145;
 
 /// Peak force over a grid of `samples` points per unit of natural time.
-fn run_with_peak<M: CollisionModel<N>, const N: usize>(
-    m: &M,
-    s: &Settings,
-    dt: f64,
-) -> (Impact, f64) {
+fn run_with_peak<M: CollisionModel<N>, const N: usize>(m: &M, s: &Settings, dt: f64) -> (Cor, f64) {
     let mut peak = f64::NEG_INFINITY;
     let out = simulate(m, s, Sampling::Grid { dt }, |_t, y| {
         peak = peak.max(m.force(y))
     })
     .unwrap();
-    (out, peak)
+    (out.cor(), peak)
 }
 
 /// SI vs nondimensional: the same t_s, e and peak force both ways (to 1e-9 relative).
@@ -451,6 +447,7 @@ fn two_balls_section_6() {
                     rows.push((t, model.displacement(y), model.velocity(y)))
                 })
                 .unwrap()
+                .cor()
             }
             ModelKind::Mcm => {
                 let model = Bwmcm::new(&params, m, 2.0, bodies.relative_input()).unwrap();
@@ -458,6 +455,7 @@ fn two_balls_section_6() {
                     rows.push((t, model.displacement(y), model.velocity(y)))
                 })
                 .unwrap()
+                .cor()
             }
         };
         let ts = out.t_s.expect("the balls separate");
@@ -703,11 +701,11 @@ mod paper_settings {
             let (a, r) = match kind {
                 ModelKind::Shccm => {
                     let m = Ndbwshccm::new(&params, Zero).unwrap();
-                    (impact(&m, &paper_with_stops()).unwrap(), impact(&m, &reference).unwrap())
+                    (impact(&m, &paper_with_stops()).unwrap().cor(), impact(&m, &reference).unwrap().cor())
                 }
                 ModelKind::Mcm => {
                     let m = Ndbwmcm::new(&params, Zero).unwrap();
-                    (impact(&m, &paper_with_stops()).unwrap(), impact(&m, &reference).unwrap())
+                    (impact(&m, &paper_with_stops()).unwrap().cor(), impact(&m, &reference).unwrap().cor())
                 }
             };
             prop_assert!(r.separated() && a.separated());

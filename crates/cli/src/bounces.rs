@@ -7,32 +7,28 @@ use bw_models::input::Constant;
 use bw_models::sequence::{drop_sequence, Bounce, BounceEnd, Contact, Resumed};
 use bw_models::{
     impact, nondimensionalize, Bwmcm, Bwshccm, CollisionModel, ModelError, ModelKind,
-    PhysicalParams, Settings,
+    PhysicalParams, Settings, State,
 };
 
-/// One contact of `model` from its unloaded state, or from `carried` (the model's components
-/// of the last separation, the velocity set to the impact's).
+/// One contact of `model` from its unloaded state, or from `carried` (the state of the last
+/// separation, the velocity set to the impact's), and the displacement (m) at separation.
 fn contact<M: CollisionModel<N>, const N: usize>(
     model: M,
-    carried: Option<&[f64; 4]>,
+    carried: Option<&State<N>>,
     settings: &Settings,
-) -> Result<(Contact, f64), ModelError> {
+) -> Result<(Contact<State<N>>, f64), ModelError> {
     let v_in = model.impact_speed();
     let (out, x_s) = match carried {
         None => {
             let out = impact(&model, settings)?;
-            let x = model.displacement(&state_of::<N>(&out.state));
-            (out, x)
+            (out, model.displacement(&out.state))
         }
         Some(s) => {
-            let mut start = model.initial_state();
-            for i in 0..N - 1 {
-                start[i] = s[i];
-            }
+            let mut start = *s;
+            start[N - 1] = model.initial_state()[N - 1];
             let resumed = Resumed { model, start };
             let out = impact(&resumed, settings)?;
-            let x = resumed.displacement(&state_of::<N>(&out.state));
-            (out, x)
+            (out, resumed.displacement(&out.state))
         }
     };
     let contact = Contact {
@@ -44,12 +40,24 @@ fn contact<M: CollisionModel<N>, const N: usize>(
     Ok((contact, x_s))
 }
 
-fn state_of<const N: usize>(padded: &[f64; 4]) -> bw_models::State<N> {
-    bw_models::State::<N>::from_fn(|i, _| padded[i])
-}
-
 /// A bounce and the displacement (m) at its separation.
 pub type Bounced = (Bounce, f64);
+
+/// The sequence of contacts made by `make(v_in)`.
+fn sequence_of<M: CollisionModel<N>, const N: usize>(
+    seq: &SequenceSpec,
+    settings: &Settings,
+    make: impl Fn(f64) -> Result<M, ModelError>,
+) -> Result<Vec<Bounced>, ModelError> {
+    let mut displacements = Vec::new();
+    let one = |v_in: f64, carried: Option<&State<N>>| {
+        let (c, x_s) = contact(make(v_in)?, carried, settings)?;
+        displacements.push(x_s);
+        Ok(c)
+    };
+    let list = drop_sequence(seq.start, &seq.settings, one)?;
+    Ok(list.into_iter().zip(displacements).collect())
+}
 
 /// The sequence of `spec` (a `[physical]` system; the scene's parsing guarantees it).
 ///
@@ -63,19 +71,11 @@ pub fn bounces(
     let System::Physical { params, m, .. } = &spec.system else {
         unreachable!("[sequence] scenes have a [physical] system");
     };
-    let (kind, m, g) = (spec.kind, *m, seq.settings.flight.g);
-    let mut displacements = Vec::new();
-    let one = |v_in: f64, carried: Option<&[f64; 4]>| -> Result<Contact, ModelError> {
-        let input = Constant(-m * g);
-        let (c, x_s) = match kind {
-            ModelKind::Shccm => contact(Bwshccm::new(params, m, v_in, input)?, carried, settings)?,
-            ModelKind::Mcm => contact(Bwmcm::new(params, m, v_in, input)?, carried, settings)?,
-        };
-        displacements.push(x_s);
-        Ok(c)
-    };
-    let list = drop_sequence(seq.start, &seq.settings, one)?;
-    Ok(list.into_iter().zip(displacements).collect())
+    let input = Constant(-m * seq.settings.flight.g);
+    match spec.kind {
+        ModelKind::Shccm => sequence_of(seq, settings, |v| Bwshccm::new(params, *m, v, input)),
+        ModelKind::Mcm => sequence_of(seq, settings, |v| Bwmcm::new(params, *m, v, input)),
+    }
 }
 
 /// The run of a `[sequence]` scene: its first contact's `e`, `t_s` and scales, the outcome of

@@ -3,7 +3,7 @@
 use crate::scene::{Scene, System, SystemSpec};
 use bw_models::input::{Constant, Input, Scaled};
 use bw_models::{
-    impact, nondimensionalize, simulate as sim, BodyMotion, Bwmcm, Bwshccm, CollisionModel, Impact,
+    impact, nondimensionalize, simulate as sim, BodyMotion, Bwmcm, Bwshccm, CollisionModel, Cor,
     ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Nondim, PhysicalParams, Sampling, Settings,
 };
 use bwc_ode::Stats;
@@ -387,7 +387,7 @@ fn scaling(spec: &SystemSpec, v0: Option<f64>) -> Result<Scaling, ModelError> {
 
 /// What [`drive`] returns: the impact, its samples, and where a settled contact came to rest.
 struct Driven {
-    impact: Impact,
+    impact: Cor,
     trajectory: Vec<Sample>,
     rest: Option<Rest>,
 }
@@ -443,7 +443,7 @@ fn drive<M: CollisionModel<N>, const N: usize>(
         }
     };
     let rest = impact.settled_at.map(|t| {
-        let y = bw_models::State::<N>::from_fn(|i, _| impact.state[i]);
+        let y = impact.state;
         Rest {
             t,
             x: model.displacement(&y),
@@ -452,7 +452,7 @@ fn drive<M: CollisionModel<N>, const N: usize>(
         }
     });
     Ok(Driven {
-        impact,
+        impact: impact.cor(),
         trajectory: rows,
         rest,
     })

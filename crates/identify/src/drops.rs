@@ -231,7 +231,7 @@ impl<'a> DropObjective<'a> {
         } else {
             0.0
         };
-        let contact = |v_in: f64, _: Option<&[f64; 4]>| {
+        let contact = |v_in: f64, _: Option<&()>| {
             let out = impact_at(map, Constant(u), v_in, &self.settings)?;
             let t_s = out.t_s.map(|t| {
                 if setup.timed_contacts {
@@ -244,7 +244,7 @@ impl<'a> DropObjective<'a> {
                 t_s,
                 v_out: out.e * v_in,
                 settled: out.settled_at.is_some(),
-                state: out.state,
+                state: (),
             })
         };
         let settings = SequenceSettings {

@@ -94,17 +94,17 @@ pub struct Private(pub(crate) ());
 
 /// What the series path made of an impact ([`crate::CollisionModel::series_impact`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum SeriesRun {
+pub enum SeriesRun<const N: usize> {
     /// The impact, finished by the series.
-    Done(Impact),
+    Done(Impact<N>),
     /// The series declined at time `t` (a stiff or sliding contact, an ill-conditioned root,
     /// more than [`MAX_SERIES_STEPS`] steps, the horizon): the Runge-Kutta path continues from
     /// the state there, adding its work to `stats`.
     HandOver {
         /// Time reached (0: nothing done).
         t: f64,
-        /// State there (the model's components first).
-        state: [f64; 4],
+        /// State there.
+        state: State<N>,
         /// Work done so far.
         stats: Stats,
         /// Series steps taken so far.
@@ -225,7 +225,7 @@ fn coarse_log2(a: f64) -> f64 {
 pub(crate) fn impact<M: Expand<N>, const N: usize>(
     model: &M,
     settings: &Settings,
-) -> Option<SeriesRun> {
+) -> Option<SeriesRun<N>> {
     path::SeriesPath::start(model, settings).map(path::SeriesPath::run)
 }
 

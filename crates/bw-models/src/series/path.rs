@@ -7,7 +7,7 @@ use super::{
     class, eval_d, reach_root, root, start_step, step_size, step_tolerance, SeriesRun, Target,
     FORCE_MARGIN, MAX_GROWTH, MAX_SERIES_STEPS, MAX_STALLED,
 };
-use crate::impact::{at_rest, pad, Impact, Settings};
+use crate::impact::{at_rest, Impact, Settings};
 use crate::{separated, State};
 use bwc_ode::Stats;
 
@@ -54,11 +54,11 @@ enum Ahead<const N: usize> {
 }
 
 /// What a phase of the walk decided.
-enum Next {
+enum Next<const N: usize> {
     /// Go on with the next step.
     Step,
     /// The impact is over, or handed over.
-    Finish(SeriesRun),
+    Finish(SeriesRun<N>),
 }
 
 impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
@@ -97,7 +97,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     }
 
     /// Steps until the impact is over or handed over.
-    pub(super) fn run(mut self) -> SeriesRun {
+    pub(super) fn run(mut self) -> SeriesRun<N> {
         loop {
             let next = match self.ended() {
                 Some(done) => Next::Finish(done),
@@ -111,17 +111,17 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     }
 
     /// The Runge-Kutta path continues from here.
-    fn hand_over(&self) -> SeriesRun {
+    fn hand_over(&self) -> SeriesRun<N> {
         SeriesRun::HandOver {
             t: self.t,
-            state: pad(&self.y),
+            state: self.y,
             stats: self.stats,
             series_steps: self.series_steps,
         }
     }
 
     /// The separation where the step starts, or a limit that hands the impact over.
-    fn ended(&mut self) -> Option<SeriesRun> {
+    fn ended(&mut self) -> Option<SeriesRun<N>> {
         let (model, settings) = (self.model, self.settings);
         let force = self
             .force_here
@@ -134,7 +134,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             return Some(SeriesRun::Done(Impact {
                 t_s: Some(self.t),
                 e: velocity.max(0.0) / model.impact_speed(),
-                state: pad(&self.y),
+                state: self.y,
                 settled_at: None,
                 stiff_from: None,
                 series_steps: self.series_steps,
@@ -150,7 +150,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
 
     /// Where a base vanishes: one step of the explicit method leaves the point; the Runge-Kutta
     /// path retakes it if it met an event.
-    fn leave_zero(&mut self) -> Next {
+    fn leave_zero(&mut self) -> Next<N> {
         self.force_here = None;
         let (model, settings) = (self.model, self.settings);
         let (t_start, y_start, stats_start) = (self.t, self.y, self.stats);
@@ -172,7 +172,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     }
 
     /// One expansion: rest, or a step to its end or to the earliest event inside it.
-    fn series_step(&mut self) -> Next {
+    fn series_step(&mut self) -> Next<N> {
         let force = self.force_here.take().expect("set by ended()");
         let (model, settings) = (self.model, self.settings);
         model.expand(&self.y, f64::from(self.rate_class), self.u, &mut self.jet);
@@ -182,7 +182,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             return Next::Finish(SeriesRun::Done(Impact {
                 t_s: None,
                 e: 0.0,
-                state: pad(&self.y),
+                state: self.y,
                 settled_at: Some(self.t),
                 stiff_from: None,
                 series_steps: self.series_steps,
@@ -301,7 +301,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     /// series converge slowest there), across a sign change of the rate, or onto the force's
     /// root (by the explicit method near a zero of a base, where the force can vanish with
     /// it).
-    fn apply_event(&mut self, s: f64, event: Event) -> Next {
+    fn apply_event(&mut self, s: f64, event: Event) -> Next<N> {
         let (model, settings) = (self.model, self.settings);
         if self.t + s > self.t {
             self.stalled = 0;

@@ -124,7 +124,7 @@ fn a_separation_where_the_force_is_tiny_is_found_at_its_root() {
     .unwrap();
     let [rk, series] = both().map(|s| impact(&model, &s).unwrap());
     for out in [&rk, &series] {
-        let [x, z, v, _] = out.state;
+        let (x, z, v) = (out.state[0], out.state[1], out.state[2]);
         // The bracket vanishes: σ V = κ + (1-κ) |Z/X|^p.
         let bracket = kappa + (1.0 - kappa) * (z / x).abs().powf(p) - sigma * v;
         assert!(bracket.abs() < 1e-9 && x < -0.01, "{out:?}: {bracket}");

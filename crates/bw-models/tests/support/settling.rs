@@ -26,7 +26,7 @@ fn constant_push_settles_at_the_force_balance() {
     let t = out.settled_at.expect("settled");
     assert!(out.t_s.is_none() && out.e == 0.0);
     assert!(t < 200.0, "settled only at {t}");
-    let [x, z, v, _] = out.state;
+    let (x, z, v) = (out.state[0], out.state[1], out.state[2]);
     assert!(v.abs() < 1e-10, "V = {v}");
     let force = -0.6 * x.abs().powf(1.5).copysign(x) - 0.4 * z.abs().powf(1.5).copysign(z);
     assert!((force - 2.0).abs() < 1e-9, "F = {force}");

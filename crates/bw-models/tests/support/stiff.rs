@@ -217,15 +217,17 @@ fn rosenbrock_on_si_models_with_finite_difference_jacobians() {
                 impact(
                     &Bwshccm::new(&params, BASEBALL_MASS, v0, Zero).unwrap(),
                     &rodas,
-                ),
-                impact(&Ndbwshccm::new(&ndp, Zero).unwrap(), &Settings::default()),
+                )
+                .map(|i| i.cor()),
+                impact(&Ndbwshccm::new(&ndp, Zero).unwrap(), &Settings::default()).map(|i| i.cor()),
             ),
             ModelKind::Mcm => (
                 impact(
                     &Bwmcm::new(&params, BASEBALL_MASS, v0, Zero).unwrap(),
                     &rodas,
-                ),
-                impact(&Ndbwmcm::new(&ndp, Zero).unwrap(), &Settings::default()),
+                )
+                .map(|i| i.cor()),
+                impact(&Ndbwmcm::new(&ndp, Zero).unwrap(), &Settings::default()).map(|i| i.cor()),
             ),
         };
         let (si, nd) = (si.unwrap(), nd.unwrap());
