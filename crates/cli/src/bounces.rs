@@ -3,28 +3,38 @@
 
 use crate::scene::{SequenceSpec, System, SystemSpec};
 use crate::simulate::{Outcome, Run};
-use bw_models::input::Constant;
+use bw_models::input::{Constant, Scaled};
 use bw_models::sequence::{drop_sequence, Bounce, BounceEnd, Contact, Resumed};
 use bw_models::{
-    impact, nondimensionalize, Bwmcm, Bwshccm, CollisionModel, ModelError, ModelKind,
-    PhysicalParams, Settings, State,
+    impact, Bwmcm, Bwshccm, CollisionModel, ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Settings,
+    State,
 };
 
+/// How a contact's model units map to SI at an impact speed: seconds per time unit and metres
+/// per displacement unit (1 and 1 for `[physical]` models; `T_c` and `X_c = v0 T_c` for
+/// `[base]` models at that speed).
+type Units<'a> = dyn Fn(f64) -> (f64, f64) + 'a;
+
 /// One contact of `model` from its unloaded state, or from `carried` (the state of the last
-/// separation, the velocity set to the impact's), and the displacement (m) at separation.
+/// separation at the speed it had, its displacements rescaled to this contact's units and the
+/// velocity set to the impact's); the contact in SI units (s, m/s) and the displacement (m)
+/// at separation.
 fn contact<M: CollisionModel<N>, const N: usize>(
     model: M,
-    carried: Option<&State<N>>,
+    v_in: f64,
+    carried: Option<&(State<N>, f64)>,
     settings: &Settings,
-) -> Result<(Contact<State<N>>, f64), ModelError> {
-    let v_in = model.impact_speed();
+    units: &Units<'_>,
+) -> Result<(Contact<(State<N>, f64)>, f64), ModelError> {
+    let (to_s, to_m) = units(v_in);
     let (out, x_s) = match carried {
         None => {
             let out = impact(&model, settings)?;
             (out, model.displacement(&out.state))
         }
-        Some(s) => {
-            let mut start = *s;
+        Some((s, v_old)) => {
+            let ratio = units(*v_old).1 / to_m;
+            let mut start = *s * ratio;
             start[N - 1] = model.initial_state()[N - 1];
             let resumed = Resumed { model, start };
             let out = impact(&resumed, settings)?;
@@ -32,26 +42,27 @@ fn contact<M: CollisionModel<N>, const N: usize>(
         }
     };
     let contact = Contact {
-        t_s: out.t_s,
+        t_s: out.t_s.map(|t| t * to_s),
         v_out: out.e * v_in,
         settled: out.settled_at.is_some(),
-        state: out.state,
+        state: (out.state, v_in),
     };
-    Ok((contact, x_s))
+    Ok((contact, x_s * to_m))
 }
 
 /// A bounce and the displacement (m) at its separation.
 pub type Bounced = (Bounce, f64);
 
-/// The sequence of contacts made by `make(v_in)`.
+/// The sequence of contacts made by `make(v_in)` in `units`.
 fn sequence_of<M: CollisionModel<N>, const N: usize>(
     seq: &SequenceSpec,
     settings: &Settings,
+    units: &Units<'_>,
     make: impl Fn(f64) -> Result<M, ModelError>,
 ) -> Result<Vec<Bounced>, ModelError> {
     let mut displacements = Vec::new();
-    let one = |v_in: f64, carried: Option<&State<N>>| {
-        let (c, x_s) = contact(make(v_in)?, carried, settings)?;
+    let one = |v_in: f64, carried: Option<&(State<N>, f64)>| {
+        let (c, x_s) = contact(make(v_in)?, v_in, carried, settings, units)?;
         displacements.push(x_s);
         Ok(c)
     };
@@ -59,7 +70,8 @@ fn sequence_of<M: CollisionModel<N>, const N: usize>(
     Ok(list.into_iter().zip(displacements).collect())
 }
 
-/// The sequence of `spec` (a `[physical]` system; the scene's parsing guarantees it).
+/// The sequence of `spec` (a `[physical]` system, or `[base]` with `[sequence].m`; the scene's
+/// parsing guarantees it).
 ///
 /// # Errors
 /// The first failed contact's [`ModelError`].
@@ -68,13 +80,47 @@ pub fn bounces(
     seq: &SequenceSpec,
     settings: &Settings,
 ) -> Result<Vec<Bounced>, ModelError> {
-    let System::Physical { params, m, .. } = &spec.system else {
-        unreachable!("[sequence] scenes have a [physical] system");
-    };
-    let input = Constant(-m * seq.settings.flight.g);
-    match spec.kind {
-        ModelKind::Shccm => sequence_of(seq, settings, |v| Bwshccm::new(params, *m, v, input)),
-        ModelKind::Mcm => sequence_of(seq, settings, |v| Bwmcm::new(params, *m, v, input)),
+    let g = seq.settings.flight.g;
+    match &spec.system {
+        System::Physical { params, m, .. } => {
+            let input = Constant(-m * g);
+            let si = |_: f64| (1.0, 1.0);
+            match spec.kind {
+                ModelKind::Shccm => {
+                    sequence_of(seq, settings, &si, |v| Bwshccm::new(params, *m, v, input))
+                }
+                ModelKind::Mcm => {
+                    sequence_of(seq, settings, &si, |v| Bwmcm::new(params, *m, v, input))
+                }
+            }
+        }
+        System::Base { map, .. } => {
+            let m = seq.m.expect("[base] sequences have a mass");
+            let units = |v: f64| {
+                let t_c = map.time_scale(v);
+                (t_c, v * t_c)
+            };
+            let input = |v: f64| -> Result<_, ModelError> {
+                let (nd, s) = map.at(v)?;
+                let u = Scaled {
+                    inner: Constant(-m * g),
+                    factor: s.factor,
+                    time_scale: s.time_scale,
+                };
+                Ok((nd, u))
+            };
+            match spec.kind {
+                ModelKind::Shccm => sequence_of(seq, settings, &units, |v| {
+                    let (nd, u) = input(v)?;
+                    Ndbwshccm::new(&nd, u)
+                }),
+                ModelKind::Mcm => sequence_of(seq, settings, &units, |v| {
+                    let (nd, u) = input(v)?;
+                    Ndbwmcm::new(&nd, u)
+                }),
+            }
+        }
+        _ => unreachable!("[sequence] scenes have a [physical] or [base] system"),
     }
 }
 
@@ -94,8 +140,9 @@ pub fn run(spec: &SystemSpec, seq: &SequenceSpec, settings: &Settings) -> Run {
                 BounceEnd::Settled => Outcome::Settled,
                 BounceEnd::Horizon => Outcome::Horizon,
             };
-            if let System::Physical { params, m, .. } = &spec.system {
-                scales(&mut run, params, *m, first.v_in);
+            if let Ok(s) = crate::simulate::scaling(spec, Some(first.v_in)) {
+                run.t_c = s.t_c;
+                run.nondimensional = Some(s.nondimensional);
             }
             run.bounces = list;
         }
@@ -105,12 +152,4 @@ pub fn run(spec: &SystemSpec, seq: &SequenceSpec, settings: &Settings) -> Run {
         }
     }
     run
-}
-
-/// `T_c` and the nondimensional parameters of the first contact.
-fn scales(run: &mut Run, params: &PhysicalParams, m: f64, v0: f64) {
-    if let Ok((nd, s)) = nondimensionalize(params, m, v0) {
-        run.t_c = Some(s.t_c);
-        run.nondimensional = Some(*nd.get());
-    }
 }

@@ -235,9 +235,9 @@ fn time_unit(spec: &SystemSpec) -> &'static str {
 
 /// What the scales of a run give its record: `T_c` (s) where known and the nondimensional
 /// parameters integrated.
-struct Scaling {
-    t_c: Option<f64>,
-    nondimensional: Nondim,
+pub(crate) struct Scaling {
+    pub(crate) t_c: Option<f64>,
+    pub(crate) nondimensional: Nondim,
 }
 
 fn run_one(
@@ -356,7 +356,7 @@ fn run_one(
 
 /// `T_c` (where the run has a time scale in s) and the nondimensional parameters of a run:
 /// Table 1 for SI systems, the base map at `v0` for `[base]`.
-fn scaling(spec: &SystemSpec, v0: Option<f64>) -> Result<Scaling, ModelError> {
+pub(crate) fn scaling(spec: &SystemSpec, v0: Option<f64>) -> Result<Scaling, ModelError> {
     let v0 = v0.unwrap_or(1.0);
     let table_1 = |params: &PhysicalParams, m: f64, v0: f64| {
         let (nd, scales) = nondimensionalize(params, m, v0)?;

@@ -1271,3 +1271,53 @@ fn drop_tests_are_fitted_from_their_intervals() {
         "{err}"
     );
 }
+
+#[test]
+fn a_base_sequence_is_the_physical_one_in_other_units() {
+    // The Table 4 law as base parameters of the 0.145 kg ball: the same bounces, reset and
+    // carry (whose carried state is rescaled between the contacts' speeds).
+    let law = bw_models::Physical {
+        k: 117080063.0,
+        c: 5854003.0,
+        n: 1.1,
+        p: 1.7,
+        alpha: 0.1,
+        beta: 981.05,
+        gamma: -961.4,
+        a: 0.925,
+    };
+    let params = bw_models::PhysicalParams::new(bw_models::ModelKind::Shccm, law).unwrap();
+    let b = bw_models::base_params(&params, 0.145).unwrap();
+    let dir = scratch("base-sequence");
+    for policy in ["reset", "carry"] {
+        let physical = drop_scene(&format!("bounces = 3\npolicy = \"{policy}\""));
+        let base = format!(
+            "model = \"shccm\"\n[sequence]\nh0 = 1.0\nbounces = 3\npolicy = \"{policy}\"\nm = 0.145\n[base]\nB_b = {:e}\nGamma_b = {:e}\nkappa = {:e}\nsigma_b = {:e}\nn = {:e}\np = {:e}\nU_b = {:e}\nT_b = {:e}\n",
+            b.b_b, b.gamma_b, b.kappa, b.sigma_b, b.n, b.p, b.u_b, b.t_b
+        );
+        let run = |name: &str, text: &str| {
+            let scene = dir.join(name);
+            std::fs::write(&scene, text).unwrap();
+            json(&simulate(&["run", scene.to_str().unwrap(), "--json"]))["runs"][0].clone()
+        };
+        let (si, nd) = (run("si.toml", &physical), run("nd.toml", &base));
+        for k in 0..3 {
+            for key in ["t_contact", "v_out", "t_s", "apex", "x_s"] {
+                let (a, c) = (
+                    si["bounces"][k][key].as_f64().unwrap(),
+                    nd["bounces"][k][key].as_f64().unwrap(),
+                );
+                assert!(
+                    (a - c).abs() <= 1e-7 * a.abs(),
+                    "{policy} bounce {k} {key}: {a} vs {c}"
+                );
+            }
+        }
+    }
+    rejects(
+        "base-seq-mass",
+        "model = \"shccm\"\n[sequence]\nh0 = 1.0\n[base]\nB_b = 1\nGamma_b = -1\nkappa = 0.5\nsigma_b = 0.1\nn = 1.5\np = 1.5\nU_b = 1\nT_b = 1\n",
+        Some(2),
+        &["[sequence].m", "mass"],
+    );
+}

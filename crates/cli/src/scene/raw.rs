@@ -100,6 +100,7 @@ pub struct RawSequence {
     pub bounces: Option<Spanned<i64>>,
     pub drag: Option<Num>,
     pub policy: Option<Spanned<String>>,
+    pub m: Option<Num>,
 }
 
 /// `v0 = { from = 0.1, to = 6.0, count = 40, spacing = "log" }`.

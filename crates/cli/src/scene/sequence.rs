@@ -1,5 +1,6 @@
 //! `[sequence]`: a body dropped from `h0` (or arriving at `v0`) bounces on a fixed surface under
-//! gravity, each contact the scene's `[physical]` model with input `u = -m g`.
+//! gravity, each contact the scene's `[physical]` (or `[base]`, with `[sequence].m`) model with
+//! input `u = -m g`.
 
 use super::raw::RawScene;
 use crate::tables::{span, Ctx};
@@ -13,6 +14,8 @@ pub struct SequenceSpec {
     pub start: Start,
     /// Gravity, drag, bounces and policy.
     pub settings: SequenceSettings,
+    /// The body's mass (kg) for `[base]` systems (`[physical]` has its own).
+    pub m: Option<f64>,
 }
 
 /// Most bounces of one sequence.
@@ -39,11 +42,7 @@ pub(super) fn sequence(ctx: &Ctx, raw: &RawScene) -> Result<Option<SequenceSpec>
         "[nondimensional]",
         "not with [sequence], whose flights need SI units: describe the contact with [physical]",
     )?;
-    conflict(
-        &span(&raw.base),
-        "[base]",
-        "not with [sequence]: describe the contact with [physical] (SI units and the mass)",
-    )?;
+    let m = base_mass(ctx, raw, r, &t)?;
     conflict(
         &raw.v0.as_ref().map(|v| v.span()),
         "v0",
@@ -135,5 +134,50 @@ pub(super) fn sequence(ctx: &Ctx, raw: &RawScene) -> Result<Option<SequenceSpec>
             bounces,
             policy,
         },
+        m,
     }))
+}
+
+/// `[sequence].m` (kg): required with `[base]` (whose contacts feel gravity through `U_b` and
+/// last `t_s T_c` seconds, so `U_b` and `T_b` are required too), not used with `[physical]`.
+fn base_mass(
+    ctx: &Ctx,
+    raw: &RawScene,
+    r: &super::raw::RawSequence,
+    t: &std::ops::Range<usize>,
+) -> Result<Option<f64>, CliError> {
+    use super::raw::SeqOrMap;
+    let Some(base) = &raw.base else {
+        if let Some(m) = &r.m {
+            return Err(ctx.invalid(
+                &m.span(),
+                "[sequence].m",
+                "not with [physical], which has its own m",
+            ));
+        }
+        return Ok(None);
+    };
+    let entries: Vec<_> = match base.get_ref() {
+        SeqOrMap::Map(b) => vec![(b, base.span())],
+        SeqOrMap::Seq(list) => list.iter().map(|b| (b.get_ref(), b.span())).collect(),
+    };
+    for (b, s) in entries {
+        for (v, key) in [(&b.u_b, "[base].U_b"), (&b.t_b, "[base].T_b")] {
+            if v.is_none() {
+                return Err(ctx.invalid(&s, key, "missing: in a [sequence] each contact feels gravity -m g (scaled by U_b) and lasts T_d T_b v^(-(p-1)/(p+1)) s"));
+            }
+        }
+    }
+    let Some(m) = &r.m else {
+        return Err(ctx.invalid(t, "[sequence].m", "missing: the body's mass (kg), for the gravity -m g of each contact of a [base] system"));
+    };
+    let value = ctx.num(m, "[sequence].m")?;
+    if value <= 0.0 {
+        return Err(ctx.invalid(
+            &m.span(),
+            "[sequence].m",
+            format!("{value} is not admissible: m > 0 (kg)"),
+        ));
+    }
+    Ok(Some(value))
 }
