@@ -1,15 +1,11 @@
 //! `bwc-identify`: identify base parameters of the Bouc-Wen collision models from data.
 
 use bwc_cli::config::Config;
-use bwc_cli::identify::{
-    eval_fit, eval_loop_fit, loop_summary, render, render_loops, run_fit, run_loop_fit, summary,
-    units, FitReport, LoopReport,
-};
+use bwc_cli::identify::{render, render_loops, summary, FitReport};
 use bwc_cli::outdir::{self, exit};
 use bwc_cli::CliError;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -146,69 +142,23 @@ fn run(
     if let Some(dir) = out {
         outdir::prepare(dir)?;
     }
-    let work = || -> Result<(Vec<FitReport>, Vec<LoopReport>), CliError> {
-        match seed {
-            None => Ok((
-                config
-                    .fits
-                    .iter()
-                    .map(|f| eval_fit(path, f))
-                    .collect::<Result<_, _>>()?,
-                config
-                    .loop_fits
-                    .iter()
-                    .map(|f| eval_loop_fit(path, f))
-                    .collect::<Result<_, _>>()?,
-            )),
-            Some(seed) => {
-                let total: u64 = config
-                    .fits
-                    .iter()
-                    .map(|f| {
-                        f.budget.evaluations(f.space.dim()) * (1 + f.pareto.unwrap_or(0) as u64)
-                    })
-                    .sum::<u64>()
-                    + config
-                        .loop_fits
-                        .iter()
-                        .map(|f| f.budget.evaluations(f.space.free_names().len()))
-                        .sum::<u64>();
-                let target = if json {
-                    ProgressDrawTarget::hidden()
-                } else {
-                    ProgressDrawTarget::stderr()
-                };
-                let bar = ProgressBar::with_draw_target(Some(total), target);
-                bar.set_style(
-                    ProgressStyle::with_template(
-                        "{msg:24} {bar:32} {pos}/{len} evaluations, eta {eta}",
-                    )
-                    .expect("valid template"),
-                );
-                let tick = || bar.inc(1);
-                // The fits are independent: run them side by side (each is deterministic, so
-                // the results do not depend on the thread count); the first failure in config
-                // order is reported.
-                let count = config.fits.len() + config.loop_fits.len();
-                bar.set_message(format!("{count} fit{}", if count == 1 { "" } else { "s" }));
-                let reports: Vec<_> = config
-                    .fits
-                    .par_iter()
-                    .map(|f| run_fit(path, f, seed, &tick))
-                    .collect();
-                let loop_reports: Vec<_> = config
-                    .loop_fits
-                    .par_iter()
-                    .map(|f| run_loop_fit(path, f, seed, &tick))
-                    .collect();
-                bar.finish_and_clear();
-                let reports = reports.into_iter().collect::<Result<Vec<_>, _>>()?;
-                let loop_reports = loop_reports.into_iter().collect::<Result<Vec<_>, _>>()?;
-                Ok((reports, loop_reports))
-            }
-        }
+    let total = seed.map_or(0, |_| bwc_cli::identify::planned_evaluations(&config));
+    let target = if json || seed.is_none() {
+        ProgressDrawTarget::hidden()
+    } else {
+        ProgressDrawTarget::stderr()
     };
+    let bar = ProgressBar::with_draw_target(Some(total), target);
+    bar.set_style(
+        ProgressStyle::with_template("{msg:24} {bar:32} {pos}/{len} evaluations, eta {eta}")
+            .expect("valid template"),
+    );
+    let count = config.fits.len() + config.loop_fits.len();
+    bar.set_message(format!("{count} fit{}", if count == 1 { "" } else { "s" }));
+    let tick = || bar.inc(1);
+    let work = || bwc_cli::identify::fit_all(path, &config, seed, &tick);
     let (reports, loop_reports) = bwc_cli::with_threads(threads, work)?;
+    bar.finish_and_clear();
     for w in reports.iter().flat_map(|r| &r.warnings) {
         eprintln!("bwc-identify: warning: {w}");
     }
@@ -227,10 +177,7 @@ fn run(
             );
         }
     }
-    let mut summary = outdir::provenance("bwc-identify");
-    summary["fits"] = combined(&reports, &loop_reports)["fits"].take();
-    summary["units"] = units();
-    summary["config"] = config.describe();
+    let summary = bwc_cli::identify::summary_of(&config, &reports, &loop_reports);
     // The results are printed before the files are written: a failed write loses nothing.
     if json {
         bwc_cli::out!("{summary}");
@@ -410,13 +357,4 @@ fn predictions_summary(r: &FitReport) -> Option<String> {
     v["fits"][0]["predictions"]["e"]["summary"]
         .as_str()
         .map(String::from)
-}
-
-/// `{"fits": [...]}` with the base-parameter fits first, then the loop fits.
-fn combined(reports: &[FitReport], loops: &[LoopReport]) -> serde_json::Value {
-    let mut v = summary(reports);
-    if let Some(fits) = v["fits"].as_array_mut() {
-        fits.extend(loop_summary(loops));
-    }
-    v
 }

@@ -421,3 +421,80 @@ impl<P: bwc_identify::CubeProblem> bwc_identify::CubeProblem for Counted<'_, P> 
         self.inner.evaluations()
     }
 }
+
+/// Evaluations the searches of `config` plan (for a progress bar; the converging search may
+/// stop earlier or take more starts).
+pub fn planned_evaluations(config: &crate::config::Config) -> u64 {
+    let fits: u64 = config
+        .fits
+        .iter()
+        .map(|f| f.budget.evaluations(f.space.dim()) * (1 + f.pareto.unwrap_or(0) as u64))
+        .sum();
+    let loops: u64 = config
+        .loop_fits
+        .iter()
+        .map(|f| f.budget.evaluations(f.space.free_names().len()))
+        .sum();
+    fits + loops
+}
+
+/// Every fit of `config` (`bwc-identify run` with `seed`; `eval` at the `[fit.params]` without),
+/// side by side on the current rayon pool, `tick` called per cost evaluation. Each fit is
+/// deterministic, so the results do not depend on the thread count.
+///
+/// # Errors
+/// The first failure in config order.
+pub fn fit_all(
+    path: &Path,
+    config: &crate::config::Config,
+    seed: Option<u64>,
+    tick: &(dyn Fn() + Sync),
+) -> Result<(Vec<FitReport>, Vec<LoopReport>), CliError> {
+    use rayon::prelude::*;
+    let Some(seed) = seed else {
+        let fits = config
+            .fits
+            .iter()
+            .map(|f| eval_fit(path, f))
+            .collect::<Result<_, _>>()?;
+        let loops = config
+            .loop_fits
+            .iter()
+            .map(|f| eval_loop_fit(path, f))
+            .collect::<Result<_, _>>()?;
+        return Ok((fits, loops));
+    };
+    let reports: Vec<_> = config
+        .fits
+        .par_iter()
+        .map(|f| run_fit(path, f, seed, tick))
+        .collect();
+    let loops: Vec<_> = config
+        .loop_fits
+        .par_iter()
+        .map(|f| run_loop_fit(path, f, seed, tick))
+        .collect();
+    Ok((
+        reports.into_iter().collect::<Result<_, _>>()?,
+        loops.into_iter().collect::<Result<_, _>>()?,
+    ))
+}
+
+/// The object `bwc-identify run --json` prints (and `summary.json` holds, without `"files"`):
+/// the fits (base-parameter fits first, then loop fits), the units, the config as parsed and
+/// the provenance.
+pub fn summary_of(
+    config: &crate::config::Config,
+    reports: &[FitReport],
+    loops: &[LoopReport],
+) -> serde_json::Value {
+    let mut v = crate::outdir::provenance("bwc-identify");
+    let mut fits = summary(reports);
+    if let Some(list) = fits["fits"].as_array_mut() {
+        list.extend(loop_summary(loops));
+    }
+    v["fits"] = fits["fits"].take();
+    v["units"] = units();
+    v["config"] = config.describe();
+    v
+}
