@@ -1,0 +1,160 @@
+//! # bwc-py: bwc from Python
+//!
+//! The native part of the Python package `bwc` (module `bwc._native`): CoR sweeps returned as
+//! numpy arrays, scenes and identification configs run exactly as `bwc-simulate` and
+//! `bwc-identify` run them (the same parsing, the same messages, the same JSON), with the GIL
+//! released while Rust works in parallel. Descriptions arrive as JSON text of a scene or
+//! config (the Python side builds it from dicts) and are parsed as the TOML files would be.
+//!
+//! Errors reach Python once, as `bwc.BwcError` (a `ValueError`) with the CLI's message.
+#![deny(missing_docs)]
+
+use bwc_cli::config::Config;
+use bwc_cli::scene::Scene;
+use bwc_cli::simulate::{self, Outcome};
+use bwc_cli::CliError;
+use numpy::{IntoPyArray, PyArray1};
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::{Path, PathBuf};
+
+create_exception!(
+    _native,
+    BwcError,
+    PyValueError,
+    "A bad description or a failed run."
+);
+
+/// The CLI's error as a `BwcError` (several mistakes one per line, as the CLI prints them).
+fn error(e: CliError) -> PyErr {
+    let text = match &e {
+        CliError::Many(all) => all
+            .iter()
+            .map(ToString::to_string)
+            .collect::<Vec<_>>()
+            .join("\n"),
+        _ => e.to_string(),
+    };
+    BwcError::new_err(text)
+}
+
+/// A JSON object (text) as the TOML text a file would hold.
+fn toml_text(json: &str, what: &str) -> PyResult<String> {
+    let value: serde_json::Value = serde_json::from_str(json)
+        .map_err(|e| BwcError::new_err(format!("{what}: not a JSON-like dict: {e}")))?;
+    toml::to_string(&value).map_err(|e| BwcError::new_err(format!("{what}: {e}")))
+}
+
+/// A scene from a path or from the JSON text of a dict shaped like a scene file.
+fn scene_of(path: Option<PathBuf>, json: Option<&str>) -> PyResult<Scene> {
+    match (path, json) {
+        (Some(p), _) => Scene::load(&p).map_err(error),
+        (None, Some(j)) => {
+            Scene::parse(Path::new("<scene>"), &toml_text(j, "<scene>")?).map_err(error)
+        }
+        (None, None) => Err(BwcError::new_err("a scene needs a path or a dict")),
+    }
+}
+
+/// `bwc.cor`: one impact per speed (or the one nondimensional impact) of the scene given as
+/// JSON text; a dict of numpy arrays `e`, `t_s`, `t_d` (NaN where absent), `separated`,
+/// `rhs_evals` and a list `outcome`.
+#[pyfunction]
+#[pyo3(signature = (scene_json, threads=None))]
+fn cor<'py>(
+    py: Python<'py>,
+    scene_json: &str,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let scene = scene_of(None, Some(scene_json))?;
+    let runs = py
+        .allow_threads(|| bwc_cli::with_threads(threads, || Ok(simulate::run(&scene, None))))
+        .map_err(error)?;
+    if let Some(failed) = runs.iter().find(|r| r.outcome == Outcome::Failed) {
+        return Err(BwcError::new_err(format!(
+            "<scene>: run {}: {}",
+            failed.label(),
+            failed.error.as_deref().unwrap_or("failed")
+        )));
+    }
+    let column = |f: &dyn Fn(&simulate::Run) -> f64| runs.iter().map(f).collect::<Vec<f64>>();
+    let out = PyDict::new(py);
+    out.set_item("e", column(&|r| r.e).into_pyarray(py))?;
+    out.set_item(
+        "t_s",
+        column(&|r| r.t_s.unwrap_or(f64::NAN)).into_pyarray(py),
+    )?;
+    out.set_item(
+        "t_d",
+        column(&|r| r.t_d.unwrap_or(f64::NAN)).into_pyarray(py),
+    )?;
+    let separated: Vec<bool> = runs
+        .iter()
+        .map(|r| r.outcome == Outcome::Separated)
+        .collect();
+    out.set_item("separated", PyArray1::from_vec(py, separated))?;
+    let evals: Vec<u64> = runs.iter().map(|r| r.stats.rhs_evals).collect();
+    out.set_item("rhs_evals", evals.into_pyarray(py))?;
+    let outcome: Vec<&str> = runs.iter().map(|r| r.outcome.name()).collect();
+    out.set_item("outcome", outcome)?;
+    Ok(out)
+}
+
+/// `bwc.simulate`: the JSON text `bwc-simulate run --json` prints for the scene.
+#[pyfunction]
+#[pyo3(signature = (path=None, scene_json=None, threads=None))]
+fn simulate_json(
+    py: Python<'_>,
+    path: Option<PathBuf>,
+    scene_json: Option<&str>,
+    threads: Option<usize>,
+) -> PyResult<String> {
+    let scene = scene_of(path, scene_json)?;
+    let runs = py
+        .allow_threads(|| bwc_cli::with_threads(threads, || Ok(simulate::run(&scene, None))))
+        .map_err(error)?;
+    let summary = bwc_cli::output::Summary::new(&runs, scene.sequence.is_some());
+    Ok(summary.with_provenance(&scene, &runs).to_string())
+}
+
+/// `bwc.identify`: the JSON text `bwc-identify run --json` prints for the config (with
+/// `seed`; without, the evaluation at each fit's `[fit.params]`, as `bwc-identify eval`).
+#[pyfunction]
+#[pyo3(signature = (path=None, config_json=None, seed=None, threads=None))]
+fn identify_json(
+    py: Python<'_>,
+    path: Option<PathBuf>,
+    config_json: Option<&str>,
+    seed: Option<u64>,
+    threads: Option<usize>,
+) -> PyResult<String> {
+    let (file, config) = match (path, config_json) {
+        (Some(p), _) => (p.clone(), Config::load(&p).map_err(error)?),
+        (None, Some(j)) => {
+            let file = PathBuf::from("<config>");
+            let config = Config::parse(&file, &toml_text(j, "<config>")?).map_err(error)?;
+            (file, config)
+        }
+        (None, None) => return Err(BwcError::new_err("a config needs a path or a dict")),
+    };
+    let (reports, loops) = py
+        .allow_threads(|| {
+            bwc_cli::with_threads(threads, || {
+                bwc_cli::identify::fit_all(&file, &config, seed, &|| {})
+            })
+        })
+        .map_err(error)?;
+    Ok(bwc_cli::identify::summary_of(&config, &reports, &loops).to_string())
+}
+
+/// The native module `bwc._native`.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("BwcError", m.py().get_type::<BwcError>())?;
+    m.add_function(wrap_pyfunction!(cor, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate_json, m)?)?;
+    m.add_function(wrap_pyfunction!(identify_json, m)?)?;
+    Ok(())
+}

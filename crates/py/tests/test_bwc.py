@@ -1,0 +1,125 @@
+"""The Python package against the command-line tools' JSON and against independent SciPy
+implementations of the nondimensional models (closed forms where they exist)."""
+
+import json
+import math
+import os
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+from scipy.special import beta as beta_fn
+
+import bwc
+
+ROOT = pathlib.Path(__file__).resolve().parents[3]
+FIXTURES = ROOT / "fixtures"
+BIN = pathlib.Path(os.environ.get("BWC_BIN_DIR", ROOT / "target" / "debug"))
+
+
+def cli(tool, *args):
+    """The one JSON object a command-line tool prints (without its command line)."""
+    exe = BIN / tool
+    assert exe.exists(), f"{exe} missing: build the workspace first (cargo test) or set BWC_BIN_DIR"
+    out = subprocess.run([str(exe), *args], check=True, capture_output=True, text=True)
+    value = json.loads(out.stdout)
+    value.pop("command")
+    return value
+
+
+def hunt_crossley_e(sigma):
+    """e is the root in (0, 1) of sigma - ln(1 + sigma) = -sigma e - ln(1 - sigma e)."""
+    g = lambda e: sigma - math.log1p(sigma) + sigma * e + math.log1p(-sigma * e)
+    return brentq(g, 1e-12, 1 - 1e-12, xtol=1e-15)
+
+
+def ndbwshccm_e(B, Gamma, kappa, sigma, n, p):
+    """An independent NDBWSHCCM: X' = V, Z' = V - B|Z|^(n-1) Z |V| - Gamma |Z|^n V,
+    V' = F = -kappa |X|^(p-1) X - (1-kappa) |Z|^(p-1) Z - sigma |X|^p V, from (0, 0, -1) to the
+    first instant after contact with F <= 0 <= V (SciPy's DOP853 with events)."""
+
+    def force(y):
+        x, z, v = y
+        return -kappa * abs(x) ** (p - 1) * x - (1 - kappa) * abs(z) ** (p - 1) * z - sigma * abs(x) ** p * v
+
+    def rhs(_t, y):
+        x, z, v = y
+        zdot = v - B * abs(z) ** (n - 1) * z * abs(v) - Gamma * abs(z) ** n * v
+        return [v, zdot, force(y)]
+
+    # After the maximum compression (v = 0) the force decreases to zero while v >= 0.
+    def released(_t, y):
+        return force(y) if y[2] > 0 else 1.0
+
+    released.terminal = True
+    released.direction = -1
+    sol = solve_ivp(rhs, (0, 50), [0.0, 0.0, -1.0], method="DOP853", rtol=1e-12, atol=1e-14, events=released)
+    return sol.y_events[0][0][2]
+
+
+def test_cor_meets_the_closed_forms():
+    for sigma in (0.05, 0.5, 0.9):
+        out = bwc.cor("shccm", {"B": 0, "Gamma": 0, "kappa": 0.3, "sigma": sigma, "n": 1.5, "p": 1.5})
+        assert out["separated"][0] and out["outcome"] == ["separated"]
+        assert abs(out["e"][0] - hunt_crossley_e(sigma)) < 1e-10
+    # Elastic limit: e = 1, T_s = 2/(p+1) s_max B(1/(p+1), 1/2), s_max = ((p+1)/2)^(1/(p+1)).
+    for p in (1.0, 1.5, 2.5):
+        out = bwc.cor("mcm", {"B": 0, "Gamma": 0, "kappa": 0.6, "sigma": 1e-17, "n": 2, "p": p})
+        s_max = ((p + 1) / 2) ** (1 / (p + 1))
+        t_s = 2 / (p + 1) * s_max * beta_fn(1 / (p + 1), 0.5)
+        assert abs(out["e"][0] - 1) < 1e-10 and abs(out["t_s"][0] - t_s) < 1e-9 * t_s
+
+
+def test_cor_matches_an_independent_scipy_model():
+    rng = np.random.default_rng(7)
+    for _ in range(6):
+        B = rng.uniform(0, 3)
+        q = dict(B=B, Gamma=rng.uniform(-1, 1) * B, kappa=rng.uniform(0.1, 0.9), sigma=rng.uniform(0, 0.5),
+                 n=rng.uniform(1, 3), p=rng.uniform(1, 3))
+        out = bwc.cor("shccm", q)
+        assert abs(out["e"][0] - ndbwshccm_e(**q)) < 1e-8, q
+
+
+CROSS = {"m": 0.145, "k": 117080063.0, "c": 5854003.0, "n": 1.1, "p": 1.7, "alpha": 0.1, "beta": 981.05,
+         "gamma": -961.4, "A": 0.925}
+
+
+def test_cor_equals_the_simulate_tool():
+    speeds = np.linspace(1.0, 5.0, 9)
+    out = bwc.cor("shccm", CROSS, speeds)
+    scene = {"model": "shccm", "v0": speeds.tolist(), "physical": CROSS}
+    runs = bwc.simulate(scene)["runs"]
+    assert [r["e"] for r in runs] == out["e"].tolist()
+    assert [r["rhs_evals"] for r in runs] == out["rhs_evals"].tolist()
+    # And the command-line tool on the fixture, key for key.
+    for name in ("kharaz_curves.toml", "two_balls_mcm.toml"):
+        mine = bwc.simulate(FIXTURES / name)
+        mine.pop("command")
+        theirs = cli("bwc-simulate", "run", str(FIXTURES / name), "--json")
+        assert mine["runs"] == theirs["runs"] and mine["units"] == theirs["units"]
+
+
+def test_identify_equals_the_identify_tool():
+    config = FIXTURES / "kharaz.toml"
+    mine = bwc.identify(config, seed=3)
+    theirs = cli("bwc-identify", "run", str(config), "--json", "--seed", "3")
+    mine.pop("command")
+    for a, b in zip(mine["fits"], theirs["fits"]):
+        a.pop("wall_s"), b.pop("wall_s")
+        assert a == b
+
+
+def test_bad_input_raises_bwc_error_with_the_tools_message():
+    with pytest.raises(bwc.BwcError, match=r"`\[nondimensional\]\.kappa`: 1\.5 is not admissible"):
+        bwc.cor("shccm", {"B": 0, "Gamma": 0, "kappa": 1.5, "sigma": 0.5, "n": 1, "p": 1.5})
+    with pytest.raises(ValueError, match="cannot tell the description"):
+        bwc.cor("shccm", {"x": 1})
+    with pytest.raises(bwc.BwcError, match="v0"):
+        bwc.cor("shccm", CROSS, [-1.0])
+    with pytest.raises(bwc.BwcError, match="more than 20 steps"):
+        bwc.cor("shccm", CROSS, [2.0], solver={"max_steps": 20, "switch_when_stiff": False})
+    with pytest.raises(bwc.BwcError, match="not a model"):
+        bwc.simulate({"model": "nope", "nondimensional": {"B": 0}})
