@@ -1,0 +1,41 @@
+"""Studies that outgrow one machine, on a ``dask.distributed`` cluster.
+
+Each task is a pure function of its inputs (one CoR sweep of one parameter set, one
+identification of one config with one seed), run on one thread of a worker, so the results are
+identical to local runs whatever the number of workers. Point ``client`` at any cluster:
+
+    from dask.distributed import Client, LocalCluster
+    client = Client(LocalCluster(n_workers=2, processes=True))   # or Client("tcp://scheduler:8786")
+    sweeps = bwc.dask.cor_sweep("shccm", params_list, v0, client)
+"""
+
+import bwc
+
+
+def _cor_task(model, params, v0, input, solver):
+    return bwc.cor(model, params, v0, input=input, solver=solver, threads=1)
+
+
+def _identify_task(config, seed):
+    return bwc.identify(config, seed=seed, threads=1)
+
+
+def cor_sweep(model, params_list, v0, client, *, input=None, solver=None):
+    """``bwc.cor(model, params, v0)`` for every ``params`` of ``params_list``, one task each on
+    ``client``; the list of result dicts in the order of ``params_list``."""
+    params_list = list(params_list)
+    n = len(params_list)
+    futures = client.map(_cor_task, [model] * n, params_list, [v0] * n, [input] * n, [solver] * n, pure=False)
+    return client.gather(futures)
+
+
+def identify_many(configs, client, seeds=None):
+    """``bwc.identify(config, seed=seed)`` for every config (a path readable by the workers, or
+    a dict) and seed (default 0 each), one task each on ``client``; the list of results in the
+    order of ``configs``."""
+    configs = list(configs)
+    seeds = [0] * len(configs) if seeds is None else list(seeds)
+    if len(seeds) != len(configs):
+        raise bwc.BwcError("identify_many: %d seeds for %d configs" % (len(seeds), len(configs)))
+    futures = client.map(_identify_task, configs, seeds, pure=False)
+    return client.gather(futures)
