@@ -14,6 +14,7 @@
 //! `dV/dT = e^(-E)(dW/dT - |U| W) <= 0` outside the ball, whence the bound.
 
 use bw_models::input::{Constant, FromFn};
+use bw_models::sequence::Resumed;
 use bw_models::{
     simulate, CollisionModel, ModelKind, Ndbwmcm, Ndbwshccm, Nondim, NondimParams, Sampling,
     Settings, State,
@@ -174,52 +175,6 @@ proptest! {
     }
 }
 
-/// A model started from a given state instead of contact, so that the library's `simulate`
-/// follows trajectories from anywhere in the state space.
-struct From<M, const N: usize> {
-    model: M,
-    y0: State<N>,
-}
-
-impl<M: CollisionModel<N>, const N: usize> System<N> for From<M, N> {
-    fn rhs(&self, t: f64, y: &State<N>) -> State<N> {
-        self.model.rhs(t, y)
-    }
-}
-
-impl<M: CollisionModel<N>, const N: usize> CollisionModel<N> for From<M, N> {
-    fn initial_state(&self) -> State<N> {
-        self.y0
-    }
-    fn force(&self, y: &State<N>) -> f64 {
-        self.model.force(y)
-    }
-    fn displacement(&self, y: &State<N>) -> f64 {
-        self.model.displacement(y)
-    }
-    fn velocity(&self, y: &State<N>) -> f64 {
-        self.model.velocity(y)
-    }
-    fn input(&self, t: f64) -> f64 {
-        self.model.input(t)
-    }
-    fn input_constant_after(&self) -> Option<f64> {
-        self.model.input_constant_after()
-    }
-    fn impact_speed(&self) -> f64 {
-        1.0
-    }
-    fn state_scale(&self) -> State<N> {
-        self.model.state_scale()
-    }
-    fn time_scale(&self) -> f64 {
-        1.0
-    }
-    fn kinks(&self, t: f64, y: &State<N>) -> [f64; 2] {
-        self.model.kinks(t, y)
-    }
-}
-
 /// `E(∞) = ∫_0^∞ |U| dT` for `U(T) = a e^(-T) sin(ω T)`: the Laplace transform of `|sin ω T|`
 /// at 1, `|a| ω / (1 + ω²) coth(π / (2 ω))`.
 fn e_infinity(a: f64, omega: f64) -> f64 {
@@ -285,7 +240,8 @@ fn solutions_stay_bounded() {
         let y0 = State::<3>::new(x0[0], x0[1], x0[2]);
         let model = Ndbwshccm::new(&NondimParams::new(ModelKind::Shccm, q).unwrap(), u).unwrap();
         let bound = factor * w_shccm(&q, &y0).max(wk_shccm(&q));
-        let (worst, samples) = worst_ratio(&From { model, y0 }, |y| w_shccm(&q, y), bound);
+        let (worst, samples) =
+            worst_ratio(&Resumed { model, start: y0 }, |y| w_shccm(&q, y), bound);
         assert!(
             worst <= 1.0,
             "SHCCM {q:?} from {y0:?}, a {a}, ω {omega}: W / bound = {worst}"
@@ -297,7 +253,7 @@ fn solutions_stay_bounded() {
         let y0 = State::<4>::new(x0[0], x0[1], x0[2], x0[3]);
         let model = Ndbwmcm::new(&NondimParams::new(ModelKind::Mcm, q).unwrap(), u).unwrap();
         let bound = factor * w_mcm(&q, &y0).max(wk_mcm(&q));
-        let (worst, samples) = worst_ratio(&From { model, y0 }, |y| w_mcm(&q, y), bound);
+        let (worst, samples) = worst_ratio(&Resumed { model, start: y0 }, |y| w_mcm(&q, y), bound);
         assert!(
             worst <= 1.0,
             "MCM {q:?} from {y0:?}, a {a}, ω {omega}: W / bound = {worst}"
