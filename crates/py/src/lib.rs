@@ -102,21 +102,50 @@ fn cor<'py>(
     Ok(out)
 }
 
-/// `bwc.simulate`: the JSON text `bwc-simulate run --json` prints for the scene.
+/// `bwc.simulate`: the JSON text `bwc-simulate run --json` prints for the scene, and per run
+/// its trajectory as numpy arrays (`t`, `x`, `v`, `u`, `F` and the model's states `z` or
+/// `r, y, z`, in the run's units) where the scene asks for one (`[output] trajectory` or
+/// `loops`), else `None`.
 #[pyfunction]
 #[pyo3(signature = (path=None, scene_json=None, threads=None))]
-fn simulate_json(
-    py: Python<'_>,
+fn simulate_json<'py>(
+    py: Python<'py>,
     path: Option<PathBuf>,
     scene_json: Option<&str>,
     threads: Option<usize>,
-) -> PyResult<String> {
+) -> PyResult<(String, Vec<Option<Bound<'py, PyDict>>>)> {
     let scene = scene_of(path, scene_json)?;
     let runs = py
         .allow_threads(|| bwc_cli::with_threads(threads, || Ok(simulate::run(&scene, None))))
         .map_err(error)?;
     let summary = bwc_cli::output::Summary::new(&runs, scene.sequence.is_some());
-    Ok(summary.with_provenance(&scene, &runs).to_string())
+    let text = summary.with_provenance(&scene, &runs).to_string();
+    let sampled = scene.output.trajectory || scene.output.loops;
+    let trajectories = runs
+        .iter()
+        .map(|r| sampled.then(|| trajectory(py, r)).transpose())
+        .collect::<PyResult<_>>()?;
+    Ok((text, trajectories))
+}
+
+/// A run's samples as a dict of numpy arrays.
+fn trajectory<'py>(py: Python<'py>, r: &simulate::Run) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    let column =
+        |f: &dyn Fn(&simulate::Sample) -> f64| r.trajectory.iter().map(f).collect::<Vec<f64>>();
+    out.set_item("t", column(&|s| s.t).into_pyarray(py))?;
+    out.set_item("x", column(&|s| s.x).into_pyarray(py))?;
+    out.set_item("v", column(&|s| s.v).into_pyarray(py))?;
+    out.set_item("u", column(&|s| s.u).into_pyarray(py))?;
+    out.set_item("F", column(&|s| s.f).into_pyarray(py))?;
+    let names: &[&str] = match r.model {
+        bw_models::ModelKind::Shccm => &["x", "z"],
+        bw_models::ModelKind::Mcm => &["r", "y", "z"],
+    };
+    for (i, name) in names.iter().enumerate().filter(|(_, n)| **n != "x") {
+        out.set_item(*name, column(&|s| s.state[i]).into_pyarray(py))?;
+    }
+    Ok(out)
 }
 
 /// `bwc.identify`: the JSON text `bwc-identify run --json` prints for the config (with

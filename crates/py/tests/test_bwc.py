@@ -102,6 +102,18 @@ def test_cor_equals_the_simulate_tool():
         assert mine["runs"] == theirs["runs"] and mine["units"] == theirs["units"]
 
 
+def test_trajectories_come_as_numpy_arrays_equal_to_the_tools_csv(tmp_path):
+    scene = FIXTURES / "two_balls_shccm.toml"
+    run = bwc.simulate(scene)["runs"][0]
+    traj = run["trajectory"]
+    subprocess.run([str(BIN / "bwc-simulate"), "run", str(scene), "--out", str(tmp_path)], check=True,
+                   capture_output=True)
+    csv = np.genfromtxt(tmp_path / "trajectory.csv", delimiter=",", names=True)
+    for name in ("t", "x", "v", "u", "F", "z"):
+        assert np.array_equal(traj[name], csv[name]), name
+    assert traj["t"][-1] == run["t_s"]
+
+
 def test_identify_equals_the_identify_tool():
     config = FIXTURES / "kharaz.toml"
     mine = bwc.identify(config, seed=3)

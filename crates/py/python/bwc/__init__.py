@@ -95,8 +95,16 @@ def _source(description, what):
 
 def simulate(scene, *, threads=None):
     """Runs a scene (a path to a TOML file, or a dict shaped like one) and returns the object
-    ``bwc-simulate run --json`` prints: ``{"runs": [...], "units", "scene", ...}``."""
-    return json.loads(_simulate(threads=threads, **_source(scene, "scene")))
+    ``bwc-simulate run --json`` prints: ``{"runs": [...], "units", "scene", ...}``. Where the
+    scene asks for trajectories (``[output] trajectory`` or ``loops``), each run also has
+    ``"trajectory"``: numpy arrays ``t, x, v, u, F`` and the model's states (``z``, or
+    ``r, y, z``), in the units of ``"units"``."""
+    text, trajectories = _simulate(threads=threads, **_source(scene, "scene"))
+    value = json.loads(text)
+    for run, samples in zip(value["runs"], trajectories):
+        if samples is not None:
+            run["trajectory"] = samples
+    return value
 
 
 def identify(config, *, seed=None, threads=None):
