@@ -159,15 +159,7 @@ fn identify_json(
     seed: Option<u64>,
     threads: Option<usize>,
 ) -> PyResult<String> {
-    let (file, config) = match (path, config_json) {
-        (Some(p), _) => (p.clone(), Config::load(&p).map_err(error)?),
-        (None, Some(j)) => {
-            let file = PathBuf::from("<config>");
-            let config = Config::parse(&file, &toml_text(j, "<config>")?).map_err(error)?;
-            (file, config)
-        }
-        (None, None) => return Err(BwcError::new_err("a config needs a path or a dict")),
-    };
+    let (file, config) = config_of(path, config_json)?;
     let (reports, loops) = py
         .allow_threads(|| {
             bwc_cli::with_threads(threads, || {
@@ -178,6 +170,49 @@ fn identify_json(
     Ok(bwc_cli::identify::summary_of(&config, &reports, &loops).to_string())
 }
 
+/// `bwc.coverage`: the JSON text `bwc-identify coverage --json` prints for the config over the
+/// replicates with seeds `first_seed .. first_seed + replicates`.
+#[pyfunction]
+#[pyo3(signature = (path=None, config_json=None, replicates=40, first_seed=1, noise=None, fit=None, threads=None))]
+#[allow(clippy::too_many_arguments)]
+fn coverage_json(
+    py: Python<'_>,
+    path: Option<PathBuf>,
+    config_json: Option<&str>,
+    replicates: u64,
+    first_seed: u64,
+    noise: Option<f64>,
+    fit: Option<&str>,
+    threads: Option<usize>,
+) -> PyResult<String> {
+    let (file, config) = config_of(path, config_json)?;
+    let seeds = first_seed..first_seed.saturating_add(replicates);
+    let reports = py
+        .allow_threads(|| {
+            bwc_cli::with_threads(threads, || {
+                bwc_cli::identify::coverage_study(&file, &config, noise, fit, seeds)
+            })
+        })
+        .map_err(error)?;
+    let mut v = bwc_cli::outdir::provenance("bwc-identify");
+    v["coverage"] = bwc_cli::identify::coverage_summary(&reports)["coverage"].take();
+    Ok(v.to_string())
+}
+
+/// A config from a path or from the JSON text of a dict shaped like a config file (data paths
+/// relative to the working directory).
+fn config_of(path: Option<PathBuf>, json: Option<&str>) -> PyResult<(PathBuf, Config)> {
+    match (path, json) {
+        (Some(p), _) => Ok((p.clone(), Config::load(&p).map_err(error)?)),
+        (None, Some(j)) => {
+            let file = PathBuf::from("<config>");
+            let config = Config::parse(&file, &toml_text(j, "<config>")?).map_err(error)?;
+            Ok((file, config))
+        }
+        (None, None) => Err(BwcError::new_err("a config needs a path or a dict")),
+    }
+}
+
 /// The native module `bwc._native`.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -185,5 +220,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(cor, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_json, m)?)?;
     m.add_function(wrap_pyfunction!(identify_json, m)?)?;
+    m.add_function(wrap_pyfunction!(coverage_json, m)?)?;
     Ok(())
 }

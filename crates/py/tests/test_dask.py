@@ -46,3 +46,14 @@ def test_fits_on_workers_equal_local_fits(client):
             assert a == b
     with pytest.raises(bwc.BwcError, match="seeds"):
         bwc.dask.identify_many([config], client, seeds=[1, 2])
+
+
+def test_a_coverage_study_split_over_workers_equals_the_local_study(client):
+    import bwc.dask
+
+    config = str(FIXTURES / "golf.toml")
+    local = bwc.coverage(config, replicates=4, first_seed=1, fit="Golf NDBWSHCCM")
+    remote = bwc.dask.coverage(config, client, replicates=4, first_seed=1, chunk=2, fit="Golf NDBWSHCCM")
+    local.pop("command"), remote.pop("command")
+    assert local == remote
+    assert [r["seed"] for r in remote["coverage"][0]["replicates"]] == [1, 2, 3, 4]

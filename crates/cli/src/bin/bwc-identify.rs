@@ -289,36 +289,8 @@ fn coverage_study(
     threads: Option<usize>,
 ) -> Result<(), CliError> {
     let config = Config::load(path)?;
-    if let Some(n) = noise {
-        if !(n.is_finite() && n > 0.0) {
-            return Err(CliError::Invalid {
-                path: path.to_owned(),
-                line: 1,
-                key: "--noise".into(),
-                message: format!("{n} is not admissible: a standard deviation > 0"),
-            });
-        }
-    }
-    let fits: Vec<_> = config
-        .fits
-        .iter()
-        .filter(|f| only.is_none_or(|n| n == f.name))
-        .collect();
-    if fits.is_empty() {
-        let names: Vec<&str> = config.fits.iter().map(|f| f.name.as_str()).collect();
-        return Err(CliError::Invalid {
-            path: path.to_owned(),
-            line: 1,
-            key: "--fit".into(),
-            message: format!("no [[fit]] named {only:?}: the config has {names:?}"),
-        });
-    }
     let seeds = first_seed..first_seed.saturating_add(replicates);
-    let work = || {
-        fits.iter()
-            .map(|f| bwc_cli::identify::run_coverage(path, f, noise, seeds.clone()))
-            .collect::<Result<Vec<_>, _>>()
-    };
+    let work = || bwc_cli::identify::coverage_study(path, &config, noise, only, seeds);
     let reports = bwc_cli::with_threads(threads, work)?;
     if json {
         let mut v = outdir::provenance("bwc-identify");

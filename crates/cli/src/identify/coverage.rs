@@ -125,3 +125,45 @@ pub fn coverage_summary(reports: &[CoverageReport]) -> Value {
         .collect();
     json!({ "coverage": studies })
 }
+
+/// The coverage study of every CoR-only fit of `config` (or only the one named `only`) over
+/// the replicates of `seeds` (`bwc-identify coverage`).
+///
+/// # Errors
+/// [`CliError::Invalid`] for a non-positive `noise` or no fit named `only`; as
+/// [`run_coverage`].
+pub fn coverage_study(
+    path: &Path,
+    config: &crate::config::Config,
+    noise: Option<f64>,
+    only: Option<&str>,
+    seeds: std::ops::Range<u64>,
+) -> Result<Vec<CoverageReport>, CliError> {
+    let invalid = |key: &str, message: String| CliError::Invalid {
+        path: path.to_owned(),
+        line: 1,
+        key: key.into(),
+        message,
+    };
+    if let Some(n) = noise.filter(|n| !(n.is_finite() && *n > 0.0)) {
+        return Err(invalid(
+            "--noise",
+            format!("{n} is not admissible: a standard deviation > 0"),
+        ));
+    }
+    let fits: Vec<_> = config
+        .fits
+        .iter()
+        .filter(|f| only.is_none_or(|n| n == f.name))
+        .collect();
+    if fits.is_empty() {
+        let names: Vec<&str> = config.fits.iter().map(|f| f.name.as_str()).collect();
+        return Err(invalid(
+            "--fit",
+            format!("no [[fit]] named {only:?}: the config has {names:?}"),
+        ));
+    }
+    fits.iter()
+        .map(|f| run_coverage(path, f, noise, seeds.clone()))
+        .collect()
+}

@@ -5,7 +5,7 @@ mod coverage;
 mod drops;
 mod render;
 
-pub use coverage::{coverage_summary, coverage_task, run_coverage, CoverageReport};
+pub use coverage::{coverage_study, coverage_summary, coverage_task, run_coverage, CoverageReport};
 pub use drops::DropOutcome;
 pub use render::{loop_summary, render, render_loops, slug, summary, units};
 

@@ -15,9 +15,10 @@ import os
 
 import numpy as np
 
-from ._native import BwcError, cor as _cor, identify_json as _identify, simulate_json as _simulate
+from ._native import BwcError, cor as _cor, coverage_json as _coverage, identify_json as _identify
+from ._native import simulate_json as _simulate
 
-__all__ = ["BwcError", "cor", "simulate", "identify"]
+__all__ = ["BwcError", "cor", "simulate", "identify", "coverage"]
 
 _NONDIMENSIONAL = {"B", "Gamma", "kappa", "sigma", "n", "p", "U"}
 _BASE = {"B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "U_b", "T_b"}
@@ -113,3 +114,15 @@ def identify(config, *, seed=None, threads=None):
     object ``bwc-identify run --json`` prints. ``seed`` defaults to 0, as on the command line."""
     seed = 0 if seed is None else int(seed)
     return json.loads(_identify(seed=seed, threads=threads, **_source(config, "config")))
+
+
+def coverage(config, *, replicates=40, first_seed=1, noise=None, fit=None, threads=None):
+    """The coverage study of the 95 % band of each CoR-only fit of a config (a path or a dict):
+    synthetic data from ``[fit.params]`` (or the fit's optimum) with Gaussian noise, refitted
+    per replicate (seeds ``first_seed .. first_seed + replicates``). Returns the object
+    ``bwc-identify coverage --json`` prints: ``{"coverage": [{"name", "coverage", "replicates",
+    ...}]}``. Replicate ``k`` depends only on the config and its seed, so studies split by seed
+    ranges (``bwc.dask.coverage``)."""
+    text = _coverage(replicates=int(replicates), first_seed=int(first_seed), noise=noise, fit=fit,
+                     threads=threads, **_source(config, "config"))
+    return json.loads(text)

@@ -21,3 +21,12 @@ def identify(
     seed: Optional[int] = None,
     threads: Optional[int] = None,
 ) -> dict: ...
+def coverage(
+    config: Union[str, os.PathLike, Mapping[str, Any]],
+    *,
+    replicates: int = 40,
+    first_seed: int = 1,
+    noise: Optional[float] = None,
+    fit: Optional[str] = None,
+    threads: Optional[int] = None,
+) -> dict: ...

@@ -39,3 +39,25 @@ def identify_many(configs, client, seeds=None):
         raise bwc.BwcError("identify_many: %d seeds for %d configs" % (len(seeds), len(configs)))
     futures = client.map(_identify_task, configs, seeds, pure=False)
     return client.gather(futures)
+
+
+def _coverage_task(config, first_seed, replicates, noise, fit):
+    return bwc.coverage(config, replicates=replicates, first_seed=first_seed, noise=noise, fit=fit, threads=1)
+
+
+def coverage(config, client, *, replicates=40, first_seed=1, chunk=5, noise=None, fit=None):
+    """``bwc.coverage`` split into tasks of ``chunk`` consecutive seeds on ``client``, merged:
+    the replicates in seed order and the coverage over all of them, as a local run gives."""
+    starts = list(range(first_seed, first_seed + replicates, chunk))
+    sizes = [min(chunk, first_seed + replicates - s) for s in starts]
+    n = len(starts)
+    futures = client.map(_coverage_task, [config] * n, starts, sizes, [noise] * n, [fit] * n, pure=False)
+    parts = client.gather(futures)
+    merged = parts[0]
+    for study_index, study in enumerate(merged["coverage"]):
+        replicates_all = [r for part in parts for r in part["coverage"][study_index]["replicates"]]
+        covered = sum(r["covered"] for r in replicates_all)
+        points = sum(r["points"] for r in replicates_all)
+        study["replicates"] = replicates_all
+        study["coverage"] = covered / max(points, 1)
+    return merged
