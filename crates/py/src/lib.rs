@@ -58,9 +58,12 @@ fn scene_of(path: Option<PathBuf>, json: Option<&str>) -> PyResult<Scene> {
     }
 }
 
+/// The outcomes in the order of the codes `cor` returns.
+const OUTCOMES: [&str; 4] = ["separated", "settled", "horizon", "failed"];
+
 /// `bwc.cor`: one impact per speed (or the one nondimensional impact) of the scene given as
 /// JSON text; a dict of numpy arrays `e`, `t_s`, `t_d` (NaN where absent), `separated`,
-/// `rhs_evals` and a list `outcome`.
+/// `rhs_evals` and `outcome` (codes into `"separated"`, `"settled"`, `"horizon"`, `"failed"`).
 #[pyfunction]
 #[pyo3(signature = (scene_json, threads=None))]
 fn cor<'py>(
@@ -97,8 +100,10 @@ fn cor<'py>(
     out.set_item("separated", PyArray1::from_vec(py, separated))?;
     let evals: Vec<u64> = runs.iter().map(|r| r.stats.rhs_evals).collect();
     out.set_item("rhs_evals", evals.into_pyarray(py))?;
-    let outcome: Vec<&str> = runs.iter().map(|r| r.outcome.name()).collect();
-    out.set_item("outcome", outcome)?;
+    // Codes into OUTCOMES (the Python side makes the string array without per-run objects).
+    let code = |o: Outcome| OUTCOMES.iter().position(|n| *n == o.name()).unwrap_or(3) as u8;
+    let outcome: Vec<u8> = runs.iter().map(|r| code(r.outcome)).collect();
+    out.set_item("outcome", outcome.into_pyarray(py))?;
     Ok(out)
 }
 

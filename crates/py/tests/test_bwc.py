@@ -63,7 +63,7 @@ def ndbwshccm_e(B, Gamma, kappa, sigma, n, p):
 def test_cor_meets_the_closed_forms():
     for sigma in (0.05, 0.5, 0.9):
         out = bwc.cor("shccm", {"B": 0, "Gamma": 0, "kappa": 0.3, "sigma": sigma, "n": 1.5, "p": 1.5})
-        assert out["separated"][0] and out["outcome"] == ["separated"]
+        assert out["separated"][0] and out["outcome"].tolist() == ["separated"]
         assert abs(out["e"][0] - hunt_crossley_e(sigma)) < 1e-10
     # Elastic limit: e = 1, T_s = 2/(p+1) s_max B(1/(p+1), 1/2), s_max = ((p+1)/2)^(1/(p+1)).
     for p in (1.0, 1.5, 2.5):
@@ -98,6 +98,8 @@ def test_cor_equals_the_simulate_tool():
     for name in ("kharaz_curves.toml", "two_balls_mcm.toml"):
         mine = bwc.simulate(FIXTURES / name)
         mine.pop("command")
+        for run in mine["runs"]:
+            run.pop("trajectory", None)  # numpy arrays the JSON does not carry
         theirs = cli("bwc-simulate", "run", str(FIXTURES / name), "--json")
         assert mine["runs"] == theirs["runs"] and mine["units"] == theirs["units"]
 
@@ -115,7 +117,7 @@ def test_trajectories_come_as_numpy_arrays_equal_to_the_tools_csv(tmp_path):
 
 
 def test_identify_equals_the_identify_tool():
-    config = FIXTURES / "kharaz.toml"
+    config = FIXTURES / "golf.toml"
     mine = bwc.identify(config, seed=3)
     theirs = cli("bwc-identify", "run", str(config), "--json", "--seed", "3")
     mine.pop("command")

@@ -20,6 +20,10 @@ from ._native import simulate_json as _simulate
 
 __all__ = ["BwcError", "cor", "simulate", "identify", "coverage"]
 
+# The outcome of each run, indexed by the codes the native sweep returns (a numpy string array
+# without a Python object per speed).
+_OUTCOMES = np.array(["separated", "settled", "horizon", "failed"])
+
 _NONDIMENSIONAL = {"B", "Gamma", "kappa", "sigma", "n", "p", "U"}
 _BASE = {"B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "U_b", "T_b"}
 _PHYSICAL = {"m", "k", "c", "n", "p", "alpha", "beta", "gamma", "A"}
@@ -67,7 +71,7 @@ def cor(model, params, v0=None, *, input=None, solver=None, threads=None):
     Returns a dict of numpy arrays, one entry per speed: ``e`` (0 without separation),
     ``t_s`` (separation time: s, or nondimensional for nondimensional descriptions and base
     ones without ``T_b``; NaN without separation), ``t_d`` (contact duration in s, NaN where
-    there is no time scale), ``separated`` (bool), ``rhs_evals`` (int), ``outcome`` (list of
+    there is no time scale), ``separated`` (bool), ``rhs_evals`` (int), ``outcome`` (strings
     ``"separated"``, ``"settled"``, ``"horizon"``).
 
     Raises ``BwcError`` (a ``ValueError``) for a bad description or a failed run, with the
@@ -82,7 +86,9 @@ def cor(model, params, v0=None, *, input=None, solver=None, threads=None):
         scene["input"] = _plain(dict(input))
     if solver is not None:
         scene["solver"] = _plain(dict(solver))
-    return _cor(json.dumps(scene), threads)
+    out = _cor(json.dumps(scene), threads)
+    out["outcome"] = _OUTCOMES[out["outcome"]]
+    return out
 
 
 def _source(description, what):
