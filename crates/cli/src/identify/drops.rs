@@ -101,12 +101,9 @@ pub fn run_drop_fit(
 /// the space or a simulation fails.
 pub fn eval_drop_fit(config: &Path, f: &FitConfig, d: &DropFit) -> Result<FitReport, CliError> {
     let clock = Instant::now();
-    let params = f.params.ok_or_else(|| CliError::Invalid {
-        path: config.to_owned(),
-        line: 1,
-        key: format!("[fit.params] of \"{}\"", f.name),
-        message: "missing: `eval` needs the parameters to evaluate".into(),
-    })?;
+    let params = f
+        .params
+        .ok_or_else(|| super::missing_params(config, "[fit.params]", &f.name))?;
     let s = f.space.encode(&params).map_err(fail(config, &f.name))?;
     let mut r = report(f, params, outcome(f, d, &s, config)?);
     r.wall_s = clock.elapsed().as_secs_f64();

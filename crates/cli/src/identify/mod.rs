@@ -72,6 +72,16 @@ pub struct FitReport {
     pub drop: Option<DropOutcome>,
 }
 
+/// `eval` needs the parameters of `table` (`[fit.params]`, `[loop_fit.params]`) of fit `name`.
+fn missing_params(config: &Path, table: &str, name: &str) -> CliError {
+    CliError::Invalid {
+        path: config.to_owned(),
+        line: 1,
+        key: format!("{table} of \"{name}\""),
+        message: "missing: `eval` needs the parameters to evaluate".into(),
+    }
+}
+
 /// Speeds of a report's model curve: 60 on a log grid from half the slowest to twice the
 /// fastest measured speed (the data's range and beyond, to show what the data do not cover).
 pub fn curve_speeds(data: &Dataset) -> Vec<f64> {
@@ -276,12 +286,9 @@ pub fn eval_fit(config: &Path, f: &FitConfig) -> Result<FitReport, CliError> {
     }
     let clock = Instant::now();
     let err = fail(config, &f.name);
-    let params = f.params.ok_or_else(|| CliError::Invalid {
-        path: config.to_owned(),
-        line: 1,
-        key: format!("[fit.params] of \"{}\"", f.name),
-        message: "missing: `eval` needs the parameters to evaluate".into(),
-    })?;
+    let params = f
+        .params
+        .ok_or_else(|| missing_params(config, "[fit.params]", &f.name))?;
     let map = f.space.map(&params).map_err(&err)?;
     let predictions =
         predict(&map, &f.input, &f.data, &Settings::default()).map_err(|e| err(e.into()))?;
@@ -373,12 +380,9 @@ pub fn eval_loop_fit(
     f: &crate::config::LoopFitConfig,
 ) -> Result<LoopReport, CliError> {
     let clock = Instant::now();
-    let law = f.params.ok_or_else(|| CliError::Invalid {
-        path: config.to_owned(),
-        line: 1,
-        key: format!("[loop_fit.params] of \"{}\"", f.name),
-        message: "missing: `eval` needs the parameters to evaluate".into(),
-    })?;
+    let law = f
+        .params
+        .ok_or_else(|| missing_params(config, "[loop_fit.params]", &f.name))?;
     let err = fail(config, &f.name);
     let objective = bwc_identify::LoopObjective::new(&f.space, &f.loops, f.m, Settings::default())
         .map_err(&err)?;
