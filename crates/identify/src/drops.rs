@@ -176,6 +176,7 @@ pub struct DropObjective<'a> {
     setup: DropSetup,
     settings: Settings,
     evaluations: AtomicU64,
+    progress: Option<&'a (dyn Fn() + Sync)>,
 }
 
 /// Cost of a point whose simulation failed (s² or m²): worse than any feasible point.
@@ -215,7 +216,14 @@ impl<'a> DropObjective<'a> {
             setup,
             settings,
             evaluations: AtomicU64::new(0),
+            progress: None,
         })
+    }
+
+    /// Calls `progress` after every cost evaluation.
+    pub fn with_progress(mut self, progress: &'a (dyn Fn() + Sync)) -> Self {
+        self.progress = Some(progress);
+        self
     }
 
     /// The sequence from `h0` for base map `map`, up to `bounces` contacts.
@@ -334,6 +342,9 @@ impl CubeProblem for DropObjective<'_> {
             Err(_) => self.data.rows.iter().map(|_| FAILED_DROP.sqrt()).collect(),
         };
         r.push(outside.sqrt());
+        if let Some(p) = self.progress {
+            p();
+        }
         Some(r)
     }
 }

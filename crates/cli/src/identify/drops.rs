@@ -75,10 +75,13 @@ pub fn run_drop_fit(
     f: &FitConfig,
     d: &DropFit,
     seed: u64,
+    progress: &(dyn Fn() + Sync),
 ) -> Result<FitReport, CliError> {
     let clock = Instant::now();
     let err = fail(config, &f.name);
-    let objective = DropObjective::new(&f.space, &d.data, d.setup, f.settings).map_err(&err)?;
+    let objective = DropObjective::new(&f.space, &d.data, d.setup, f.settings)
+        .map_err(&err)?
+        .with_progress(progress);
     let m = minimize(&objective, &f.budget, seed ^ f.seed, f.start.as_deref()).map_err(&err)?;
     let bound = at_bound(&f.space.free_names(), &m.point);
     let mut r = report(

@@ -177,7 +177,7 @@ pub fn run_fit(
     progress: &(dyn Fn() + Sync),
 ) -> Result<FitReport, CliError> {
     if let Some(d) = &f.drops {
-        return drops::run_drop_fit(config, f, d, seed);
+        return drops::run_drop_fit(config, f, d, seed, progress);
     }
     let clock = Instant::now();
     let err = fail(config, &f.name);
