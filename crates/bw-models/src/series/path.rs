@@ -100,9 +100,9 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     pub(super) fn run(mut self) -> SeriesRun<N> {
         loop {
             let next = match self.ended() {
-                Some(done) => Next::Finish(done),
-                None if self.y[M::BASE] == 0.0 || self.y[M::Z] == 0.0 => self.leave_zero(),
-                None => self.series_step(),
+                Err(done) => Next::Finish(done),
+                Ok(_) if self.y[M::BASE] == 0.0 || self.y[M::Z] == 0.0 => self.leave_zero(),
+                Ok(start) => self.series_step(start),
             };
             if let Next::Finish(run) = next {
                 return run;
@@ -120,8 +120,9 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
         }
     }
 
-    /// The separation where the step starts, or a limit that hands the impact over.
-    fn ended(&mut self) -> Option<SeriesRun<N>> {
+    /// The separation where the step starts, or a limit that hands the impact over; else the
+    /// force and the velocity there.
+    fn ended(&mut self) -> Result<(f64, f64), SeriesRun<N>> {
         let (model, settings) = (self.model, self.settings);
         let force = self
             .force_here
@@ -131,7 +132,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
         if self.t > 0.0 && separated(force, velocity) {
             // The separation, reached at the end of the last step or at its event.
             self.stats.events += 1;
-            return Some(SeriesRun::Done(Impact {
+            return Err(SeriesRun::Done(Impact {
                 t_s: Some(self.t),
                 e: velocity.max(0.0) / model.impact_speed(),
                 state: self.y,
@@ -144,14 +145,15 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
         let limit = self.series_steps >= MAX_SERIES_STEPS
             || self.stats.accepted >= settings.max_steps
             || self.t >= settings.t_max;
-        self.force_here = Some(force);
-        limit.then(|| self.hand_over())
+        if limit {
+            return Err(self.hand_over());
+        }
+        Ok((force, velocity))
     }
 
     /// Where a base vanishes: one step of the explicit method leaves the point; the Runge-Kutta
     /// path retakes it if it met an event.
     fn leave_zero(&mut self) -> Next<N> {
-        self.force_here = None;
         let (model, settings) = (self.model, self.settings);
         let (t_start, y_start, stats_start) = (self.t, self.y, self.stats);
         let Some((t, y)) = start_step(model, settings, self.t, &self.y, &mut self.stats) else {
@@ -172,8 +174,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     }
 
     /// One expansion: rest, or a step to its end or to the earliest event inside it.
-    fn series_step(&mut self) -> Next<N> {
-        let force = self.force_here.take().expect("set by ended()");
+    fn series_step(&mut self, (force, velocity): (f64, f64)) -> Next<N> {
         let (model, settings) = (self.model, self.settings);
         model.expand(&self.y, f64::from(self.rate_class), self.u, &mut self.jet);
         // At rest under the constant input: an equilibrium, the contact has settled.
@@ -197,7 +198,6 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             .min(settings.max_step)
             .min(settings.t_max - self.t);
         self.h_last = h;
-        let velocity = model.velocity(&self.y);
         let watch: [Watched; 5] = [
             (Event::Force, 1, force > 0.0),
             (Event::Velocity, -1, !M::RATE_IS_VELOCITY && velocity < 0.0),
