@@ -387,17 +387,8 @@ fn pareto_files(r: &FitReport, out: &Path, stem: &str) -> Result<Vec<(String, Ve
             1.0,
         ),
     );
-    let svg =
-        plot::chart(&format!("{}: Pareto front", r.name), x, y, &series).map_err(|message| {
-            CliError::Plot {
-                path: out.join(&svg_name),
-                message,
-            }
-        })?;
-    Ok(vec![
-        (name, w.into_inner().expect("in-memory writer")),
-        (svg_name, svg.into_bytes()),
-    ])
+    let svg = plot::chart(&format!("{}: Pareto front", r.name), x, y, &series);
+    csv_and_chart(out, (name, w), svg_name, svg)
 }
 
 /// JSON entries of loop fits (in `"fits"` after the base-parameter fits).
@@ -476,15 +467,8 @@ pub fn render_loops(
         Axis::linear("compression |x| (mm)"),
         Axis::linear("contact force F (N)"),
         &series,
-    )
-    .map_err(|message| CliError::Plot {
-        path: out.join(&svg_name),
-        message,
-    })?;
-    Ok(vec![
-        (csv_name, w.into_inner().expect("in-memory writer")),
-        (svg_name, svg.into_bytes()),
-    ])
+    );
+    csv_and_chart(out, (csv_name, w), svg_name, svg)
 }
 
 /// The unit of every JSON key and CSV column of an identification (`"1"`: dimensionless; the
@@ -609,13 +593,23 @@ fn drop_files(
         Axis::linear(x),
         Axis::linear(y),
         &series,
-    )
-    .map_err(|message| CliError::Plot {
+    );
+    csv_and_chart(out, (name, w), svg_name, svg)
+}
+
+/// A CSV and its chart as output files; a drawing error names the chart's file.
+fn csv_and_chart(
+    out: &Path,
+    (csv_name, w): (String, csv::Writer<Vec<u8>>),
+    svg_name: String,
+    svg: Result<String, String>,
+) -> Result<Vec<(String, Vec<u8>)>, CliError> {
+    let svg = svg.map_err(|message| CliError::Plot {
         path: out.join(&svg_name),
         message,
     })?;
     Ok(vec![
-        (name, w.into_inner().expect("in-memory writer")),
+        (csv_name, w.into_inner().expect("in-memory writer")),
         (svg_name, svg.into_bytes()),
     ])
 }
