@@ -50,6 +50,8 @@ pub struct Trial<'a, const N: usize> {
     pub t1: f64,
     /// The rejected (inaccurate) solution at the end.
     pub y1: &'a State<N>,
+    /// The trial's error estimate in units of the tolerance (above 1, or not finite).
+    pub error: f64,
 }
 
 /// The continuous extension of one accepted step, `y(t)` for `t` in `[t0, t0 + h]`.
@@ -492,6 +494,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
                 f0: &self.f_now,
                 t1: self.t + h,
                 y1: &y1,
+                error: err,
             };
             self.h = match aimed(aim(&trial), self.t, h) {
                 Some(h_aim) => h_aim,

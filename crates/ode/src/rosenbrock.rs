@@ -378,6 +378,7 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
                 f0: &self.f_now,
                 t1: self.t + h,
                 y1: &y1,
+                error: err,
             };
             self.h = match aimed(aim(&trial), self.t, h) {
                 Some(h_aim) => h_aim,

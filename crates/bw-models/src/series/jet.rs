@@ -102,8 +102,25 @@ pub(crate) trait Expand<const N: usize>: CollisionModel<N> {
     const RATE_IS_VELOCITY: bool;
 
     /// The Taylor coefficients of the solution through `y` in the branch where the rate has
-    /// sign `rate_sign`, for the constant input `u`; `y[BASE]` and `y[Z]` are nonzero.
-    fn expand(&self, y: &State<N>, rate_sign: f64, u: f64, jet: &mut Jet<N>);
+    /// sign `rate_sign`, for the constant input `u`; `y[BASE]` and `y[Z]` are nonzero. With
+    /// `saturated`, `y[Z]` is the branch's equilibrium ([`Expand::saturation`]) and `Z` is held
+    /// there: its series is constant.
+    fn expand(&self, y: &State<N>, rate_sign: f64, saturated: bool, u: f64, jet: &mut Jet<N>);
+
+    /// The stable equilibrium `Z*` of the hysteretic variable in the branch of `y` where the
+    /// rate has sign `rate_sign`, if it has one: where `c = B sgn(Z) sgn(rate) + Γ > 0` and `Z`
+    /// moves with the rate (`sgn(Z) = sgn(rate)`), `Z' = rate (1 - c |Z|^n)` drives `|Z|` to
+    /// `c^(-1/n)`, and `Z = Z*` is invariant while the branch lasts.
+    fn saturation(&self, y: &State<N>, rate_sign: f64) -> Option<f64> {
+        let k = self.coefficients();
+        let sz = y[Self::Z].signum();
+        let c = k.b * sz * rate_sign + k.gamma;
+        (y[Self::Z] != 0.0 && sz == rate_sign && c > 0.0)
+            .then(|| sz * c.powf(-1.0 / k.n.exponent()))
+    }
+
+    /// The model's nondimensional coefficients.
+    fn coefficients(&self) -> &NdCoefficients;
 
     /// The first step from contact under the constant input `u` where the model's loading has
     /// a series of its own ([`super::contact`]), as the time and state where it ends; `None`
@@ -395,13 +412,22 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
         Some((c.t, State::<3>::new(c.x, c.x, c.v)))
     }
 
-    fn expand(&self, y: &State<3>, sw: f64, u: f64, jet: &mut Jet<3>) {
+    fn coefficients(&self) -> &NdCoefficients {
+        &self.k
+    }
+
+    fn expand(&self, y: &State<3>, sw: f64, saturated: bool, u: f64, jet: &mut Jet<3>) {
         let k = &self.k;
         let (sx, sz) = (y[0].signum(), y[1].signum());
-        // Z' = V - |Z|^n (B sgn(Z) |V| + Γ V) = V - c |Z|^n V in this branch.
-        let c = k.b * sz * sw + k.gamma;
+        // Z' = V - |Z|^n (B sgn(Z) |V| + Γ V) = V - c |Z|^n V in this branch; held at its
+        // equilibrium, Z' = 0 (c is not needed then).
+        let c = if saturated {
+            0.0
+        } else {
+            k.b * sz * sw + k.gamma
+        };
         // Loading with Γ = -B from Z = X: Z' = X' exactly, Z stays X.
-        let shared = c == 0.0 && y[1] == y[0];
+        let shared = !saturated && c == 0.0 && y[1] == y[0];
         let kc = 1.0 - k.kappa;
         let Jet {
             state: [x, z, v],
@@ -425,7 +451,9 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
             }
             let inv = INVERSE[j + 1];
             x[j + 1] = v[j] * inv;
-            z[j + 1] = if c == 0.0 {
+            z[j + 1] = if saturated {
+                0.0
+            } else if c == 0.0 {
                 x[j + 1]
             } else {
                 (v[j] - c * znv) * inv
@@ -463,12 +491,21 @@ impl<I: Input> Expand<4> for Ndbwmcm<I> {
         (bound <= tol && rate < 0.0).then(|| (c.t, State::<4>::new(r, y, y, c.v)))
     }
 
-    fn expand(&self, y: &State<4>, sw: f64, u: f64, jet: &mut Jet<4>) {
+    fn coefficients(&self) -> &NdCoefficients {
+        &self.k
+    }
+
+    fn expand(&self, y: &State<4>, sw: f64, saturated: bool, u: f64, jet: &mut Jet<4>) {
         let k = &self.k;
         let (sy, sz) = (y[1].signum(), y[2].signum());
-        // Z' = Y' - c |Z|^n Y' in this branch (rate Y' = V + σ F).
-        let c = k.b * sz * sw + k.gamma;
-        let shared = c == 0.0 && y[2] == y[1];
+        // Z' = Y' - c |Z|^n Y' in this branch (rate Y' = V + σ F); held at its equilibrium,
+        // Z' = 0.
+        let c = if saturated {
+            0.0
+        } else {
+            k.b * sz * sw + k.gamma
+        };
+        let shared = !saturated && c == 0.0 && y[2] == y[1];
         let kc = 1.0 - k.kappa;
         let Jet {
             state: [r, yy, z, v],
@@ -497,7 +534,9 @@ impl<I: Input> Expand<4> for Ndbwmcm<I> {
             let inv = INVERSE[j + 1];
             r[j + 1] = -k.sigma * force[j] * inv;
             yy[j + 1] = rate[j] * inv;
-            z[j + 1] = if c == 0.0 {
+            z[j + 1] = if saturated {
+                0.0
+            } else if c == 0.0 {
                 yy[j + 1]
             } else {
                 // |Z|^n Y' at order j: the pass's sum and the term |Z|^n_0 Y'_j.

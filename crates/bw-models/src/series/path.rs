@@ -5,7 +5,7 @@
 use super::jet::{Expand, Jet, Series};
 use super::{
     class, eval_d, reach_root, root, start_step, step_size, step_tolerance, SeriesRun, Target,
-    FORCE_MARGIN, MAX_GROWTH, MAX_SERIES_STEPS, MAX_STALLED,
+    FORCE_MARGIN, MAX_GROWTH, MAX_SERIES_STEPS, MAX_STALLED, START_TOLERANCE,
 };
 use crate::impact::{at_rest, Impact, Settings};
 use crate::{separated, State};
@@ -156,7 +156,10 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     fn leave_zero(&mut self) -> Next<N> {
         let (model, settings) = (self.model, self.settings);
         let (t_start, y_start, stats_start) = (self.t, self.y, self.stats);
-        let Some((t, y)) = start_step(model, settings, self.t, &self.y, &mut self.stats) else {
+        let k = model.coefficients();
+        let q = 1.0 + k.p.exponent().min(k.n.exponent());
+        let Some((t, y)) = start_step(model, settings, (self.t, &self.y), q, &mut self.stats)
+        else {
             (self.t, self.y, self.stats) = (t_start, y_start, stats_start);
             return Next::Finish(self.hand_over());
         };
@@ -176,7 +179,10 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     /// One expansion: rest, or a step to its end or to the earliest event inside it.
     fn series_step(&mut self, (force, velocity): (f64, f64)) -> Next<N> {
         let (model, settings) = (self.model, self.settings);
-        model.expand(&self.y, f64::from(self.rate_class), self.u, &mut self.jet);
+        let (saturated, snapped) = self.saturate();
+        let force = if snapped { model.force(&self.y) } else { force };
+        let rate_sign = f64::from(self.rate_class);
+        model.expand(&self.y, rate_sign, saturated, self.u, &mut self.jet);
         // At rest under the constant input: an equilibrium, the contact has settled.
         let rate_of_change = State::<N>::from_fn(|i, _| self.jet.state[i][1]);
         if at_rest(model, &rate_of_change, settings.atol) {
@@ -215,6 +221,28 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             }
             Ahead::Event(s, event) => self.apply_event(s, event),
         }
+    }
+
+    /// Whether `Z` is held at its branch's equilibrium `Z*` ([`Expand::saturation`]) for this
+    /// step, and whether it was moved there now: once within [`START_TOLERANCE`] step
+    /// tolerances of `Z*`. The exact `Z` approaches `Z*` monotonically while the branch lasts,
+    /// so holding it there changes the state by at most that much once; the series then no
+    /// longer carry the decay towards `Z*`, whose rate (`c n |Z*|^(n-1) |rate|`, large for a
+    /// large `B`) caps explicit steps however small the deviation has become.
+    fn saturate(&mut self) -> (bool, bool) {
+        let rate_sign = f64::from(self.rate_class);
+        let Some(z_star) = self.model.saturation(&self.y, rate_sign) else {
+            return (false, false);
+        };
+        if self.y[M::Z] == z_star {
+            return (true, false);
+        }
+        let near = START_TOLERANCE * step_tolerance(&self.y, self.settings);
+        if (self.y[M::Z] - z_star).abs() > near {
+            return (false, false);
+        }
+        self.y[M::Z] = z_star;
+        (true, true)
     }
 
     /// The state and the event values at `s` in the step, from their series; near zero the

@@ -468,3 +468,51 @@ fn a_run_the_series_hand_over_is_finished_from_their_state() {
     }
     assert!(a.stats.rhs_evals < b.stats.rhs_evals / 2, "{a:?} vs {b:?}");
 }
+
+/// The corners of a fit's search box at high speeds: a large `B` with `Γ > -B`, and `n` or `p`
+/// near 1. Where `Z` runs into its branch's equilibrium `Z* = c^(-1/n)` (`c = B + Γ > 0`) the
+/// series hold it there once it is within the start tolerance, instead of following the decay
+/// towards `Z*`, whose rate caps explicit steps; and the Runge-Kutta steps off a vanished base
+/// are sized by the exponent of its power (`h^(e+1)`), not the method's order. The answers of the
+/// Runge-Kutta path at rtol 1e-14, in fewer steps and right-hand sides than without either
+/// (94 series steps, 206 RHS evaluations and 15 rejected trials for the first case; 62, 184 and
+/// 13 for the second).
+#[test]
+fn fast_hysteresis_corners_take_few_steps() {
+    let cases = [
+        (
+            ModelKind::Mcm,
+            base(5.0, 0.0, 0.1, 0.1, 3.0, 1.5),
+            (85, 100, 6),
+        ),
+        (
+            ModelKind::Shccm,
+            base(5.0, 0.0, 0.1, 0.1, 3.0, 1.5),
+            (62, 100, 6),
+        ),
+        (
+            ModelKind::Shccm,
+            base(3.0, 1.5, 0.5, 0.01, 2.0, 2.0),
+            (40, 90, 2),
+        ),
+    ];
+    for (kind, b, (most_steps, most_rhs, most_rejected)) in cases {
+        let map = BaseMap::new(kind, b).unwrap();
+        let series = impact_at(&map, Zero, 20.0, &with_series()).unwrap();
+        let reference = impact_at(&map, Zero, 20.0, &runge_kutta(1e-14)).unwrap();
+        let work = &series.stats;
+        assert!(
+            series.series_steps > 0
+                && series.series_steps <= most_steps
+                && work.rhs_evals <= most_rhs
+                && work.rejected <= most_rejected,
+            "{kind:?}: {series:?}"
+        );
+        assert!(
+            (series.e - reference.e).abs() < 1e-9,
+            "{kind:?}: {series:?} vs {reference:?}"
+        );
+        let (ts, ts_ref) = (series.t_s.unwrap(), reference.t_s.unwrap());
+        assert!((ts - ts_ref).abs() < 1e-9, "{kind:?}: T_s {ts} vs {ts_ref}");
+    }
+}
