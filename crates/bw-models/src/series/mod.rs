@@ -30,6 +30,11 @@
 //! solution is analytic, takes the first step instead (`series/contact.rs`): one step over most of the
 //! compression in place of the start step and the ramp after it.
 //!
+//! Where `Z` runs into the equilibrium of its branch (`|Z| = c^(-1/n)` with
+//! `c = B sgn(Z) sgn(rate) + Γ > 0`, `Z` moving with the rate), it is held there once within
+//! [`START_TOLERANCE`] step tolerances of it: the exact `Z` only approaches it further, and the
+//! decay towards it would otherwise cap the steps at its rate.
+//!
 //! A contact that comes to rest is reported as settled, as on the Runge-Kutta path. Where this
 //! path cannot go on (a start step that meets an event, more than [`MAX_SERIES_STEPS`] steps,
 //! e.g. a stiff contact, a state sliding along a switching surface, an ill-conditioned root, or
