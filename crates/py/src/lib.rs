@@ -124,7 +124,7 @@ fn simulate_json<'py>(
         .allow_threads(|| bwc_cli::with_threads(threads, || Ok(simulate::run(&scene, None))))
         .map_err(error)?;
     let summary = bwc_cli::output::Summary::new(&runs, scene.sequence.is_some());
-    let text = summary.with_provenance(&scene, &runs).to_string();
+    let text = summary.provenance_json(&scene, &runs);
     let sampled = scene.output.trajectory || scene.output.loops;
     let trajectories = runs
         .iter()

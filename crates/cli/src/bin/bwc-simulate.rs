@@ -99,11 +99,10 @@ fn run(
     let runs = bwc_cli::with_threads(threads, || Ok(simulate::run(&scene, Some(&tick))))?;
     bar.finish_and_clear();
     report(&scene, &runs);
-    let summary =
-        output::Summary::new(&runs, scene.sequence.is_some()).with_provenance(&scene, &runs);
+    let summary = output::Summary::new(&runs, scene.sequence.is_some());
     // The results are printed before the files are written: a failed write loses nothing.
     if json {
-        bwc_cli::out!("{summary}");
+        bwc_cli::out!("{}", summary.provenance_json(&scene, &runs));
     } else if scene.sequence.is_some() {
         bounce_table(&runs);
     } else {
@@ -111,7 +110,7 @@ fn run(
     }
     if let Some(dir) = out {
         let files = output::render(&scene, &runs, dir)?;
-        let written = outdir::write_all(dir, summary, files)?;
+        let written = outdir::write_all(dir, summary.with_provenance(&scene, &runs), files)?;
         if !json {
             for p in written {
                 eprintln!("wrote {}", p.display());
