@@ -1,7 +1,7 @@
 //! The jets of the series path: Taylor coefficients of the solution of each nondimensional model
 //! about the start of a step, by the recurrences of the powers and Cauchy products.
 
-use super::ORDER;
+use super::{crossing, ORDER};
 use crate::impact::Settings;
 use crate::input::Input;
 use crate::models::{CollisionModel, NdCoefficients, Ndbwmcm, Ndbwshccm};
@@ -122,6 +122,18 @@ pub(crate) trait Expand<const N: usize>: CollisionModel<N> {
     /// The model's nondimensional coefficients.
     fn coefficients(&self) -> &NdCoefficients;
 
+    /// The step off a root of `Z` (`y[Z] = 0`, `y[BASE] != 0`) into the branch where the rate
+    /// has sign `s`, under the constant input `u`, where that branch has no hysteresis bracket
+    /// (`B + Γ = 0`; [`super::crossing`]); `tol` is the local tolerance. `None` elsewhere, or
+    /// where the step declines: the explicit method's start step takes over.
+    fn crossing_step(
+        &self,
+        y: &State<N>,
+        s: f64,
+        u: f64,
+        tol: f64,
+    ) -> Option<(f64, State<N>, bool)>;
+
     /// The first step from contact under the constant input `u` where the model's loading has
     /// a series of its own ([`super::contact`]), as the time and state where it ends; `None`
     /// where it has none (the explicit method's start step then leaves contact).
@@ -165,7 +177,7 @@ fn dot(p: &[f64], q: &[f64]) -> f64 {
 /// `(Σ_j a_j q_j, Σ_j b_j q_j)` over the common length of `a`, `b` (equal) and `q`, in four
 /// lanes: two convolutions with one pass over `q`.
 #[inline(always)]
-fn dot2(a: &[f64], b: &[f64], q: &[f64]) -> (f64, f64) {
+pub(super) fn dot2(a: &[f64], b: &[f64], q: &[f64]) -> (f64, f64) {
     let n = a.len().min(q.len());
     let (a, b, q) = (
         a[..n].chunks_exact(4),
@@ -416,6 +428,28 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
         &self.k
     }
 
+    fn crossing_step(
+        &self,
+        y: &State<3>,
+        s: f64,
+        u: f64,
+        tol: f64,
+    ) -> Option<(f64, State<3>, bool)> {
+        let k = &self.k;
+        if k.b + k.gamma != 0.0 {
+            return None;
+        }
+        let c = crossing::Coefficients {
+            kappa: k.kappa,
+            sigma: k.sigma,
+            p: k.p.exponent(),
+            u,
+        };
+        let end = crossing::shccm(&c, y, s, tol)?;
+        let y1 = State::<3>::new(y[0] + s * end.d, s * end.d, end.v);
+        Some((end.dt, y1, end.separated))
+    }
+
     fn expand(&self, y: &State<3>, sw: f64, saturated: bool, u: f64, jet: &mut Jet<3>) {
         let k = &self.k;
         let (sx, sz) = (y[0].signum(), y[1].signum());
@@ -493,6 +527,28 @@ impl<I: Input> Expand<4> for Ndbwmcm<I> {
 
     fn coefficients(&self) -> &NdCoefficients {
         &self.k
+    }
+
+    fn crossing_step(
+        &self,
+        y: &State<4>,
+        s: f64,
+        u: f64,
+        tol: f64,
+    ) -> Option<(f64, State<4>, bool)> {
+        let k = &self.k;
+        if k.b + k.gamma != 0.0 {
+            return None;
+        }
+        let c = crossing::Coefficients {
+            kappa: k.kappa,
+            sigma: k.sigma,
+            p: k.p.exponent(),
+            u,
+        };
+        let end = crossing::mcm(&c, y, s, tol)?;
+        let y1 = State::<4>::new(y[0] + end.dr, y[1] + s * end.d, s * end.d, end.v);
+        Some((end.dt, y1, end.separated))
     }
 
     fn expand(&self, y: &State<4>, sw: f64, saturated: bool, u: f64, jet: &mut Jet<4>) {

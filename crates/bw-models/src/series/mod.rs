@@ -30,6 +30,10 @@
 //! solution is analytic, takes the first step instead (`series/contact.rs`): one step over most of the
 //! compression in place of the start step and the ramp after it.
 //!
+//! Off a root of `Z` into a branch without hysteresis bracket (`B + Γ = 0`, every fit of the
+//! paper), a series in `D = |Z|` and `D^p`, in which the solution is analytic, takes the first
+//! step instead of the start step and the ramp after it (`series/crossing.rs`).
+//!
 //! Where `Z` runs into the equilibrium of its branch (`|Z| = c^(-1/n)` with
 //! `c = B sgn(Z) sgn(rate) + Γ > 0`, `Z` moving with the rate), it is held there once within
 //! [`START_TOLERANCE`] step tolerances of it: the exact `Z` only approaches it further, and the
@@ -47,6 +51,7 @@
 //! path), which is why it is the default for CoR evaluations.
 
 mod contact;
+mod crossing;
 mod jet;
 mod path;
 

@@ -155,6 +155,21 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     /// path retakes it if it met an event.
     fn leave_zero(&mut self) -> Next<N> {
         let (model, settings) = (self.model, self.settings);
+        if self.y[M::Z] == 0.0 && self.y[M::BASE] != 0.0 {
+            let (s, tol) = (
+                f64::from(self.rate_class),
+                step_tolerance(&self.y, settings),
+            );
+            if let Some((dt, y, separated)) = model.crossing_step(&self.y, s, self.u, tol) {
+                self.series_steps += 1;
+                self.stats.accepted += 1;
+                (self.t, self.y, self.h_last) = (self.t + dt, y, dt);
+                if separated {
+                    self.force_here = Some(0.0);
+                }
+                return Next::Step;
+            }
+        }
         let (t_start, y_start, stats_start) = (self.t, self.y, self.stats);
         let k = model.coefficients();
         let q = 1.0 + k.p.exponent().min(k.n.exponent());
