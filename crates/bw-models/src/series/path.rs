@@ -45,6 +45,8 @@ pub(super) struct SeriesPath<'a, M, const N: usize> {
     /// The force where this step starts, if the last step computed it already (at its end, or
     /// zero at a located root).
     force_here: Option<f64>,
+    /// `Z*` of the branch (signs of the rate and of `Z`) it was last computed for.
+    z_star: Option<((i8, i8), Option<f64>)>,
 }
 
 /// What lies ahead in a step: an event at `s`, or its end (the state and event values there).
@@ -82,6 +84,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             jet: Jet::new(),
             stalled: 0,
             force_here: None,
+            z_star: None,
         };
         if let Some((t1, y1)) = model.contact_step(path.u, settings) {
             path.series_steps += 1;
@@ -155,20 +158,8 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     /// path retakes it if it met an event.
     fn leave_zero(&mut self) -> Next<N> {
         let (model, settings) = (self.model, self.settings);
-        if self.y[M::Z] == 0.0 && self.y[M::BASE] != 0.0 {
-            let (s, tol) = (
-                f64::from(self.rate_class),
-                step_tolerance(&self.y, settings),
-            );
-            if let Some((dt, y, separated)) = model.crossing_step(&self.y, s, self.u, tol) {
-                self.series_steps += 1;
-                self.stats.accepted += 1;
-                (self.t, self.y, self.h_last) = (self.t + dt, y, dt);
-                if separated {
-                    self.force_here = Some(0.0);
-                }
-                return Next::Step;
-            }
+        if self.y[M::Z] == 0.0 && self.y[M::BASE] != 0.0 && self.leave_root_of_z() {
+            return Next::Step;
         }
         let (t_start, y_start, stats_start) = (self.t, self.y, self.stats);
         let k = model.coefficients();
@@ -189,6 +180,24 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             return Next::Finish(self.hand_over());
         }
         Next::Step
+    }
+
+    /// Off a root of `Z`, the model's series in `D = |Z|` where it has one for this branch
+    /// ([`Expand::crossing_step`]); whether it took the step.
+    fn leave_root_of_z(&mut self) -> bool {
+        let s = f64::from(self.rate_class);
+        let tol = step_tolerance(&self.y, self.settings);
+        let Some((dt, y, separated)) = self.model.crossing_step(&self.y, s, self.u, tol) else {
+            return false;
+        };
+        self.series_steps += 1;
+        self.stats.accepted += 1;
+        (self.t, self.y, self.h_last) = (self.t + dt, y, dt);
+        if separated {
+            // Ended on the force's root with V >= 0: the next step's start reports it.
+            self.force_here = Some(0.0);
+        }
+        true
     }
 
     /// One expansion: rest, or a step to its end or to the earliest event inside it.
@@ -245,8 +254,16 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     /// longer carry the decay towards `Z*`, whose rate (`c n |Z*|^(n-1) |rate|`, large for a
     /// large `B`) caps explicit steps however small the deviation has become.
     fn saturate(&mut self) -> (bool, bool) {
-        let rate_sign = f64::from(self.rate_class);
-        let Some(z_star) = self.model.saturation(&self.y, rate_sign) else {
+        let branch = (self.rate_class, class(self.y[M::Z]));
+        let z_star = match self.z_star {
+            Some((b, z_star)) if b == branch => z_star,
+            _ => {
+                let z_star = self.model.saturation(&self.y, f64::from(self.rate_class));
+                self.z_star = Some((branch, z_star));
+                z_star
+            }
+        };
+        let Some(z_star) = z_star else {
             return (false, false);
         };
         if self.y[M::Z] == z_star {
