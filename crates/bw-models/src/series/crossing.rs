@@ -6,7 +6,8 @@
 //! and can serve as the independent variable: with `s` the sign of the rate and
 //! `W = 1 / |rate|`, every state component `y` obeys `dy/dD = y' W`, where the only power that is
 //! not analytic at `D = 0` is `|Z|^p = D^p`, now explicit. The solution is therefore a series in
-//! the monomials `D^(a + j p)` (`a, j >= 0`, weight `a + j p <= ORDER`):
+//! the monomials `D^(a + j p)` (`a, j >= 0`, weight `a + j p` up to Jorba & Zou's order for the
+//! tolerance plus two, `-ln(tol)/2 + 2`, between 6 and `ORDER`):
 //!
 //! * NDBWSHCCM (`X = X_c + s D`): `F = -κ sgn(X) P - (1 - κ) s D^p - σ P V` with
 //!   `P = |X_c + s D|^p` (a binomial series in `D`), `dV/dD = (F + u) W`, `dT/dD = W`,
@@ -20,8 +21,9 @@
 //! `a`) computes them all. The step in `D` is Jorba & Zou's over the last two weights of each
 //! row, at [`START_TOLERANCE`] times the local tolerance, at most half the distance to the zero
 //! of the other base; it ends early at a separation `F <= 0 <= V` (the root of the force's
-//! series), and is declined (the Runge-Kutta start step takes over) where the rate would
-//! vanish inside it.
+//! series). It is declined (the Runge-Kutta start step takes over) where the rate would vanish
+//! inside it, where the other base's zero is within a tenth of the step (both bases vanishing
+//! together), and where its values are not finite.
 
 use super::jet::dot2;
 use super::{class, coarse_log2, root, START_TOLERANCE};
