@@ -124,8 +124,10 @@ pub(crate) trait Expand<const N: usize>: CollisionModel<N> {
 
     /// The step off a root of `Z` (`y[Z] = 0`, `y[BASE] != 0`) into the branch where the rate
     /// has sign `s`, under the constant input `u`, where that branch has no hysteresis bracket
-    /// (`B + Γ = 0`; [`super::crossing`]); `tol` is the local tolerance. `None` elsewhere, or
-    /// where the step declines: the explicit method's start step takes over.
+    /// (`B + Γ = 0`; [`super::crossing`]); `tol` is the local tolerance. Returns the time the
+    /// step takes, the state at its end and whether it ended on a separation (the force's root
+    /// with `V >= 0`); `None` elsewhere, or where the step declines: the explicit method's
+    /// start step takes over.
     fn crossing_step(
         &self,
         y: &State<N>,
