@@ -27,6 +27,7 @@
 
 use super::jet::dot2;
 use super::{class, coarse_log2, root, START_TOLERANCE};
+use crate::models::NdCoefficients;
 use crate::State;
 
 /// Largest weight `a + j p` of the monomials, and the largest `a` and `j`.
@@ -160,6 +161,19 @@ pub(crate) struct Coefficients {
     pub(crate) sigma: f64,
     pub(crate) p: f64,
     pub(crate) u: f64,
+}
+
+impl Coefficients {
+    /// The constants of a model whose branch after a root of `Z` has no hysteresis bracket
+    /// (`B + Γ = 0`), under the constant input `u`; `None` for any other model.
+    pub(crate) fn of(k: &NdCoefficients, u: f64) -> Option<Self> {
+        (k.b + k.gamma == 0.0).then(|| Self {
+            kappa: k.kappa,
+            sigma: k.sigma,
+            p: k.p.exponent(),
+            u,
+        })
+    }
 }
 
 /// Where a crossing step ends, `D` after the root of `Z`: the time since the root, the

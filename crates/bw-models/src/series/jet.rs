@@ -437,16 +437,7 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
         u: f64,
         tol: f64,
     ) -> Option<(f64, State<3>, bool)> {
-        let k = &self.k;
-        if k.b + k.gamma != 0.0 {
-            return None;
-        }
-        let c = crossing::Coefficients {
-            kappa: k.kappa,
-            sigma: k.sigma,
-            p: k.p.exponent(),
-            u,
-        };
+        let c = crossing::Coefficients::of(&self.k, u)?;
         let end = crossing::shccm(&c, y, s, tol)?;
         let y1 = State::<3>::new(y[0] + s * end.d, s * end.d, end.v);
         Some((end.dt, y1, end.separated))
@@ -538,16 +529,7 @@ impl<I: Input> Expand<4> for Ndbwmcm<I> {
         u: f64,
         tol: f64,
     ) -> Option<(f64, State<4>, bool)> {
-        let k = &self.k;
-        if k.b + k.gamma != 0.0 {
-            return None;
-        }
-        let c = crossing::Coefficients {
-            kappa: k.kappa,
-            sigma: k.sigma,
-            p: k.p.exponent(),
-            u,
-        };
+        let c = crossing::Coefficients::of(&self.k, u)?;
         let end = crossing::mcm(&c, y, s, tol)?;
         let y1 = State::<4>::new(y[0] + end.dr, y[1] + s * end.d, s * end.d, end.v);
         Some((end.dt, y1, end.separated))
