@@ -83,6 +83,23 @@ impl Shape {
         (su, sf)
     }
 
+    /// Coefficient `(j, a)` of `W = 1 / U` (stored reversed, as in [`Shape::products`]) from
+    /// `U` up to `(j, a)` and `W` before it, and coefficient `(j, a)` of `F W`. `W[0][0]` is
+    /// set by the caller.
+    fn reciprocal_and_product(
+        u: &Lattice,
+        f: &Lattice,
+        w_rev: &mut Lattice,
+        j: usize,
+        a: usize,
+    ) -> f64 {
+        let (su, sf) = Self::products(u, f, w_rev, j, a);
+        if (j, a) != (0, 0) {
+            w_rev[j][K - a] = -w_rev[0][K] * su;
+        }
+        sf + f[0][0] * w_rev[j][K - a]
+    }
+
     /// The powers of `D` for evaluating a lattice at `D > 0`.
     fn powers(&self, d: f64) -> Powers {
         let mut da = [1.0; K + 1];
@@ -232,11 +249,7 @@ fn shccm_series(k: &Coefficients, x_c: f64, v_c: f64, s: f64, sol: &mut Solution
                 } else {
                     0.0
                 };
-            let (su, sf) = Shape::products(u, f, &w, j, a);
-            if (j, a) != (0, 0) {
-                w[j][K - a] = -w[0][K] * su;
-            }
-            g[j][a] = sf + (f[0][0] + k.u) * w[j][K - a];
+            g[j][a] = Shape::reciprocal_and_product(u, f, &mut w, j, a) + k.u * w[j][K - a];
         }
     }
     Some(())
@@ -280,11 +293,7 @@ fn mcm_series(k: &Coefficients, y_c: f64, v_c: f64, s: f64, sol: &mut Solution) 
                 }
                 u[j][a] = s * (v[j][a] + k.sigma * f[j][a]);
             }
-            let (su, sf) = Shape::products(u, f, &w, j, a);
-            if (j, a) != (0, 0) {
-                w[j][K - a] = -w[0][K] * su;
-            }
-            h[j][a] = sf + f[0][0] * w[j][K - a];
+            h[j][a] = Shape::reciprocal_and_product(u, f, &mut w, j, a);
         }
     }
     Some(())
