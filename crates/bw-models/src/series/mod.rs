@@ -280,26 +280,30 @@ enum Target {
     Force,
 }
 
+/// First step of a repeated [`reach_root`] run, as a fraction of its span: a series step spans
+/// about `tol^(1/16 - 1/8)` (5-10) Runge-Kutta steps of order 8 at rtol 1e-8 ... 1e-12.
+const RETRY_SPAN: f64 = 0.125;
+
 /// Largest step along `f` onto a root after [`reach_root`]'s Runge-Kutta run, as a fraction of
 /// that run's span.
 const NEWTON_SPAN: f64 = 1e-2;
 
 /// From `start`, the explicit method of the settings up to `t1`, where the series put a root of
-/// `target`; then one Newton step along `f` onto the root (declined unless it is tiny, or small
-/// against the span and accurate by an estimate of its error: an ill-conditioned root is left
-/// to the Runge-Kutta path).
+/// `target`, with first trial step `h0`; then one Newton step along `f` onto the root (declined
+/// unless it is tiny, or small against the span and accurate by an estimate of its error: an
+/// ill-conditioned root is left to the Runge-Kutta path).
 fn reach_root<M: CollisionModel<N>, const N: usize>(
     model: &M,
     settings: &Settings,
-    start: (f64, &State<N>),
-    t1: f64,
+    (start, t1): ((f64, &State<N>), f64),
     target: Target,
+    h0: f64,
     stats: &mut Stats,
 ) -> Option<(f64, State<N>)> {
     let (t0, y0) = start;
     let options = Options::new(settings.rtol, settings.atol)
         .with_max_step(settings.max_step)
-        .with_h0(t1 - t0);
+        .with_h0(h0);
     let rhs = |t: f64, y: &State<N>| model.rhs(t, y);
     let mut it = Integrator::new(rhs, settings.method, t0, *y0, options).ok()?;
     it.integrate_to(t1).ok()?;

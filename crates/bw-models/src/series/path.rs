@@ -5,7 +5,7 @@
 use super::jet::{Expand, Jet, Series};
 use super::{
     class, eval_d, reach_root, root, start_step, step_size, step_tolerance, SeriesRun, Target,
-    FORCE_MARGIN, MAX_GROWTH, MAX_SERIES_STEPS, MAX_STALLED, START_TOLERANCE,
+    FORCE_MARGIN, MAX_GROWTH, MAX_SERIES_STEPS, MAX_STALLED, RETRY_SPAN, START_TOLERANCE,
 };
 use crate::impact::{at_rest, Impact, Settings};
 use crate::{separated, State};
@@ -357,12 +357,36 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
         }
     }
 
+    /// Onto the root of `target` that the series put at `s` in this step (`at_root`, the
+    /// series' state there), by the explicit method from the step's start ([`reach_root`]),
+    /// trying the whole span as its first step. One Runge-Kutta step that long can pass its error
+    /// test far from the solution (DOP853's estimate is asymptotic, and a series step spans
+    /// several Runge-Kutta steps): where its end and the series' state differ by more than the
+    /// step tolerance, the run is redone from a first step of [`RETRY_SPAN`] of the span.
+    fn onto_root(&mut self, s: f64, target: Target, at_root: &State<N>) -> Option<(f64, State<N>)> {
+        let (model, settings) = (self.model, self.settings);
+        let span = ((self.t, &self.y), self.t + s);
+        let reached = reach_root(model, settings, span, target, s, &mut self.stats)?;
+        let apart = (reached.1 - at_root).amax();
+        if apart <= step_tolerance(&self.y, settings) {
+            return Some(reached);
+        }
+        reach_root(
+            model,
+            settings,
+            span,
+            target,
+            RETRY_SPAN * s,
+            &mut self.stats,
+        )
+    }
+
     /// The step ends at the event at `s`: onto a zero of a base by the explicit method (the
     /// series converge slowest there), across a sign change of the rate, or onto the force's
     /// root (by the explicit method near a zero of a base, where the force can vanish with
     /// it).
     fn apply_event(&mut self, s: f64, event: Event) -> Next<N> {
-        let (model, settings) = (self.model, self.settings);
+        let model = self.model;
         if self.t + s > self.t {
             self.stalled = 0;
         } else {
@@ -372,19 +396,11 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             }
         }
         let at_root = State::<N>::from(self.jet.state_at(s));
-        let start = (self.t, &self.y);
         let reached = match event {
             Event::Z | Event::Base => {
                 self.stats.events += 1;
                 let i = if event == Event::Z { M::Z } else { M::BASE };
-                reach_root(
-                    model,
-                    settings,
-                    start,
-                    self.t + s,
-                    Target::Component(i),
-                    &mut self.stats,
-                )
+                self.onto_root(s, Target::Component(i), &at_root)
             }
             Event::Rate => {
                 self.stats.events += 1;
@@ -403,14 +419,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
                     b.abs() <= s * db.abs()
                 });
                 if near_a_base_zero {
-                    reach_root(
-                        model,
-                        settings,
-                        start,
-                        self.t + s,
-                        Target::Force,
-                        &mut self.stats,
-                    )
+                    self.onto_root(s, Target::Force, &at_root)
                 } else {
                     Some((self.t + s, at_root))
                 }

@@ -562,3 +562,25 @@ fn the_root_of_z_is_left_by_a_series_in_d_and_d_to_the_p() {
         );
     }
 }
+
+/// A series step that spans a whole unloading (a nearly linear contact, `B = Γ = 0`, `p = 1`,
+/// under a push: case 23764 of the stress sweep) ends on the root of `X`, which the
+/// Runge-Kutta method reaches from the step's start. DOP853 took that span in one step, passed
+/// its error test, and missed `e` by 3.5e-9; its end is now checked against the series' state
+/// and the run redone from a shorter first step.
+#[test]
+fn a_long_runge_kutta_step_onto_a_root_is_checked_against_the_series() {
+    let map = BaseMap::new(ModelKind::Shccm, base(0.0, 0.0, 0.01675, 3.418, 9.0, 1.0)).unwrap();
+    let v0 = 0.2436;
+    let (_, scale) = map.at(v0).unwrap();
+    let u = Constant(9.694 / scale.factor);
+    let series = impact_at(&map, u, v0, &with_series()).unwrap();
+    let reference = impact_at(&map, u, v0, &runge_kutta(1e-14)).unwrap();
+    assert!(series.series_steps > 0, "{series:?}");
+    assert!(
+        (series.e - reference.e).abs() < 1e-11,
+        "{} vs {}",
+        series.e,
+        reference.e
+    );
+}
