@@ -1,7 +1,7 @@
 //! Global search with argmin's particle swarm, then Nelder-Mead polishing, from several seeded
 //! starts. Everything runs on the unit cube of the [`crate::Space`].
 
-use crate::objective::{Costs, Objective, Prediction};
+use crate::objective::{Costs, Objective, Prediction, TermOrder};
 use crate::IdentifyError;
 use argmin::core::{Executor, State};
 use argmin::solver::neldermead::NelderMead;
@@ -10,6 +10,7 @@ use bw_models::input::Input;
 use bw_models::BaseParams;
 use rand::SeedableRng;
 use rayon::prelude::*;
+use std::sync::{Mutex, PoisonError};
 use std::time::Instant;
 
 /// Optimizer budget and stopping rule of [`minimize`].
@@ -177,6 +178,14 @@ pub trait CubeProblem: Sync {
         let _ = s;
         None
     }
+    /// The cost at `s` where it is below `bound`; otherwise any value above `bound`. A search
+    /// that only compares a cost with a bound (a particle with its own best) asks this, and a
+    /// problem may then skip work, trying first the terms that `order` ranks high and updating
+    /// it (see [`Objective::scalar_below`]). The default is [`CubeProblem::cost_at`].
+    fn cost_below(&self, s: &[f64], bound: f64, order: &mut TermOrder) -> f64 {
+        let _ = (bound, order);
+        self.cost_at(s)
+    }
 }
 
 impl<I: Input + Sync> CubeProblem for Objective<'_, I> {
@@ -192,6 +201,9 @@ impl<I: Input + Sync> CubeProblem for Objective<'_, I> {
     fn residuals_at(&self, s: &[f64]) -> Option<Vec<f64>> {
         Some(self.residuals(s))
     }
+    fn cost_below(&self, s: &[f64], bound: f64, order: &mut TermOrder) -> f64 {
+        self.scalar_below(s, bound, order)
+    }
 }
 
 /// argmin's view of a [`CubeProblem`].
@@ -202,6 +214,61 @@ impl<P: CubeProblem> argmin::core::CostFunction for Cube<'_, P> {
     type Output = f64;
     fn cost(&self, s: &Self::Param) -> Result<f64, argmin::core::Error> {
         Ok(self.0.cost_at(s))
+    }
+}
+
+/// The particle swarm's view of a [`CubeProblem`]. argmin's swarm uses a particle's new cost
+/// only to compare it with that particle's best, so each particle is evaluated with
+/// [`CubeProblem::cost_below`] its best, with its own [`TermOrder`]: the same search, with less
+/// work where a particle does not improve. `particles` mirrors the particles' best costs in
+/// argmin's order: the first bulk evaluation is the initial swarm, which argmin then sorts by
+/// cost (stably); every later one holds the particles' new positions in that order, and a best
+/// is replaced by a lower cost.
+struct Swarm<'a, P> {
+    problem: &'a P,
+    particles: Mutex<Vec<(f64, TermOrder)>>,
+}
+
+impl<P: CubeProblem> argmin::core::CostFunction for Swarm<'_, P> {
+    type Param = Vec<f64>;
+    type Output = f64;
+    fn cost(&self, s: &Self::Param) -> Result<f64, argmin::core::Error> {
+        Ok(self.problem.cost_at(s))
+    }
+    fn bulk_cost<Q>(&self, params: &[Q]) -> Result<Vec<f64>, argmin::core::Error>
+    where
+        Q: std::borrow::Borrow<Self::Param> + argmin::core::SyncAlias,
+        f64: argmin::core::SendAlias,
+        Self: argmin::core::SyncAlias,
+    {
+        let mut particles = self
+            .particles
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner);
+        let initial = particles.is_empty();
+        if initial {
+            particles.resize(params.len(), (f64::INFINITY, TermOrder::default()));
+        } else if particles.len() != params.len() {
+            return Err(argmin::core::Error::msg(format!(
+                "particle swarm: {} positions for {} particles",
+                params.len(),
+                particles.len()
+            )));
+        }
+        let costs: Vec<f64> = params
+            .par_iter()
+            .zip(particles.par_iter_mut())
+            .map(|(s, (best, order))| self.problem.cost_below(s.borrow(), *best, order))
+            .collect();
+        for ((best, _), &c) in particles.iter_mut().zip(&costs) {
+            if c < *best {
+                *best = c;
+            }
+        }
+        if initial {
+            particles.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(std::cmp::Ordering::Equal));
+        }
+        Ok(costs)
     }
 }
 
@@ -316,7 +383,11 @@ fn one_start<P: CubeProblem>(
     let rng = rand::rngs::StdRng::seed_from_u64(seed);
     let swarm =
         ParticleSwarm::new((vec![0.0; d], vec![1.0; d]), budget.particles).with_rng_generator(rng);
-    let res = Executor::new(Cube(problem), swarm)
+    let swarm_problem = Swarm {
+        problem,
+        particles: Mutex::new(Vec::new()),
+    };
+    let res = Executor::new(swarm_problem, swarm)
         .configure(|s| s.max_iters(budget.iterations))
         .run()
         .map_err(optimizer_error)?;

@@ -58,7 +58,7 @@ pub use fit::{
 };
 pub use identifiability::{analyse, Identifiability};
 pub use loops::{loop_cost, Curve, LawSpace, Loop, LoopObjective, LAW_NAMES};
-pub use objective::{predict, Costs, Objective, Prediction, Weights, FAILED};
+pub use objective::{predict, Costs, Objective, Prediction, TermOrder, Weights, FAILED};
 pub use space::{KnownMassStiffness, Param, Space, NAMES};
 pub use uncertainty::{uncertainty, BandPoint, Uncertainty, LEVEL};
 

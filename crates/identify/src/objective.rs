@@ -1,7 +1,7 @@
 //! Aggregate quantities `Θ_1` (CoR, eq:Theta_1) and `Θ_2` (duration in s, eq:Theta_2), and the
 //! costs `J_j = (1/M) Σ (Θ̃_j - Θ_j(P*, u, v0))²` (eq:J) over a dataset.
 
-use crate::data::Dataset;
+use crate::data::{Dataset, Point};
 use crate::space::Space;
 use crate::IdentifyError;
 use bw_models::input::Input;
@@ -39,21 +39,29 @@ pub fn predict<I: Input + Sync>(
     speeds.dedup();
     let at: Vec<Prediction> = speeds
         .par_iter()
-        .map(|&v0| {
-            let out = impact_at(map, u, v0, settings)?;
-            Ok(Prediction {
-                v0,
-                e: out.e,
-                t_d: out.t_s.unwrap_or(settings.t_max) * map.time_scale(v0),
-                separated: out.separated(),
-            })
-        })
+        .map(|&v0| prediction(map, u, v0, settings))
         .collect::<Result<_, ModelError>>()?;
     Ok(data
         .points
         .iter()
         .map(|p| at[speeds.partition_point(|&v| v < p.v0)])
         .collect())
+}
+
+/// The prediction at one speed.
+fn prediction<I: Input + Sync>(
+    map: &BaseMap,
+    u: &I,
+    v0: f64,
+    settings: &Settings,
+) -> Result<Prediction, ModelError> {
+    let out = impact_at(map, u, v0, settings)?;
+    Ok(Prediction {
+        v0,
+        e: out.e,
+        t_d: out.t_s.unwrap_or(settings.t_max) * map.time_scale(v0),
+        separated: out.separated(),
+    })
 }
 
 /// The costs of predictions against data: `J1` over the points with a measured CoR, `J2` over
@@ -212,30 +220,57 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
     /// a CoR and `sqrt(w2 / M2) (t_d,model - t_d)` for every point with a duration (where the
     /// weight is positive), in data order; their sum of squares is `w1 J1 + w2 J2`.
     pub fn weighted_residuals(&self, predictions: &[Prediction]) -> Vec<f64> {
-        let w = self.weights;
-        let n1 = self
-            .data
-            .points
-            .iter()
-            .filter(|p| p.e.is_some())
-            .count()
-            .max(1) as f64;
-        let n2 = self
-            .data
-            .points
-            .iter()
-            .filter(|p| p.t_d.is_some())
-            .count()
-            .max(1) as f64;
+        let scales = self.residual_scales();
         let mut r = Vec::new();
         for (d, p) in self.data.points.iter().zip(predictions) {
-            if let (Some(e), true) = (d.e, w.j1 > 0.0) {
-                r.push((w.j1 / n1).sqrt() * (p.e - e));
-            }
-            if let (Some(t), true) = (d.t_d, w.j2 > 0.0) {
-                r.push((w.j2 / n2).sqrt() * (p.t_d - t));
+            let (e, t) = point_residuals(d, p, scales);
+            r.extend(e);
+            r.extend(t);
+        }
+        r
+    }
+
+    /// `sqrt(w1 / M1)` and `sqrt(w2 / M2)`, each `None` where its weight is zero.
+    fn residual_scales(&self) -> (Option<f64>, Option<f64>) {
+        let w = self.weights;
+        let count = |has: fn(&Point) -> bool| {
+            self.data.points.iter().filter(|p| has(p)).count().max(1) as f64
+        };
+        let n1 = count(|p| p.e.is_some());
+        let n2 = count(|p| p.t_d.is_some());
+        (
+            (w.j1 > 0.0).then(|| (w.j1 / n1).sqrt()),
+            (w.j2 > 0.0).then(|| (w.j2 / n2).sqrt()),
+        )
+    }
+
+    /// The penalty at `s`: `(s - clamp(s))²` outside the cube, plus `1 + 10 v` for a violation
+    /// `v` of the inequality constraint.
+    fn penalty(&self, s: &[f64]) -> f64 {
+        let outside: f64 = s.iter().map(|x| (x - x.clamp(0.0, 1.0)).powi(2)).sum();
+        let v = self.space.violation(&self.space.decode(s));
+        outside + if v > 0.0 { 1.0 + 10.0 * v } else { 0.0 }
+    }
+
+    /// Counts an evaluation and reports it.
+    fn count(&self) {
+        self.evaluations.fetch_add(1, Ordering::Relaxed);
+        if let Some(p) = self.progress {
+            p();
+        }
+    }
+
+    /// The residual vector of predictions (`None` for a failed simulation) and the penalty.
+    fn residuals_of(&self, predictions: Option<&[Prediction]>, penalty: f64) -> Vec<f64> {
+        if let Some(p) = predictions {
+            let mut r = self.weighted_residuals(p);
+            if r.iter().all(|x| x.is_finite()) {
+                r.push(penalty.sqrt());
+                return r;
             }
         }
+        let mut r = vec![0.0; self.weighted_residual_count()];
+        r.push((FAILED + penalty).sqrt());
         r
     }
 
@@ -243,24 +278,10 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
     /// entry, so that its sum of squares is [`Objective::scalar`]. A failed simulation gives
     /// zero residuals and the penalty entry `sqrt(FAILED + penalty)`.
     pub fn residuals(&self, s: &[f64]) -> Vec<f64> {
-        self.evaluations.fetch_add(1, Ordering::Relaxed);
-        if let Some(p) = self.progress {
-            p();
-        }
-        let outside: f64 = s.iter().map(|x| (x - x.clamp(0.0, 1.0)).powi(2)).sum();
-        let v = self.space.violation(&self.space.decode(s));
-        let penalty = outside + if v > 0.0 { 1.0 + 10.0 * v } else { 0.0 };
-        let len = self.weighted_residual_count();
-        if let Ok((p, _)) = self.evaluate(s) {
-            let mut r = self.weighted_residuals(&p);
-            if r.iter().all(|x| x.is_finite()) {
-                r.push(penalty.sqrt());
-                return r;
-            }
-        }
-        let mut r = vec![0.0; len];
-        r.push((FAILED + penalty).sqrt());
-        r
+        self.count();
+        let penalty = self.penalty(s);
+        let predictions = self.evaluate(s).ok().map(|(p, _)| p);
+        self.residuals_of(predictions.as_deref(), penalty)
     }
 
     fn weighted_residual_count(&self) -> usize {
@@ -281,4 +302,119 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
     pub fn scalar(&self, s: &[f64]) -> f64 {
         self.residuals(s).iter().map(|x| x * x).sum()
     }
+
+    /// [`Objective::scalar`] for a search that only asks whether it is below `bound` (a
+    /// particle against its own best): the same value, bit for bit, where it is below `bound`;
+    /// otherwise possibly a smaller value that is still above `bound`. The speeds are simulated
+    /// one after another, largest weight in `order` first, and once the penalty plus the
+    /// squared residuals of the points simulated so far exceed `bound` (by more than the
+    /// rounding of the sum), the rest are skipped: every term is nonnegative, so the full cost
+    /// exceeds `bound` too. Only below [`FAILED`], so that a failed simulation's cost compares
+    /// with `bound` as before. Each simulated speed's weight in `order` becomes its squared
+    /// residuals. Counts as one evaluation.
+    pub fn scalar_below(&self, s: &[f64], bound: f64, order: &mut TermOrder) -> f64 {
+        self.count();
+        let penalty = self.penalty(s);
+        let passed = |partial: f64| bound < FAILED && partial > bound * (1.0 + PASSED_MARGIN);
+        if passed(penalty) {
+            return penalty;
+        }
+        let predictions = match self.predict_below(s, penalty, passed, order) {
+            Ok(p) => p,
+            Err(Skipped(partial)) => return partial,
+        };
+        let r = self.residuals_of(predictions.as_deref(), penalty);
+        r.iter().map(|x| x * x).sum()
+    }
+
+    /// The predictions at `s` (`None` where a simulation fails), speed after speed in `order`,
+    /// or the partial cost (from `penalty`) at which `passed` stopped them.
+    fn predict_below(
+        &self,
+        s: &[f64],
+        penalty: f64,
+        passed: impl Fn(f64) -> bool,
+        order: &mut TermOrder,
+    ) -> Result<Option<Vec<Prediction>>, Skipped> {
+        let Ok(map) = self.space.map(&self.space.decode(s)) else {
+            return Ok(None);
+        };
+        let scales = self.residual_scales();
+        let mut speeds: Vec<f64> = self.data.points.iter().map(|p| p.v0).collect();
+        speeds.sort_by(f64::total_cmp);
+        speeds.dedup();
+        let mut at: Vec<Option<Prediction>> = vec![None; speeds.len()];
+        let mut partial = penalty;
+        for k in order.sequence(speeds.len()) {
+            let v0 = speeds[k];
+            let Ok(p) = prediction(&map, self.input, v0, &self.settings) else {
+                return Ok(None);
+            };
+            let contribution: f64 = self
+                .data
+                .points
+                .iter()
+                .filter(|d| d.v0 == v0)
+                .map(|d| {
+                    let (e, t) = point_residuals(d, &p, scales);
+                    e.into_iter().chain(t).map(|x| x * x).sum::<f64>()
+                })
+                .sum();
+            order.weights[k] = contribution;
+            partial += contribution;
+            if passed(partial) {
+                return Err(Skipped(partial));
+            }
+            at[k] = Some(p);
+        }
+        Ok(self
+            .data
+            .points
+            .iter()
+            .map(|p| at[speeds.partition_point(|&v| v < p.v0)])
+            .collect())
+    }
+}
+
+/// The order in which [`Objective::scalar_below`] simulates the distinct speeds of the data (in
+/// increasing order of speed, index `k`): the largest weight first, ties by speed. The weights
+/// start at zero and become each speed's squared residuals where it was last simulated, so
+/// that a search that keeps one order per particle tries first where that particle fitted
+/// worst.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TermOrder {
+    weights: Vec<f64>,
+}
+
+impl TermOrder {
+    /// The indices `0..n` in this order (weights reset to zero if there were not `n`).
+    fn sequence(&mut self, n: usize) -> Vec<usize> {
+        if self.weights.len() != n {
+            self.weights = vec![0.0; n];
+        }
+        let mut k: Vec<usize> = (0..n).collect();
+        k.sort_by(|&a, &b| self.weights[b].total_cmp(&self.weights[a]));
+        k
+    }
+}
+
+/// Relative margin by which a partial cost must exceed a bound in [`Objective::scalar_below`]:
+/// far above the rounding of a sum of a few hundred terms, which may make a partial sum exceed
+/// the full sum (taken in another order) by that much.
+const PASSED_MARGIN: f64 = 1e-12;
+
+/// The partial cost at which [`Objective::scalar_below`] stopped.
+struct Skipped(f64);
+
+/// The weighted residuals of one data point against its prediction (CoR, duration), for the
+/// scales of [`Objective::residual_scales`].
+fn point_residuals(
+    d: &Point,
+    p: &Prediction,
+    (s1, s2): (Option<f64>, Option<f64>),
+) -> (Option<f64>, Option<f64>) {
+    (
+        s1.zip(d.e).map(|(w, e)| w * (p.e - e)),
+        s2.zip(d.t_d).map(|(w, t)| w * (p.t_d - t)),
+    )
 }

@@ -177,6 +177,124 @@ fn identical_results_for_any_thread_count() {
     assert_eq!(a.evaluations, b.evaluations);
 }
 
+/// A problem that hides [`Objective::cost_below`]'s early stop: the particle swarm then sees
+/// exact costs.
+struct Exact<'a, P>(&'a P);
+
+impl<P: CubeProblem> CubeProblem for Exact<'_, P> {
+    fn dim(&self) -> usize {
+        self.0.dim()
+    }
+    fn cost_at(&self, s: &[f64]) -> f64 {
+        self.0.cost_at(s)
+    }
+    fn evaluations(&self) -> u64 {
+        self.0.evaluations()
+    }
+    fn residuals_at(&self, s: &[f64]) -> Option<Vec<f64>> {
+        self.0.residuals_at(s)
+    }
+}
+
+/// Five speeds of Table 3's DSS (1) with a duration column, and the NDBWSHCCM's space with
+/// B_b, g, κ and σ_b free.
+fn dss_problem() -> (Dataset, Space) {
+    let truth = BaseParams {
+        b_b: 2.38,
+        gamma_b: -2.38,
+        kappa: 0.677,
+        sigma_b: 0.0348,
+        n: 2.93,
+        p: 2.62,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    let data = synthetic(ModelKind::Shccm, truth, 0.0, &[0.5, 1.0, 2.0, 3.0, 4.5]);
+    let space = Space::new(
+        ModelKind::Shccm,
+        [
+            free(0.0, 5.0),
+            free(-1.0, 1.0),
+            free(0.02, 0.98),
+            free(0.0, 0.3),
+            Param::Fixed(2.93),
+            Param::Fixed(2.62),
+            Param::Fixed(1.0),
+            Param::Fixed(1.0),
+        ],
+        None,
+    )
+    .unwrap();
+    (data, space)
+}
+
+/// Below its bound the early-stopping cost is the scalar cost bit for bit; above, it is a value
+/// above the bound and at most the scalar cost (a partial sum).
+#[test]
+fn cost_below_a_bound_is_exact_below_it() {
+    let (data, space) = dss_problem();
+    let objective = Objective::new(
+        &space,
+        &data,
+        &Zero,
+        Settings::default(),
+        Weights { j1: 1.0, j2: 0.0 },
+    )
+    .unwrap();
+    for s in [
+        vec![0.3, 0.1, 0.5, 0.2],
+        vec![0.9, 0.8, 0.1, 0.9],
+        vec![0.476, 0.0, 0.677, 0.116],
+        vec![1.2, 0.5, 0.5, 0.5],
+    ] {
+        let full = objective.scalar(&s);
+        for bound in [f64::INFINITY, 2.0 * full, full * (1.0 + 1e-9)] {
+            let mut order = TermOrder::default();
+            assert_eq!(objective.scalar_below(&s, bound, &mut order), full, "{s:?}");
+        }
+        for bound in [0.5 * full, 1e-3 * full, 0.0] {
+            let mut order = TermOrder::default();
+            let c = objective.scalar_below(&s, bound, &mut order);
+            assert!(
+                c > bound && c <= full,
+                "{s:?}: {c} for bound {bound}, full {full}"
+            );
+        }
+    }
+}
+
+/// The particle swarm with early-stopping costs takes the same path as with exact costs: the
+/// same point, cost and number of evaluations (its bookkeeping of each particle's best matches
+/// argmin's, including argmin's sort of the initial swarm).
+#[test]
+fn early_stopping_costs_leave_the_search_unchanged() {
+    let (data, space) = dss_problem();
+    let budget = Budget {
+        particles: 12,
+        iterations: 10,
+        polish_iterations: 40,
+        starts: 2,
+        max_starts: 2,
+        agree: 1,
+        ..Budget::default()
+    };
+    for seed in [1, 2] {
+        let objective = Objective::new(
+            &space,
+            &data,
+            &Zero,
+            Settings::default(),
+            Weights { j1: 1.0, j2: 0.0 },
+        )
+        .unwrap();
+        let stopping = minimize(&objective, &budget, seed, None).unwrap();
+        let exact = minimize(&Exact(&objective), &budget, seed, None).unwrap();
+        assert_eq!(stopping.point, exact.point, "seed {seed}");
+        assert_eq!(stopping.cost, exact.cost, "seed {seed}");
+        assert_eq!(stopping.evaluations, exact.evaluations, "seed {seed}");
+    }
+}
+
 /// CoR data alone leave a weak direction: the identifiability report shows a large condition
 /// number when B_b, g, κ, σ_b, n, p are all free (the paper's remark on Table 3).
 #[test]
