@@ -13,6 +13,7 @@
 //! peak hundreds of times `m g`).
 
 use crate::fit::CubeProblem;
+use crate::objective::{TermOrder, PASSED_MARGIN};
 use crate::space::Space;
 use crate::IdentifyError;
 use bw_models::input::Constant;
@@ -271,6 +272,21 @@ impl<'a> DropObjective<'a> {
     /// [`IdentifyError::Model`] when the parameters are not admissible or a contact fails.
     pub fn predict(&self, s: &[f64]) -> Result<Vec<f64>, IdentifyError> {
         let map = self.space.map(&self.space.decode(s))?;
+        let (heights, bounces) = self.heights();
+        let sequences: Vec<_> = heights
+            .par_iter()
+            .map(|&h0| self.sequence(&map, h0, bounces))
+            .collect::<Result<_, _>>()?;
+        Ok(self
+            .data
+            .rows
+            .iter()
+            .map(|r| self.value(r, &sequences[heights.partition_point(|&h| h < r.h0)]))
+            .collect())
+    }
+
+    /// The distinct release heights in increasing order, and the contacts each sequence needs.
+    fn heights(&self) -> (Vec<f64>, usize) {
         let mut heights: Vec<f64> = self.data.rows.iter().map(|r| r.h0).collect();
         heights.sort_by(f64::total_cmp);
         heights.dedup();
@@ -280,23 +296,60 @@ impl<'a> DropObjective<'a> {
             DropKind::Intervals => most + 1,
             DropKind::Heights => 1,
         };
-        let sequences: Vec<_> = heights
-            .par_iter()
-            .map(|&h0| self.sequence(&map, h0, bounces))
-            .collect::<Result<_, _>>()?;
-        Ok(self
-            .data
-            .rows
-            .iter()
-            .map(|r| {
-                let seq = &sequences[heights.partition_point(|&h| h < r.h0)];
-                let bounce = seq.get(r.bounce_n - 1);
-                match self.data.kind {
-                    DropKind::Intervals => bounce.and_then(|b| b.interval).unwrap_or(f64::NAN),
-                    DropKind::Heights => bounce.map_or(f64::NAN, |b| b.apex),
-                }
-            })
-            .collect())
+        (heights, bounces)
+    }
+
+    /// The simulated value of row `r` from its height's sequence (NaN where the sequence ended
+    /// before the row's bounce).
+    fn value(&self, r: &DropRow, sequence: &[bw_models::sequence::Bounce]) -> f64 {
+        let bounce = sequence.get(r.bounce_n - 1);
+        match self.data.kind {
+            DropKind::Intervals => bounce.and_then(|b| b.interval).unwrap_or(f64::NAN),
+            DropKind::Heights => bounce.map_or(f64::NAN, |b| b.apex),
+        }
+    }
+
+    /// The rows' values height after height in `order`, or the partial cost (from `outside`)
+    /// at which `passed` stopped them; `Ok(None)` where a simulation fails.
+    fn predict_below(
+        &self,
+        s: &[f64],
+        outside: f64,
+        passed: impl Fn(f64) -> bool,
+        order: &mut TermOrder,
+    ) -> Result<Option<Vec<f64>>, f64> {
+        let Ok(map) = self.space.map(&self.space.decode(s)) else {
+            return Ok(None);
+        };
+        let (heights, bounces) = self.heights();
+        let scale = 1.0 / (self.data.rows.len() as f64).sqrt();
+        let mut sequences = vec![Vec::new(); heights.len()];
+        let mut partial = outside;
+        for k in order.sequence(heights.len()) {
+            let Ok(sequence) = self.sequence(&map, heights[k], bounces) else {
+                return Ok(None);
+            };
+            let contribution: f64 = self
+                .data
+                .rows
+                .iter()
+                .filter(|r| r.h0 == heights[k])
+                .map(|r| residual(scale, r.value, self.value(r, &sequence)).powi(2))
+                .sum();
+            order.set(k, contribution);
+            partial += contribution;
+            if passed(partial) {
+                return Err(partial);
+            }
+            sequences[k] = sequence;
+        }
+        Ok(Some(
+            self.data
+                .rows
+                .iter()
+                .map(|r| self.value(r, &sequences[heights.partition_point(|&h| h < r.h0)]))
+                .collect(),
+        ))
     }
 
     /// `J_drop` of predictions against the data.
@@ -313,8 +366,19 @@ impl<'a> DropObjective<'a> {
             .rows
             .iter()
             .zip(predicted)
-            .map(|(r, p)| scale * if p.is_finite() { r.value - p } else { r.value })
+            .map(|(r, &p)| residual(scale, r.value, p))
             .collect()
+    }
+
+    /// The residual vector of predictions (`None` for a failed simulation) and the distance
+    /// outside the cube.
+    fn residuals_with(&self, predicted: Option<&[f64]>, outside: f64) -> Vec<f64> {
+        let mut r = match predicted {
+            Some(p) => self.residuals_of(p),
+            None => self.data.rows.iter().map(|_| FAILED_DROP.sqrt()).collect(),
+        };
+        r.push(outside.sqrt());
+        r
     }
 
     /// The space.
@@ -337,16 +401,44 @@ impl CubeProblem for DropObjective<'_> {
     fn residuals_at(&self, s: &[f64]) -> Option<Vec<f64>> {
         self.evaluations.fetch_add(1, Ordering::Relaxed);
         let outside: f64 = s.iter().map(|x| (x - x.clamp(0.0, 1.0)).powi(2)).sum();
-        let mut r = match self.predict(s) {
-            Ok(p) => self.residuals_of(&p),
-            Err(_) => self.data.rows.iter().map(|_| FAILED_DROP.sqrt()).collect(),
-        };
-        r.push(outside.sqrt());
+        let r = self.residuals_with(self.predict(s).ok().as_deref(), outside);
         if let Some(p) = self.progress {
             p();
         }
         Some(r)
     }
+    /// As [`crate::Objective::scalar_below`], height by height: the cost bit for bit where it
+    /// is below `bound`, else a partial sum above it (every term is nonnegative).
+    fn cost_below(&self, s: &[f64], bound: f64, order: &mut TermOrder) -> f64 {
+        self.evaluations.fetch_add(1, Ordering::Relaxed);
+        if let Some(p) = self.progress {
+            p();
+        }
+        let outside: f64 = s.iter().map(|x| (x - x.clamp(0.0, 1.0)).powi(2)).sum();
+        let passed = |partial: f64| bound < FAILED_DROP && partial > bound * (1.0 + PASSED_MARGIN);
+        if passed(outside) {
+            return outside;
+        }
+        match self.predict_below(s, outside, passed, order) {
+            Ok(p) => self
+                .residuals_with(p.as_deref(), outside)
+                .iter()
+                .map(|x| x * x)
+                .sum(),
+            Err(partial) => partial,
+        }
+    }
+}
+
+/// The residual of one row: `(ỹ - y) scale`, a miss by the measured value where the
+/// simulation did not reach the row's bounce.
+fn residual(scale: f64, measured: f64, simulated: f64) -> f64 {
+    scale
+        * if simulated.is_finite() {
+            measured - simulated
+        } else {
+            measured
+        }
 }
 
 #[cfg(test)]
@@ -428,6 +520,57 @@ mod tests {
         std::fs::write(&heights, "h0,h1\n0.5,-0.3\n").unwrap();
         let bad = DropData::load(&heights).unwrap_err().to_string();
         assert!(bad.contains(":2:") && bad.contains("`h1`"), "{bad}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Below its bound the early-stopping cost is `cost_at` bit for bit; above, a value above
+    /// the bound and at most `cost_at` up to the rounding of a sum taken in another order (two
+    /// release heights, so a stop can skip one).
+    #[test]
+    fn cost_below_a_bound_is_exact_below_it() {
+        let free = Param::Free {
+            lo: 0.01,
+            hi: 0.3,
+            log: false,
+        };
+        let params = [
+            Param::Fixed(1.0),
+            Param::Fixed(-1.0),
+            Param::Fixed(0.5),
+            free,
+            Param::Fixed(1.5),
+            Param::Fixed(1.5),
+            Param::Fixed(1.0),
+            Param::Fixed(1.0),
+        ];
+        let space = Space::new(ModelKind::Shccm, params, None).unwrap();
+        let dir = std::env::temp_dir().join(format!("bwc-drops-below-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("intervals.csv");
+        let rows = "h0,bounce_n,interval_s\n0.5,1,0.55\n0.5,2,0.45\n1.0,1,0.8\n1.0,2,0.65\n";
+        std::fs::write(&file, rows).unwrap();
+        let data = DropData::load(&file).unwrap();
+        let setup = DropSetup {
+            m: 0.01,
+            flight: Flight { g: 9.81, drag: 0.0 },
+            timed_contacts: false,
+        };
+        let objective = DropObjective::new(&space, &data, setup, Settings::default()).unwrap();
+        for s in [[0.1], [0.5], [0.9], [1.3]] {
+            let full = objective.cost_at(&s);
+            for bound in [f64::INFINITY, 2.0 * full, full * (1.0 + 1e-9)] {
+                let mut order = TermOrder::default();
+                assert_eq!(objective.cost_below(&s, bound, &mut order), full, "{s:?}");
+            }
+            for bound in [0.5 * full, 1e-3 * full, 0.0] {
+                let mut order = TermOrder::default();
+                let c = objective.cost_below(&s, bound, &mut order);
+                assert!(
+                    c > bound && c <= full * (1.0 + 1e-12),
+                    "{s:?}: {c} for {bound}, full {full}"
+                );
+            }
+        }
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -360,7 +360,7 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
                     e.into_iter().chain(t).map(|x| x * x).sum::<f64>()
                 })
                 .sum();
-            order.weights[k] = contribution;
+            order.set(k, contribution);
             partial += contribution;
             if passed(partial) {
                 return Err(Skipped(partial));
@@ -376,19 +376,24 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
     }
 }
 
-/// The order in which [`Objective::scalar_below`] simulates the distinct speeds of the data (in
-/// increasing order of speed, index `k`): the largest weight first, ties by speed. The weights
-/// start at zero and become each speed's squared residuals where it was last simulated, so
-/// that a search that keeps one order per particle tries first where that particle fitted
-/// worst.
+/// The order in which a cost with early stopping computes its terms (the distinct speeds of
+/// [`Objective::scalar_below`], the release heights of a drop fit; index `k` in increasing
+/// order of speed or height): the largest weight first, ties by index. The weights start at
+/// zero and become each term's contribution where it was last computed, so that a search that
+/// keeps one order per particle tries first where that particle fitted worst.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct TermOrder {
     weights: Vec<f64>,
 }
 
 impl TermOrder {
+    /// Term `k`'s weight: its contribution to the cost where it was last computed.
+    pub(crate) fn set(&mut self, k: usize, contribution: f64) {
+        self.weights[k] = contribution;
+    }
+
     /// The indices `0..n` in this order (weights reset to zero if there were not `n`).
-    fn sequence(&mut self, n: usize) -> Vec<usize> {
+    pub(crate) fn sequence(&mut self, n: usize) -> Vec<usize> {
         if self.weights.len() != n {
             self.weights = vec![0.0; n];
         }
@@ -401,7 +406,7 @@ impl TermOrder {
 /// Relative margin by which a partial cost must exceed a bound in [`Objective::scalar_below`]:
 /// far above the rounding of a sum of a few hundred terms, which may make a partial sum exceed
 /// the full sum (taken in another order) by that much.
-const PASSED_MARGIN: f64 = 1e-12;
+pub(crate) const PASSED_MARGIN: f64 = 1e-12;
 
 /// The partial cost at which [`Objective::scalar_below`] stopped.
 struct Skipped(f64);

@@ -229,7 +229,8 @@ fn dss_problem() -> (Dataset, Space) {
 }
 
 /// Below its bound the early-stopping cost is the scalar cost bit for bit; above, it is a value
-/// above the bound and at most the scalar cost (a partial sum).
+/// above the bound and at most the scalar cost (a partial sum, up to the rounding of a sum
+/// taken in another order).
 #[test]
 fn cost_below_a_bound_is_exact_below_it() {
     let (data, space) = dss_problem();
@@ -256,7 +257,7 @@ fn cost_below_a_bound_is_exact_below_it() {
             let mut order = TermOrder::default();
             let c = objective.scalar_below(&s, bound, &mut order);
             assert!(
-                c > bound && c <= full,
+                c > bound && c <= full * (1.0 + 1e-12),
                 "{s:?}: {c} for bound {bound}, full {full}"
             );
         }
