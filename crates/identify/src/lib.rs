@@ -12,7 +12,8 @@
 //! * [`fit`]: independent starts, each argmin's particle swarm (seeded, particles in parallel)
 //!   polished by Levenberg-Marquardt and Nelder-Mead, until several agree ([`Convergence`]);
 //!   optimum snapped onto the bounds it touches ([`at_bound`]); identical results for any
-//!   thread count;
+//!   thread count. A particle's evaluation stops once its cost passes the particle's best
+//!   ([`CubeProblem::cost_below`], [`TermOrder`]): the same search with less work;
 //! * [`analyse`]: singular values of the sensitivity matrix at the optimum (faer);
 //! * [`uncertainty`]: linearised 95 % intervals of the parameters and bands of `e(v0)`,
 //!   `t_d(v0)`, validated by the coverage studies of [`study`];
