@@ -228,9 +228,17 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             .min(settings.max_step)
             .min(settings.t_max - self.t);
         self.h_last = h;
+        // The separation F <= 0 <= V: a root of V matters only where F <= 0 already (F is
+        // nonpositive within the margin of its computed value; a force farther above zero
+        // reaches its own root, an event of this step, before it can be).
+        let force_may_be_down = force <= FORCE_MARGIN * tol;
         let watch: [Watched; 5] = [
             (Event::Force, 1, force > 0.0),
-            (Event::Velocity, -1, !M::RATE_IS_VELOCITY && velocity < 0.0),
+            (
+                Event::Velocity,
+                -1,
+                !M::RATE_IS_VELOCITY && velocity < 0.0 && force_may_be_down,
+            ),
             (Event::Rate, self.rate_class, true),
             (Event::Z, class(self.y[M::Z]), true),
             (Event::Base, class(self.y[M::BASE]), true),
