@@ -13,7 +13,7 @@
 //! peak hundreds of times `m g`).
 
 use crate::fit::CubeProblem;
-use crate::objective::{TermOrder, PASSED_MARGIN};
+use crate::objective::{passes, TermOrder};
 use crate::space::Space;
 use crate::IdentifyError;
 use bw_models::input::Constant;
@@ -323,33 +323,21 @@ impl<'a> DropObjective<'a> {
         };
         let (heights, bounces) = self.heights();
         let scale = 1.0 / (self.data.rows.len() as f64).sqrt();
-        let mut sequences = vec![Vec::new(); heights.len()];
-        let mut partial = outside;
-        for k in order.sequence(heights.len()) {
-            let Ok(sequence) = self.sequence(&map, heights[k], bounces) else {
-                return Ok(None);
-            };
-            let contribution: f64 = self
-                .data
-                .rows
-                .iter()
-                .filter(|r| r.h0 == heights[k])
+        let sequences = order.accumulate(heights.len(), outside, passed, |k| {
+            let sequence = self.sequence(&map, heights[k], bounces).ok()?;
+            let rows = self.data.rows.iter().filter(|r| r.h0 == heights[k]);
+            let squares: f64 = rows
                 .map(|r| residual(scale, r.value, self.value(r, &sequence)).powi(2))
                 .sum();
-            order.set(k, contribution);
-            partial += contribution;
-            if passed(partial) {
-                return Err(partial);
-            }
-            sequences[k] = sequence;
-        }
-        Ok(Some(
+            Some((sequence, squares))
+        })?;
+        Ok(sequences.map(|sequences| {
             self.data
                 .rows
                 .iter()
                 .map(|r| self.value(r, &sequences[heights.partition_point(|&h| h < r.h0)]))
-                .collect(),
-        ))
+                .collect()
+        }))
     }
 
     /// `J_drop` of predictions against the data.
@@ -415,7 +403,7 @@ impl CubeProblem for DropObjective<'_> {
             p();
         }
         let outside: f64 = s.iter().map(|x| (x - x.clamp(0.0, 1.0)).powi(2)).sum();
-        let passed = |partial: f64| bound < FAILED_DROP && partial > bound * (1.0 + PASSED_MARGIN);
+        let passed = passes(bound, FAILED_DROP);
         if passed(outside) {
             return outside;
         }

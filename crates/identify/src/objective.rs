@@ -315,16 +315,17 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
     pub fn scalar_below(&self, s: &[f64], bound: f64, order: &mut TermOrder) -> f64 {
         self.count();
         let penalty = self.penalty(s);
-        let passed = |partial: f64| bound < FAILED && partial > bound * (1.0 + PASSED_MARGIN);
+        let passed = passes(bound, FAILED);
         if passed(penalty) {
             return penalty;
         }
-        let predictions = match self.predict_below(s, penalty, passed, order) {
-            Ok(p) => p,
-            Err(Skipped(partial)) => return partial,
-        };
-        let r = self.residuals_of(predictions.as_deref(), penalty);
-        r.iter().map(|x| x * x).sum()
+        match self.predict_below(s, penalty, passed, order) {
+            Ok(p) => {
+                let r = self.residuals_of(p.as_deref(), penalty);
+                r.iter().map(|x| x * x).sum()
+            }
+            Err(partial) => partial,
+        }
     }
 
     /// The predictions at `s` (`None` where a simulation fails), speed after speed in `order`,
@@ -335,7 +336,7 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
         penalty: f64,
         passed: impl Fn(f64) -> bool,
         order: &mut TermOrder,
-    ) -> Result<Option<Vec<Prediction>>, Skipped> {
+    ) -> Result<Option<Vec<Prediction>>, f64> {
         let Ok(map) = self.space.map(&self.space.decode(s)) else {
             return Ok(None);
         };
@@ -343,37 +344,32 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
         let mut speeds: Vec<f64> = self.data.points.iter().map(|p| p.v0).collect();
         speeds.sort_by(f64::total_cmp);
         speeds.dedup();
-        let mut at: Vec<Option<Prediction>> = vec![None; speeds.len()];
-        let mut partial = penalty;
-        for k in order.sequence(speeds.len()) {
-            let v0 = speeds[k];
-            let Ok(p) = prediction(&map, self.input, v0, &self.settings) else {
-                return Ok(None);
-            };
-            let contribution: f64 = self
-                .data
-                .points
-                .iter()
-                .filter(|d| d.v0 == v0)
+        let at = order.accumulate(speeds.len(), penalty, passed, |k| {
+            let p = prediction(&map, self.input, speeds[k], &self.settings).ok()?;
+            let points = self.data.points.iter().filter(|d| d.v0 == speeds[k]);
+            let squares: f64 = points
                 .map(|d| {
                     let (e, t) = point_residuals(d, &p, scales);
                     e.into_iter().chain(t).map(|x| x * x).sum::<f64>()
                 })
                 .sum();
-            order.set(k, contribution);
-            partial += contribution;
-            if passed(partial) {
-                return Err(Skipped(partial));
-            }
-            at[k] = Some(p);
-        }
-        Ok(self
-            .data
-            .points
-            .iter()
-            .map(|p| at[speeds.partition_point(|&v| v < p.v0)])
-            .collect())
+            Some((p, squares))
+        })?;
+        Ok(at.map(|at| {
+            self.data
+                .points
+                .iter()
+                .map(|p| at[speeds.partition_point(|&v| v < p.v0)])
+                .collect()
+        }))
     }
+}
+
+/// Whether a partial cost has passed `bound` for [`Objective::scalar_below`] and its kin: by
+/// more than [`PASSED_MARGIN`], and only for a bound below `failed` (the cost of a failed
+/// simulation, which then compares with the bound as the full evaluation would).
+pub(crate) fn passes(bound: f64, failed: f64) -> impl Fn(f64) -> bool {
+    move |partial| bound < failed && partial > bound * (1.0 + PASSED_MARGIN)
 }
 
 /// The order in which a cost with early stopping computes its terms (the distinct speeds of
@@ -387,13 +383,36 @@ pub struct TermOrder {
 }
 
 impl TermOrder {
-    /// Term `k`'s weight: its contribution to the cost where it was last computed.
-    pub(crate) fn set(&mut self, k: usize, contribution: f64) {
-        self.weights[k] = contribution;
+    /// Computes terms `0..n` in this order: `term(k)` gives term `k`'s value and its
+    /// nonnegative contribution to the cost, or `None` where it fails. Returns the values in
+    /// index order (`None` if a term failed), or the partial cost from `start` once `passed`
+    /// holds for it (the remaining terms skipped). Each computed term's weight becomes its
+    /// contribution.
+    pub(crate) fn accumulate<T>(
+        &mut self,
+        n: usize,
+        start: f64,
+        passed: impl Fn(f64) -> bool,
+        mut term: impl FnMut(usize) -> Option<(T, f64)>,
+    ) -> Result<Option<Vec<T>>, f64> {
+        let mut values: Vec<Option<T>> = (0..n).map(|_| None).collect();
+        let mut partial = start;
+        for k in self.sequence(n) {
+            let Some((value, contribution)) = term(k) else {
+                return Ok(None);
+            };
+            self.weights[k] = contribution;
+            partial += contribution;
+            if passed(partial) {
+                return Err(partial);
+            }
+            values[k] = Some(value);
+        }
+        Ok(values.into_iter().collect())
     }
 
     /// The indices `0..n` in this order (weights reset to zero if there were not `n`).
-    pub(crate) fn sequence(&mut self, n: usize) -> Vec<usize> {
+    fn sequence(&mut self, n: usize) -> Vec<usize> {
         if self.weights.len() != n {
             self.weights = vec![0.0; n];
         }
@@ -406,10 +425,7 @@ impl TermOrder {
 /// Relative margin by which a partial cost must exceed a bound in [`Objective::scalar_below`]:
 /// far above the rounding of a sum of a few hundred terms, which may make a partial sum exceed
 /// the full sum (taken in another order) by that much.
-pub(crate) const PASSED_MARGIN: f64 = 1e-12;
-
-/// The partial cost at which [`Objective::scalar_below`] stopped.
-struct Skipped(f64);
+const PASSED_MARGIN: f64 = 1e-12;
 
 /// The weighted residuals of one data point against its prediction (CoR, duration), for the
 /// scales of [`Objective::residual_scales`].

@@ -125,21 +125,7 @@ fn identical_results_for_any_thread_count() {
         t_b: 1.0,
     };
     let data = synthetic(ModelKind::Shccm, truth, 0.0, &[0.2, 0.5, 1.0, 2.0, 4.0]);
-    let space = Space::new(
-        ModelKind::Shccm,
-        [
-            free(0.0, 3.0),
-            free(-1.0, 1.0),
-            free(0.1, 0.9),
-            free(0.0, 0.1),
-            Param::Fixed(1.5),
-            Param::Fixed(1.5),
-            Param::Fixed(1.0),
-            Param::Fixed(1.0),
-        ],
-        None,
-    )
-    .unwrap();
+    let space = cor_space(3.0, (0.1, 0.9), 0.1, truth);
     let run = |threads: usize| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -196,8 +182,8 @@ impl<P: CubeProblem> CubeProblem for Exact<'_, P> {
     }
 }
 
-/// Five speeds of Table 3's DSS (1) with a duration column, and the NDBWSHCCM's space with
-/// B_b, g, κ and σ_b free.
+/// Five speeds of Table 3's DSS (1) NDBWSHCCM (CoR and duration), and its space with B_b, g, κ
+/// and σ_b free.
 fn dss_problem() -> (Dataset, Space) {
     let truth = BaseParams {
         b_b: 2.38,
@@ -210,22 +196,27 @@ fn dss_problem() -> (Dataset, Space) {
         t_b: 1.0,
     };
     let data = synthetic(ModelKind::Shccm, truth, 0.0, &[0.5, 1.0, 2.0, 3.0, 4.5]);
-    let space = Space::new(
+    (data, cor_space(5.0, (0.02, 0.98), 0.3, truth))
+}
+
+/// The NDBWSHCCM's space with `B_b` in `[0, b_hi]`, `g`, `κ` in `kappa` and `σ_b` in
+/// `[0, sigma_hi]` free, `n` and `p` fixed at `truth`'s.
+fn cor_space(b_hi: f64, kappa: (f64, f64), sigma_hi: f64, truth: BaseParams) -> Space {
+    Space::new(
         ModelKind::Shccm,
         [
-            free(0.0, 5.0),
+            free(0.0, b_hi),
             free(-1.0, 1.0),
-            free(0.02, 0.98),
-            free(0.0, 0.3),
-            Param::Fixed(2.93),
-            Param::Fixed(2.62),
+            free(kappa.0, kappa.1),
+            free(0.0, sigma_hi),
+            Param::Fixed(truth.n),
+            Param::Fixed(truth.p),
             Param::Fixed(1.0),
             Param::Fixed(1.0),
         ],
         None,
     )
-    .unwrap();
-    (data, space)
+    .unwrap()
 }
 
 /// Below its bound the early-stopping cost is the scalar cost bit for bit; above, it is a value
