@@ -178,10 +178,10 @@ pub trait CubeProblem: Sync {
         let _ = s;
         None
     }
-    /// The cost at `s` where it is below `bound`; otherwise any value above `bound`. A search
-    /// that only compares a cost with a bound (a particle with its own best) asks this, and a
-    /// problem may then skip work, trying first the terms that `order` ranks high and updating
-    /// it (see [`Objective::scalar_below`]). The default is [`CubeProblem::cost_at`].
+    /// The cost at `s` where it is below `bound`; otherwise any value not below `bound`. A
+    /// search that only compares a cost with a bound (a particle with its own best) asks this,
+    /// and a problem may then skip work, trying first the terms that `order` ranks high and
+    /// updating it (see [`Objective::scalar_below`]). The default is [`CubeProblem::cost_at`].
     fn cost_below(&self, s: &[f64], bound: f64, order: &mut TermOrder) -> f64 {
         let _ = (bound, order);
         self.cost_at(s)
