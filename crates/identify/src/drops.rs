@@ -277,12 +277,7 @@ impl<'a> DropObjective<'a> {
             .par_iter()
             .map(|&h0| self.sequence(&map, h0, bounces))
             .collect::<Result<_, _>>()?;
-        Ok(self
-            .data
-            .rows
-            .iter()
-            .map(|r| self.value(r, &sequences[heights.partition_point(|&h| h < r.h0)]))
-            .collect())
+        Ok(self.values(&heights, &sequences))
     }
 
     /// The distinct release heights in increasing order, and the contacts each sequence needs.
@@ -331,13 +326,16 @@ impl<'a> DropObjective<'a> {
                 .sum();
             Some((sequence, squares))
         })?;
-        Ok(sequences.map(|sequences| {
-            self.data
-                .rows
-                .iter()
-                .map(|r| self.value(r, &sequences[heights.partition_point(|&h| h < r.h0)]))
-                .collect()
-        }))
+        Ok(sequences.map(|sequences| self.values(&heights, &sequences)))
+    }
+
+    /// The simulated value of every row from the sequences of the distinct `heights`.
+    fn values(&self, heights: &[f64], sequences: &[Vec<bw_models::sequence::Bounce>]) -> Vec<f64> {
+        self.data
+            .rows
+            .iter()
+            .map(|r| self.value(r, &sequences[heights.partition_point(|&h| h < r.h0)]))
+            .collect()
     }
 
     /// `J_drop` of predictions against the data.

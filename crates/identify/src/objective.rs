@@ -34,18 +34,28 @@ pub fn predict<I: Input + Sync>(
     data: &Dataset,
     settings: &Settings,
 ) -> Result<Vec<Prediction>, ModelError> {
-    let mut speeds: Vec<f64> = data.points.iter().map(|p| p.v0).collect();
-    speeds.sort_by(f64::total_cmp);
-    speeds.dedup();
+    let speeds = distinct_speeds(data);
     let at: Vec<Prediction> = speeds
         .par_iter()
         .map(|&v0| prediction(map, u, v0, settings))
         .collect::<Result<_, ModelError>>()?;
-    Ok(data
-        .points
+    Ok(in_data_order(data, &speeds, &at))
+}
+
+/// The distinct impact speeds of `data`, in increasing order.
+fn distinct_speeds(data: &Dataset) -> Vec<f64> {
+    let mut speeds: Vec<f64> = data.points.iter().map(|p| p.v0).collect();
+    speeds.sort_by(f64::total_cmp);
+    speeds.dedup();
+    speeds
+}
+
+/// The predictions `at` the [`distinct_speeds`] `speeds`, one per point of `data`.
+fn in_data_order(data: &Dataset, speeds: &[f64], at: &[Prediction]) -> Vec<Prediction> {
+    data.points
         .iter()
         .map(|p| at[speeds.partition_point(|&v| v < p.v0)])
-        .collect())
+        .collect()
 }
 
 /// The prediction at one speed.
@@ -341,9 +351,7 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
             return Ok(None);
         };
         let scales = self.residual_scales();
-        let mut speeds: Vec<f64> = self.data.points.iter().map(|p| p.v0).collect();
-        speeds.sort_by(f64::total_cmp);
-        speeds.dedup();
+        let speeds = distinct_speeds(self.data);
         let at = order.accumulate(speeds.len(), penalty, passed, |k| {
             let p = prediction(&map, self.input, speeds[k], &self.settings).ok()?;
             let points = self.data.points.iter().filter(|d| d.v0 == speeds[k]);
@@ -355,13 +363,7 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
                 .sum();
             Some((p, squares))
         })?;
-        Ok(at.map(|at| {
-            self.data
-                .points
-                .iter()
-                .map(|p| at[speeds.partition_point(|&v| v < p.v0)])
-                .collect()
-        }))
+        Ok(at.map(|at| in_data_order(self.data, &speeds, &at)))
     }
 }
 

@@ -280,8 +280,9 @@ enum Target {
     Force,
 }
 
-/// First step of a repeated [`reach_root`] run, as a fraction of its span: a series step spans
-/// about `tol^(1/16 - 1/8)` (5-10) Runge-Kutta steps of order 8 at rtol 1e-8 ... 1e-12.
+/// First step of a repeated [`reach_root`] run, as a fraction of its span: a series step of
+/// order 16 spans about `tol^(1/16 - 1/8)` (3-6) Runge-Kutta steps of order 8 at rtol 1e-8 ...
+/// 1e-12, and a first step of an eighth lets the run find its own.
 const RETRY_SPAN: f64 = 0.125;
 
 /// Largest step along `f` onto a root after [`reach_root`]'s Runge-Kutta run, as a fraction of
