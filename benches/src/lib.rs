@@ -83,8 +83,8 @@ pub fn side_by_side(fs: &mut [Box<dyn FnMut() + '_>]) -> Vec<f64> {
 }
 
 pub mod cor {
-    //! One CoR evaluation of the paper's Table 3 models (DSS (1)), the unit of work of the
-    //! identification.
+    //! One CoR evaluation of the paper's Table 3 models (DSS (1) and DSA (1)), the unit of work
+    //! of the identification.
     use bw_models::{
         impact_at, input::Zero, BaseMap, BaseParams, Cor, ModelError, ModelKind, Settings,
     };
@@ -112,11 +112,43 @@ pub mod cor {
         t_b: 1.0,
     };
 
+    /// Table 3, DSA (1), NDBWSHCCM (`Γ_b != -B_b`, `n` near 1).
+    pub const DSA1_SHCCM: BaseParams = BaseParams {
+        b_b: 1.04,
+        gamma_b: -1.02,
+        kappa: 0.362,
+        sigma_b: 0.017,
+        n: 1.01,
+        p: 1.67,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    /// Table 3, DSA (1), NDBWMCM.
+    pub const DSA1_MCM: BaseParams = BaseParams {
+        b_b: 0.521,
+        gamma_b: -0.521,
+        kappa: 0.168,
+        sigma_b: 0.0144,
+        n: 1.0,
+        p: 2.04,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+
     /// The base map of a model at DSS (1).
     pub fn dss1(kind: ModelKind) -> BaseMap {
         let base = match kind {
             ModelKind::Shccm => DSS1_SHCCM,
             ModelKind::Mcm => DSS1_MCM,
+        };
+        BaseMap::new(kind, base).expect("published parameters are admissible")
+    }
+
+    /// The base map of a model at DSA (1).
+    pub fn dsa1(kind: ModelKind) -> BaseMap {
+        let base = match kind {
+            ModelKind::Shccm => DSA1_SHCCM,
+            ModelKind::Mcm => DSA1_MCM,
         };
         BaseMap::new(kind, base).expect("published parameters are admissible")
     }

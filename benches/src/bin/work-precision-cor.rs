@@ -2,8 +2,8 @@
 //! for each method, stepping over the non-smooth points or stopping at them, over rtol 1e-4 ...
 //! 1e-13, on four cases:
 //!
-//! * NDBWSHCCM and NDBWMCM at Table 3's DSS (1), v0 in {0.5, 2, 5} m/s (errors against a
-//!   reference at rtol 1e-14; evaluations and time summed over the speeds);
+//! * NDBWSHCCM and NDBWMCM at Table 3's DSS (1) and DSA (1), v0 in {0.5, 2, 5} m/s (errors
+//!   against a reference at rtol 1e-14; evaluations and time summed over the speeds);
 //! * the elastic limit (p = 2.5: T_s = 3.16983185381971, e = 1) and the Hunt-Crossley limit
 //!   (sigma = 0.5: e = 0.748434931597434), where the answer is known exactly;
 //! * a stiff MCM case from the stress sweep, where the explicit methods run with the switch to
@@ -45,10 +45,13 @@ use bwc_cli::plot::{chart, Axis, Series, Style};
 use bwc_ode::{tableau, System, DOP853, VERN7};
 use std::fmt::Write as _;
 
+/// A case: its name, its runs at given settings, their references `(e, T_s)`, and the model
+/// whose right-hand side is the unit of a series row's work.
 type Case = (
     &'static str,
     Box<dyn Fn(&Settings) -> Result<Vec<Cor>, String>>,
     Vec<(Option<f64>, Option<f64>)>,
+    BaseMap,
 );
 
 /// One row of the report.
@@ -67,12 +70,12 @@ struct Row {
     in_time: Option<f64>,
 }
 
-/// A thousand right-hand sides of the model `kind` at Table 3's DSS (1), v0 = 2 m/s, at a state
-/// in the unloading: timed side by side with each series row (its seconds per call are the ns
-/// of one right-hand side), the unit of the series' work for the RHS-evaluation target.
-fn rhs_batch(kind: ModelKind) -> Box<dyn FnMut()> {
-    let (params, _) = cor::dss1(kind).at(2.0).unwrap();
-    match kind {
+/// A thousand right-hand sides of the model of `map` at v0 = 2 m/s, at a state in the
+/// unloading: timed side by side with each series row (its seconds per call are the ns of one
+/// right-hand side), the unit of the series' work for the RHS-evaluation target.
+fn rhs_batch(map: &BaseMap) -> Box<dyn FnMut()> {
+    let (params, _) = map.at(2.0).unwrap();
+    match map.kind() {
         ModelKind::Shccm => thousand(
             Ndbwshccm::new(&params, Zero).unwrap(),
             State::<3>::new(-0.8, -0.7, 0.3),
@@ -188,9 +191,8 @@ fn main() {
         series: false,
         ..Settings::default()
     };
-    let mut cases: Vec<Case> = Vec::new();
-    for kind in [ModelKind::Shccm, ModelKind::Mcm] {
-        let map: BaseMap = cor::dss1(kind);
+    let published = |name, map: BaseMap| -> Case {
+        let unit = map;
         let run = move |s: &Settings| {
             speeds
                 .iter()
@@ -202,16 +204,14 @@ fn main() {
             .iter()
             .map(|o| (Some(o.e), o.t_s))
             .collect();
-        cases.push((
-            if kind == ModelKind::Shccm {
-                "shccm_dss1"
-            } else {
-                "mcm_dss1"
-            },
-            Box::new(run),
-            refs,
-        ));
-    }
+        (name, Box::new(run), refs, unit)
+    };
+    let mut cases: Vec<Case> = vec![
+        published("shccm_dss1", cor::dss1(ModelKind::Shccm)),
+        published("mcm_dss1", cor::dss1(ModelKind::Mcm)),
+        published("shccm_dsa1", cor::dsa1(ModelKind::Shccm)),
+        published("mcm_dsa1", cor::dsa1(ModelKind::Mcm)),
+    ];
     let limit = |sigma: f64, p: f64| {
         let params = NondimParams::new(
             ModelKind::Shccm,
@@ -233,12 +233,14 @@ fn main() {
         "elastic_p2.5",
         Box::new(limit(0.0, 2.5)),
         vec![(Some(1.0), Some(3.1698318538197101997))],
+        cor::dss1(ModelKind::Shccm),
     ));
     #[allow(clippy::excessive_precision)]
     cases.push((
         "hunt_crossley_0.5",
         Box::new(limit(0.5, 1.5)),
         vec![(Some(0.748434931597434158), None)],
+        cor::dss1(ModelKind::Shccm),
     ));
 
     // A stiff case from the stress sweep (MCM, n = 8.7, kappa = 9e-4, v0 = 124 m/s): explicit
@@ -285,6 +287,7 @@ fn main() {
         "mcm_stiff",
         Box::new(stiff_run),
         vec![(Some(stiff_ref.e), stiff_ref.t_s)],
+        cor::dss1(ModelKind::Mcm),
     ));
 
     let mut target = String::new();
@@ -293,17 +296,11 @@ fn main() {
         "{:<18} {:<9} {:<6} {:>7} {:>10} {:>10} {:>8} {:>9} {:>6}",
         "case", "method", "kinks", "rtol", "err_e", "err_Ts", "evals", "time_us", "steps"
     );
-    for (name, run, refs) in &cases {
+    for (name, run, refs, unit) in &cases {
         let mut rows: Vec<Row> = Vec::new();
         let mut by_evals = Vec::new();
         let mut by_time = Vec::new();
         // Explicit methods alone, or (on the stiff case) switching to RODAS4; RODAS4 throughout.
-        // The model whose right-hand side is the unit of a series row's work.
-        let kind = if name.starts_with("mcm") {
-            ModelKind::Mcm
-        } else {
-            ModelKind::Shccm
-        };
         let explicit = if *name == "mcm_stiff" {
             Stiffness::Switch
         } else {
@@ -391,7 +388,7 @@ fn main() {
                         }
                     }
                     if series {
-                        fs.push(rhs_batch(kind));
+                        fs.push(rhs_batch(unit));
                     }
                     let times = side_by_side(&mut fs);
                     let secs = times[0];
@@ -453,7 +450,7 @@ fn main() {
         };
         let title = format!("{name}: error vs RHS evaluations");
         let evals = Axis {
-            label: "RHS evaluations per CoR",
+            label: "RHS evaluations per case (summed over its speeds)",
             log: true,
         };
         std::fs::write(
@@ -463,7 +460,7 @@ fn main() {
         .unwrap();
         let title = format!("{name}: error vs time");
         let time = Axis {
-            label: "time per CoR (us)",
+            label: "time per case (us, summed over its speeds)",
             log: true,
         };
         std::fs::write(
@@ -476,7 +473,8 @@ fn main() {
     println!(
         "\n# RHS-evaluation target (>= 2x fewer than plain DOP853 at equal error): the work of \
          each row with stops and of each series row (its time over one RHS evaluation of the \
-         case's model, DSS (1), timed next to it; rhs_ns) against plain DOP853's evaluations \
+         case's model, at DSS (1) for the cases that are not published fits, timed next to it; \
+         rhs_ns) against plain DOP853's evaluations \
          at the same error (log-log interpolation between its rows; - outside their range); \
          in_time: plain DOP853's time at the same error over the row's time; each row timed \
          side by side with the plain runs that bracket its error and the right-hand side"

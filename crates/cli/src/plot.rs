@@ -15,8 +15,9 @@ pub const SCALE: i32 = 4;
 /// Nominal size of a chart (px).
 const SIZE: (u32, u32) = (900, 560);
 
-/// Distinct colours (Tableau 10), picked by index.
-const COLORS: [RGBColor; 10] = [
+/// Distinct colours (Tableau 10, then black), picked by index: the work-precision charts draw
+/// eleven series.
+const COLORS: [RGBColor; 11] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
     RGBColor(44, 160, 44),
@@ -27,6 +28,7 @@ const COLORS: [RGBColor; 10] = [
     RGBColor(127, 127, 127),
     RGBColor(188, 189, 34),
     RGBColor(23, 190, 207),
+    RGBColor(0, 0, 0),
 ];
 
 /// Colour number `i` (cycling).
