@@ -271,39 +271,37 @@ mod tests {
         // From (0.65, 0.4): v = (0.05, 0.0875), a = (0, 0.005) with 2|a| <= 0.75 |v|, so the
         // trial is x + v + a/2 = (0.7, 0.49), the minimum, where the straight step reaches
         // (0.7, 0.4875).
-        let y = at([0.65, 0.4]);
-        assert!(
-            (y[0] - 0.7).abs() < 1e-12 && (y[1] - 0.49).abs() < 1e-12,
-            "{y:?}"
-        );
+        assert_near(&at([0.65, 0.4]), [0.7, 0.49], 1e-12);
         // From (0.3, 0.5): v = (0.4, -0.17), a = (0, 0.32): 2|a| = 0.64 > 0.75 |v| = 0.33, so
         // the trial is the straight step (0.7, 0.33).
-        let y = at([0.3, 0.5]);
+        assert_near(&at([0.3, 0.5]), [0.7, 0.33], 1e-12);
+    }
+
+    /// The polish of the valley with its minimum at `s0 = at`, from `start`.
+    fn polished(at: f64, start: [f64; 2]) -> (Vec<f64>, f64) {
+        let problem = Squares::new(valley(at));
+        polish(&problem, &start, problem.cost_at(&start)).unwrap()
+    }
+
+    fn assert_near(x: &[f64], want: [f64; 2], tol: f64) {
         assert!(
-            (y[0] - 0.7).abs() < 1e-12 && (y[1] - 0.33).abs() < 1e-12,
-            "{y:?}"
+            (x[0] - want[0]).abs() < tol && (x[1] - want[1]).abs() < tol,
+            "{x:?} against {want:?}"
         );
     }
 
     #[test]
     fn the_polish_follows_a_curved_valley_to_its_minimum() {
-        let problem = Squares::new(valley(0.7));
-        let start = [0.05, 0.9];
-        let (x, c) = polish(&problem, &start, problem.cost_at(&start)).unwrap();
+        let (x, c) = polished(0.7, [0.05, 0.9]);
         assert!(c < 1e-20, "cost {c}");
-        assert!(
-            (x[0] - 0.7).abs() < 1e-10 && (x[1] - 0.49).abs() < 1e-10,
-            "{x:?}"
-        );
+        assert_near(&x, [0.7, 0.49], 1e-10);
     }
 
     #[test]
     fn the_polish_stops_on_the_face_that_holds_the_constrained_minimum() {
         // The valley's minimum s0 = 1.3 lies outside; on the square the minimum is the corner
         // (1, 1), where the first residual vanishes and the second is 0.3: cost 0.09.
-        let problem = Squares::new(valley(1.3));
-        let start = [0.2, 0.8];
-        let (x, c) = polish(&problem, &start, problem.cost_at(&start)).unwrap();
+        let (x, c) = polished(1.3, [0.2, 0.8]);
         assert_eq!(x, vec![1.0, 1.0]);
         assert!((c - 0.09).abs() < 1e-15, "cost {c}");
     }
@@ -312,13 +310,8 @@ mod tests {
     fn the_polish_reaches_a_minimum_next_to_a_face() {
         // The minimum (0.001, 1e-6) lies 1e-3 inside a face, as the DSS NDBWSHCCM optimum of
         // kharaz.toml does in `g`: full steps overshoot it.
-        let problem = Squares::new(valley(0.001));
-        let start = [0.6, 0.5];
-        let (x, c) = polish(&problem, &start, problem.cost_at(&start)).unwrap();
+        let (x, c) = polished(0.001, [0.6, 0.5]);
         assert!(c < 1e-20, "cost {c}");
-        assert!(
-            (x[0] - 0.001).abs() < 1e-10 && (x[1] - 1e-6).abs() < 1e-10,
-            "{x:?}"
-        );
+        assert_near(&x, [0.001, 1e-6], 1e-10);
     }
 }
