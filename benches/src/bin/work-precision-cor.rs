@@ -1,6 +1,6 @@
 //! Work-precision of one CoR evaluation: error in e and T_s against RHS evaluations and time,
 //! for each method, stepping over the non-smooth points or stopping at them, over rtol 1e-4 ...
-//! 1e-13, on four cases:
+//! 1e-13, on these cases:
 //!
 //! * NDBWSHCCM and NDBWMCM at Table 3's DSS (1) and DSA (1), v0 in {0.5, 2, 5} m/s (errors
 //!   against a reference at rtol 1e-14; evaluations and time summed over the speeds);
@@ -192,7 +192,6 @@ fn main() {
         ..Settings::default()
     };
     let published = |name, map: BaseMap| -> Case {
-        let unit = map;
         let run = move |s: &Settings| {
             speeds
                 .iter()
@@ -204,7 +203,7 @@ fn main() {
             .iter()
             .map(|o| (Some(o.e), o.t_s))
             .collect();
-        (name, Box::new(run), refs, unit)
+        (name, Box::new(run), refs, map)
     };
     let mut cases: Vec<Case> = vec![
         published("shccm_dss1", cor::dss1(ModelKind::Shccm)),
