@@ -82,6 +82,7 @@ pub fn replicate(task: &CoverageTask, seed: u64) -> Result<Replicate, IdentifyEr
             })
             .collect(),
         warnings: Vec::new(),
+        reconstructed: false,
     };
     let weights = Weights { j1: 1.0, j2: 0.0 };
     let search = Objective::new(&task.space, &data, &Zero, task.settings, weights)?;

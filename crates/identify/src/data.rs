@@ -28,6 +28,9 @@ pub struct Dataset {
     pub points: Vec<Point>,
     /// Admissible but suspicious data, each naming its line (`path:line: ...`).
     pub warnings: Vec<String>,
+    /// Whether a comment line calls the data `RECONSTRUCTED`: rebuilt from published results
+    /// (e.g. a paper's fitted parameters), not measured.
+    pub reconstructed: bool,
 }
 
 impl Dataset {
@@ -168,10 +171,14 @@ impl Dataset {
                 points[0].v0
             ));
         }
+        let reconstructed = text
+            .lines()
+            .any(|l| l.trim_start().starts_with('#') && l.contains("RECONSTRUCTED"));
         Ok(Self {
             path: path.to_owned(),
             points,
             warnings,
+            reconstructed,
         })
     }
 
@@ -189,6 +196,7 @@ impl Dataset {
                 })
                 .collect(),
             warnings: Vec::new(),
+            reconstructed: false,
         }
     }
 
@@ -227,6 +235,23 @@ mod tests {
         assert!(d.has_cor() && !d.has_durations());
         let d = Dataset::parse(Path::new("d.csv"), "v_0,e,t_d\n0.05,0.38,0.147\n").unwrap();
         assert_eq!(d.points[0].t_d, Some(0.147));
+    }
+
+    #[test]
+    fn data_rebuilt_from_published_results_say_so() {
+        let d = Dataset::parse(Path::new("d.csv"), "# RECONSTRUCTED\nv_0,e\n1,0.9\n").unwrap();
+        assert!(d.reconstructed);
+        // Only a comment line marks the data; a column named so does not.
+        let d = Dataset::parse(Path::new("d.csv"), "v_0,e,RECONSTRUCTED\n1,0.9,0\n").unwrap();
+        assert!(!d.reconstructed);
+        let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/data");
+        assert!(
+            Dataset::load(&fixtures.join("kharaz_dss.csv"))
+                .unwrap()
+                .reconstructed
+        );
+        let real = fixtures.join("real/baseball_wood_v0_e.csv");
+        assert!(!Dataset::load(&real).unwrap().reconstructed);
     }
 
     #[test]

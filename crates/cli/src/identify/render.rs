@@ -228,7 +228,14 @@ fn fit_figure(
         &format!("{}: {title}", r.name),
         "impact speed v0 (m/s)",
         y,
-        ("measured", &data),
+        (
+            if f.data.reconstructed {
+                "data (reconstructed, not measured)"
+            } else {
+                "measured"
+            },
+            &data,
+        ),
         (&format!("{} fit ({label})", model_name(r.model)), &model),
         band_label,
         log_x,
