@@ -48,6 +48,8 @@ pub struct Replicate {
     pub halfwidth: f64,
     /// `J1` of the fit.
     pub j1: f64,
+    /// The free quantities the fit left on a bound of the search (held there by the band).
+    pub at_bound: Vec<&'static str>,
     /// Why there are no intervals, if there are none.
     pub error: Option<String>,
 }
@@ -103,6 +105,7 @@ pub fn replicate(task: &CoverageTask, seed: u64) -> Result<Replicate, IdentifyEr
             points,
             halfwidth: band.iter().map(|b| (b.e[2] - b.e[1]) / 2.0).sum::<f64>() / points as f64,
             j1,
+            at_bound: result.at_bound.clone(),
             error: None,
         },
         Err(e) => Replicate {
@@ -111,6 +114,7 @@ pub fn replicate(task: &CoverageTask, seed: u64) -> Result<Replicate, IdentifyEr
             points,
             halfwidth: f64::NAN,
             j1,
+            at_bound: result.at_bound.clone(),
             error: Some(e.to_string()),
         },
     })

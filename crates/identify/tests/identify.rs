@@ -541,6 +541,8 @@ fn band_covers_the_truth_in_a_small_study() {
     };
     let reps = study(&task, 1..13).unwrap();
     assert!(reps.iter().all(|r| r.error.is_none()), "{reps:?}");
+    // The truth lies well inside the box: no replicate's fit is held on a bound.
+    assert!(reps.iter().all(|r| r.at_bound.is_empty()), "{reps:?}");
     let c = coverage(&reps);
     // 96 points of a calibrated 95 % band: 0.75 is far below what it gives, 1.0 with a band
     // of sensible width is allowed.

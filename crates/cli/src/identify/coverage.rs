@@ -118,7 +118,7 @@ pub fn coverage_summary(reports: &[CoverageReport]) -> Value {
                 "replicates": r.replicates.iter().map(|x| json!({
                     "seed": x.seed, "covered": x.covered, "points": x.points,
                     "halfwidth": x.halfwidth.is_finite().then_some(x.halfwidth),
-                    "J1": x.j1, "error": x.error,
+                    "J1": x.j1, "at_bound": x.at_bound, "error": x.error,
                 })).collect::<Vec<_>>(),
             })
         })
