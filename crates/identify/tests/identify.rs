@@ -132,14 +132,7 @@ fn identical_results_for_any_thread_count() {
             .build()
             .unwrap()
             .install(|| {
-                let objective = Objective::new(
-                    &space,
-                    &data,
-                    &Zero,
-                    Settings::default(),
-                    Weights { j1: 1.0, j2: 0.0 },
-                )
-                .unwrap();
+                let objective = cor_objective(&space, &data);
                 fit(
                     &objective,
                     &Budget {
@@ -182,6 +175,18 @@ impl<P: CubeProblem> CubeProblem for Exact<'_, P> {
     }
 }
 
+/// The CoR-only objective (`J1`, no input) of `data` on `space` at the default settings.
+fn cor_objective<'a>(space: &'a Space, data: &'a Dataset) -> Objective<'a, Zero> {
+    Objective::new(
+        space,
+        data,
+        &Zero,
+        Settings::default(),
+        Weights { j1: 1.0, j2: 0.0 },
+    )
+    .unwrap()
+}
+
 /// Five speeds of Table 3's DSS (1) NDBWSHCCM (CoR and duration), and its space with B_b, g, κ
 /// and σ_b free.
 fn dss_problem() -> (Dataset, Space) {
@@ -219,40 +224,76 @@ fn cor_space(b_hi: f64, kappa: (f64, f64), sigma_hi: f64, truth: BaseParams) -> 
     .unwrap()
 }
 
-/// Below its bound the early-stopping cost is the scalar cost bit for bit; above, it is a value
-/// above the bound and at most the scalar cost (a partial sum, up to the rounding of a sum
-/// taken in another order).
-#[test]
-fn cost_below_a_bound_is_exact_below_it() {
-    let (data, space) = dss_problem();
-    let objective = Objective::new(
-        &space,
-        &data,
-        &Zero,
-        Settings::default(),
-        Weights { j1: 1.0, j2: 0.0 },
-    )
-    .unwrap();
-    for s in [
-        vec![0.3, 0.1, 0.5, 0.2],
-        vec![0.9, 0.8, 0.1, 0.9],
-        vec![0.476, 0.0, 0.677, 0.116],
-        vec![1.2, 0.5, 0.5, 0.5],
-    ] {
-        let full = objective.scalar(&s);
+/// Below its bound `cost_below` is `cost_at` bit for bit; above, it is a value above the bound
+/// and at most `cost_at` (a partial sum, up to the rounding of a sum taken in another order).
+fn assert_cost_below_is_exact_below_it(problem: &impl CubeProblem, points: &[&[f64]]) {
+    for &s in points {
+        let full = problem.cost_at(s);
         for bound in [f64::INFINITY, 2.0 * full, full * (1.0 + 1e-9)] {
             let mut order = TermOrder::default();
-            assert_eq!(objective.scalar_below(&s, bound, &mut order), full, "{s:?}");
+            assert_eq!(problem.cost_below(s, bound, &mut order), full, "{s:?}");
         }
         for bound in [0.5 * full, 1e-3 * full, 0.0] {
             let mut order = TermOrder::default();
-            let c = objective.scalar_below(&s, bound, &mut order);
+            let c = problem.cost_below(s, bound, &mut order);
             assert!(
                 c > bound && c <= full * (1.0 + 1e-12),
                 "{s:?}: {c} for bound {bound}, full {full}"
             );
         }
     }
+}
+
+/// The CoR objective's early-stopping cost (`Objective::scalar_below`), speed by speed.
+#[test]
+fn cost_below_a_bound_is_exact_below_it() {
+    let (data, space) = dss_problem();
+    let objective = cor_objective(&space, &data);
+    assert_cost_below_is_exact_below_it(
+        &objective,
+        &[
+            &[0.3, 0.1, 0.5, 0.2],
+            &[0.9, 0.8, 0.1, 0.9],
+            &[0.476, 0.0, 0.677, 0.116],
+            &[1.2, 0.5, 0.5, 0.5],
+        ],
+    );
+}
+
+/// The drop objective's early-stopping cost, release height by release height (two heights, so
+/// a stop can skip one).
+#[test]
+fn drop_cost_below_a_bound_is_exact_below_it() {
+    let free = Param::Free {
+        lo: 0.01,
+        hi: 0.3,
+        log: false,
+    };
+    let params = [
+        Param::Fixed(1.0),
+        Param::Fixed(-1.0),
+        Param::Fixed(0.5),
+        free,
+        Param::Fixed(1.5),
+        Param::Fixed(1.5),
+        Param::Fixed(1.0),
+        Param::Fixed(1.0),
+    ];
+    let space = Space::new(ModelKind::Shccm, params, None).unwrap();
+    let dir = std::env::temp_dir().join(format!("bwc-drops-below-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("intervals.csv");
+    let rows = "h0,bounce_n,interval_s\n0.5,1,0.55\n0.5,2,0.45\n1.0,1,0.8\n1.0,2,0.65\n";
+    std::fs::write(&file, rows).unwrap();
+    let data = DropData::load(&file).unwrap();
+    let setup = DropSetup {
+        m: 0.01,
+        flight: bw_models::sequence::Flight { g: 9.81, drag: 0.0 },
+        timed_contacts: false,
+    };
+    let objective = DropObjective::new(&space, &data, setup, Settings::default()).unwrap();
+    assert_cost_below_is_exact_below_it(&objective, &[&[0.1], &[0.5], &[0.9], &[1.3]]);
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// The particle swarm with early-stopping costs takes the same path as with exact costs: the
@@ -271,14 +312,7 @@ fn early_stopping_costs_leave_the_search_unchanged() {
         ..Budget::default()
     };
     for seed in [1, 2] {
-        let objective = Objective::new(
-            &space,
-            &data,
-            &Zero,
-            Settings::default(),
-            Weights { j1: 1.0, j2: 0.0 },
-        )
-        .unwrap();
+        let objective = cor_objective(&space, &data);
         let stopping = minimize(&objective, &budget, seed, None).unwrap();
         let exact = minimize(&Exact(&objective), &budget, seed, None).unwrap();
         assert_eq!(stopping.point, exact.point, "seed {seed}");
@@ -326,14 +360,7 @@ fn cor_data_alone_leave_weak_directions() {
         None,
     )
     .unwrap();
-    let objective = Objective::new(
-        &space,
-        &data,
-        &Zero,
-        Settings::default(),
-        Weights { j1: 1.0, j2: 0.0 },
-    )
-    .unwrap();
+    let objective = cor_objective(&space, &data);
     let at_truth = space.encode(&truth).unwrap();
     let id = analyse(&objective, &at_truth).unwrap();
     assert_eq!(id.names, vec!["B_b", "g", "kappa", "sigma_b", "n", "p"]);
@@ -592,14 +619,7 @@ fn optimum_on_a_bound_is_reported() {
         None,
     )
     .unwrap();
-    let objective = Objective::new(
-        &space,
-        &data,
-        &Zero,
-        Settings::default(),
-        Weights { j1: 1.0, j2: 0.0 },
-    )
-    .unwrap();
+    let objective = cor_objective(&space, &data);
     let r = fit(
         &objective,
         &Budget {
