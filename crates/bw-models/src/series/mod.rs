@@ -146,8 +146,7 @@ fn class(v: f64) -> i8 {
 /// The root in `(0, h]` of a function `g` (value and slope at `s`) that has class `start` just
 /// after 0 and another class at `h`, as the first point found on the far side (within a few
 /// ulps of the root): Newton's iteration kept inside the shrinking bracket (bisection where it
-/// would leave it; a probe just past the iterate once Newton creeps up on the root from one
-/// side). After [`NEWTON_ITERATIONS`], a bisection wherever two iterations failed to halve the
+/// would leave it; a probe just past the root once Newton creeps up on it from one side). After [`NEWTON_ITERATIONS`], a bisection wherever two iterations failed to halve the
 /// bracket: where `g` is tiny but far from its root (a force `|X|^p (...)` near `X = 0`) the
 /// slope does not describe it and Newton's steps crawl.
 fn root(g: impl Fn(f64) -> (f64, f64), h: f64, start: i8) -> f64 {
@@ -168,18 +167,27 @@ fn root(g: impl Fn(f64) -> (f64, f64), h: f64, start: i8) -> f64 {
         let stalled = iteration >= NEWTON_ITERATIONS && hi - lo > 0.5 * width_two_ago;
         (width_two_ago, width_one_ago) = (width_one_ago, hi - lo);
         let newton = s - p / d;
-        s = if !(newton > lo && newton < hi) || stalled {
+        // Newton's iterate may be an end of the bracket: the end where the search starts is
+        // often the root itself (a search repeated up to the root found).
+        s = if !(newton >= lo && newton <= hi) || stalled {
             0.5 * (lo + hi)
         } else if (newton - s).abs() > tiny {
             newton
         } else if class(p) == start {
-            (newton + tiny).min(0.5 * (newton + hi))
+            // Newton's estimate of the root is within `tiny` of the bracket's low end `s`: a probe
+            // just past it leaves a bracket narrow enough to stop.
+            (newton + PROBE * tiny).min(0.5 * (newton + hi))
         } else {
-            (newton - tiny).max(0.5 * (newton + lo))
+            (newton - PROBE * tiny).max(0.5 * (newton + lo))
         };
     }
     hi
 }
+
+/// Distance of [`root`]'s probe past Newton's estimate of the root, as a fraction of the final
+/// width: less than 1, so that the bracket a probe leaves, rounding included, is narrow enough
+/// to stop.
+const PROBE: f64 = 0.75;
 
 /// Iterations of [`root`] before a bracket that does not shrink fast enough is bisected (Newton
 /// converges on the roots of the step polynomials within a few).
@@ -376,5 +384,31 @@ mod tests {
         let g = |s: f64| (if s < 0.05 { 1e-20 } else { -4e-25 }, -1.9e-13);
         let r = root(g, 0.068, 1);
         assert!((r - 0.05).abs() <= 1e-15, "{r}");
+    }
+
+    #[test]
+    fn a_root_at_the_end_of_the_span_takes_two_evaluations() {
+        // Each event is searched for again up to the root found, where its function is zero
+        // to rounding: Newton's iterate is then the end itself. A bisection from there would
+        // send the iterates from below past the end of a convex function, bisecting each time.
+        type Function = fn(f64) -> (f64, f64);
+        let cases: [(Function, i8); 3] = [
+            (|s| (s - 0.25, 1.0), -1),
+            (|s| (s * s - 0.0625, 2.0 * s), -1),
+            (|s| (0.0625 - s * s, -2.0 * s), 1),
+        ];
+        for (g, start) in cases {
+            let calls = std::cell::Cell::new(0);
+            let r = root(
+                |s| {
+                    calls.set(calls.get() + 1);
+                    g(s)
+                },
+                0.25,
+                start,
+            );
+            assert_eq!(r, 0.25);
+            assert!(calls.get() <= 2, "{} evaluations", calls.get());
+        }
     }
 }

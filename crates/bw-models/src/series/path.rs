@@ -319,7 +319,9 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     /// The earliest root in the step of `h`: searched where a class has changed (in the first
     /// half of the step if one has changed there already), then again up to the root found,
     /// until no function changes earlier (a function may cross and cross back inside a long
-    /// step). Ties go to the function listed first (the separation).
+    /// step). The function whose root ends the search is not searched again: its iteration
+    /// would start on that root and return it. Ties go to the function listed first (the
+    /// separation).
     fn earliest_event(&self, h: f64, tol: f64, watch: &[Watched; 5]) -> Ahead<N> {
         let changed = |at: &[f64; 5]| {
             watch
@@ -334,11 +336,12 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
         } else {
             (h, at_end)
         };
-        let mut first: Option<(f64, Event)> = None;
+        // The earliest root found: where, and the index of its function in `watch`.
+        let mut first: Option<(f64, usize)> = None;
         for _ in 0..8 {
-            let mut best: Option<(f64, Event)> = None;
-            for (&(event, start, on), v) in watch.iter().zip(&at) {
-                if !on || class(*v) == start {
+            let mut best = first;
+            for (i, (&(event, start, on), v)) in watch.iter().zip(&at).enumerate() {
+                if !on || class(*v) == start || first.is_some_and(|(_, f)| f == i) {
                     continue;
                 }
                 let c = self.series_of(event);
@@ -347,20 +350,21 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
                 } else {
                     root(|s| eval_d(c, s), upto, start)
                 };
-                if best.is_none_or(|(b, _)| s < b) {
-                    best = Some((s, event));
+                if best.is_none_or(|(b, j)| s < b || (s == b && i < j)) {
+                    best = Some((s, i));
                 }
             }
             let Some((s, _)) = best else { break };
+            let earlier = best != first;
             first = best;
-            if s >= upto {
+            if !earlier || s >= upto {
                 break;
             }
             upto = s;
             at = self.values(upto, tol).1;
         }
         match first {
-            Some((s, event)) => Ahead::Event(s, event),
+            Some((s, i)) => Ahead::Event(s, watch[i].0),
             None => Ahead::End(end, at_end),
         }
     }
