@@ -145,10 +145,11 @@ fn class(v: f64) -> i8 {
 
 /// The root in `(0, h]` of a function `g` (value and slope at `s`) that has class `start` just
 /// after 0 and another class at `h`, as the first point found on the far side (within a few
-/// ulps of the root): Newton's iteration kept inside the shrinking bracket (bisection where it
-/// would leave it; a probe just past the root once Newton creeps up on it from one side). After [`NEWTON_ITERATIONS`], a bisection wherever two iterations failed to halve the
-/// bracket: where `g` is tiny but far from its root (a force `|X|^p (...)` near `X = 0`) the
-/// slope does not describe it and Newton's steps crawl.
+/// ulps of the root): Newton's iteration kept inside the shrinking bracket, ends included
+/// (bisection where it would leave it; a probe just past the root once Newton creeps up on it
+/// from one side). After [`NEWTON_ITERATIONS`], a bisection wherever two iterations failed to
+/// halve the bracket: where `g` is tiny but far from its root (a force `|X|^p (...)` near
+/// `X = 0`) the slope does not describe it and Newton's steps crawl.
 fn root(g: impl Fn(f64) -> (f64, f64), h: f64, start: i8) -> f64 {
     let (mut lo, mut hi) = (0.0, h);
     let mut s = h;
@@ -167,15 +168,15 @@ fn root(g: impl Fn(f64) -> (f64, f64), h: f64, start: i8) -> f64 {
         let stalled = iteration >= NEWTON_ITERATIONS && hi - lo > 0.5 * width_two_ago;
         (width_two_ago, width_one_ago) = (width_one_ago, hi - lo);
         let newton = s - p / d;
-        // Newton's iterate may be an end of the bracket: the end where the search starts is
-        // often the root itself (a search repeated up to the root found).
+        // Newton's iterate may be an end of the bracket: where a search is repeated up to the
+        // root found, it starts on that root.
         s = if !(newton >= lo && newton <= hi) || stalled {
             0.5 * (lo + hi)
         } else if (newton - s).abs() > tiny {
             newton
         } else if class(p) == start {
-            // Newton's estimate of the root is within `tiny` of the bracket's low end `s`: a probe
-            // just past it leaves a bracket narrow enough to stop.
+            // Newton's estimate of the root is within `tiny` of the bracket's low end `s`: a
+            // probe just past it leaves a bracket narrow enough to stop.
             (newton + PROBE * tiny).min(0.5 * (newton + hi))
         } else {
             (newton - PROBE * tiny).max(0.5 * (newton + lo))
