@@ -30,6 +30,14 @@
 //! solution is analytic, takes the first step instead (`series/contact.rs`): one step over most of the
 //! compression in place of the start step and the ramp after it.
 //!
+//! Off a zero of a base where neither series applies (a loading with hysteresis, `B + Γ != 0`,
+//! or under an input), the start step is followed by steps in `σ = ln(T - T_a)` about the time
+//! `T_a` where the base vanished ([`jet::Clock::Log`]): the solution's terms `(T - T_a)^a` are
+//! `e^(a σ)`, analytic in `σ`, so these steps are not bounded by the distance to `T_a` as the
+//! steps in `T` are (which grow by at most `MAX_GROWTH` per step from the start step's span).
+//! They end at the first event ahead or once a step spans less than [`LOG_STEP_MIN`], where the
+//! solution's other singularities bound the steps and a step in time costs less.
+//!
 //! Off a root of `Z` into a branch without hysteresis bracket (`B + Γ = 0`, every fit of the
 //! paper), a series in `D = |Z|` and `D^p`, in which the solution is analytic, takes the first
 //! step instead of the start step and the ramp after it (`series/crossing.rs`).
@@ -81,6 +89,13 @@ pub const START_TOLERANCE: f64 = 0.01;
 /// it are not (`|X|^p` with `X = -T + O(T^(p+2))`): the estimate alone would then jump far
 /// ahead (measured: a hundredfold, with a local error of 2e-7 at rtol 1e-11, p = 10).
 pub const MAX_GROWTH: f64 = 2.0;
+
+/// The logarithmic steps off a zero of a base end after one spanning less than this in
+/// `σ = ln(T - T_a)` (a growth of `e` in `T - T_a`): from there on the steps are bounded by the
+/// solution's other singularities, not by the branch point at `T_a`, and a step in time, with no
+/// products by `dT/dσ`, costs less. Chosen on the search box of the fits and Table 3's DSA (1)
+/// (BENCHMARKS.md, session 15).
+pub const LOG_STEP_MIN: f64 = 1.0;
 
 /// Orders whose coefficients set the step size.
 pub const ESTIMATE_TERMS: usize = 4;

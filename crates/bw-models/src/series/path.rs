@@ -2,10 +2,11 @@
 //! a base vanishes, else an expansion, its step size, the earliest event inside the step and
 //! what that event does) until the separation, rest, or a hand-over to the Runge-Kutta path.
 
-use super::jet::{Expand, Jet, Series};
+use super::jet::{Clock, Expand, Jet, Series};
 use super::{
     class, eval_d, reach_root, root, start_step, step_size, step_tolerance, SeriesRun, Target,
-    FORCE_MARGIN, MAX_GROWTH, MAX_SERIES_STEPS, MAX_STALLED, RETRY_SPAN, START_TOLERANCE,
+    FORCE_MARGIN, LOG_STEP_MIN, MAX_GROWTH, MAX_SERIES_STEPS, MAX_STALLED, RETRY_SPAN,
+    START_TOLERANCE,
 };
 use crate::impact::{at_rest, Impact, Settings};
 use crate::{separated, State};
@@ -47,6 +48,12 @@ pub(super) struct SeriesPath<'a, M, const N: usize> {
     force_here: Option<f64>,
     /// `Z*` of the branch (signs of the rate and of `Z`) it was last computed for.
     z_star: Option<((i8, i8), Option<f64>)>,
+    /// The time where a base last vanished, while the steps are taken in the logarithmic
+    /// variable about it ([`Clock::Log`]): from the start step off that zero until an event
+    /// lies ahead.
+    anchor: Option<f64>,
+    /// The last logarithmic step (in `σ`).
+    h_log: f64,
 }
 
 /// What lies ahead in a step: an event at `s`, or its end (the state and event values there).
@@ -85,6 +92,8 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             stalled: 0,
             force_here: None,
             z_star: None,
+            anchor: None,
+            h_log: 0.0,
         };
         if let Some((t1, y1)) = model.contact_step(path.u, settings) {
             path.series_steps += 1;
@@ -105,7 +114,12 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             let next = match self.ended() {
                 Err(done) => Next::Finish(done),
                 Ok(_) if self.y[M::BASE] == 0.0 || self.y[M::Z] == 0.0 => self.leave_zero(),
-                Ok(start) => self.series_step(start),
+                Ok(start) => match self.anchor {
+                    Some(anchor) => self
+                        .log_step(anchor, start)
+                        .unwrap_or_else(|start| self.series_step(start)),
+                    None => self.series_step(start),
+                },
             };
             if let Next::Finish(run) = next {
                 return run;
@@ -171,6 +185,8 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
         };
         (self.t, self.y) = (t, y);
         self.h_last = t - t_start;
+        // The start step spans σ from -∞ to 0: the first logarithmic step may be MAX_GROWTH.
+        (self.anchor, self.h_log) = (Some(t_start), 1.0);
         let met = class(model.kinks(t, &y)[0]) != self.rate_class
             || y[M::BASE] == 0.0
             || y[M::Z] == 0.0
@@ -203,10 +219,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     /// One expansion: rest, or a step to its end or to the earliest event inside it.
     fn series_step(&mut self, (force, velocity): (f64, f64)) -> Next<N> {
         let (model, settings) = (self.model, self.settings);
-        let (saturated, snapped) = self.saturate();
-        let force = if snapped { model.force(&self.y) } else { force };
-        let rate_sign = f64::from(self.rate_class);
-        model.expand(&self.y, rate_sign, saturated, self.u, &mut self.jet);
+        let force = self.expand(force, Clock::Time);
         // At rest under the constant input: an equilibrium, the contact has settled.
         let rate_of_change = State::<N>::from_fn(|i, _| self.jet.state[i][1]);
         if at_rest(model, &rate_of_change, settings.atol) {
@@ -228,21 +241,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             .min(settings.max_step)
             .min(settings.t_max - self.t);
         self.h_last = h;
-        // The separation F <= 0 <= V: a root of V matters only where F <= 0 already (F is
-        // nonpositive within the margin of its computed value; a force farther above zero
-        // reaches its own root, an event of this step, before it can be).
-        let force_may_be_down = force <= FORCE_MARGIN * tol;
-        let watch: [Watched; 5] = [
-            (Event::Force, 1, force > 0.0),
-            (
-                Event::Velocity,
-                -1,
-                !M::RATE_IS_VELOCITY && velocity < 0.0 && force_may_be_down,
-            ),
-            (Event::Rate, self.rate_class, true),
-            (Event::Z, class(self.y[M::Z]), true),
-            (Event::Base, class(self.y[M::BASE]), true),
-        ];
+        let watch = self.watch(force, velocity, tol);
         match self.earliest_event(h, tol, &watch) {
             Ahead::End(end, at_end) => {
                 self.y = State::<N>::from(end);
@@ -253,6 +252,93 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             }
             Ahead::Event(s, event) => self.apply_event(s, event),
         }
+    }
+
+    /// Expands the solution from here in `clock` ([`Expand::expand`]), `Z` held at its branch's
+    /// equilibrium where it has come near it ([`SeriesPath::saturate`]); the force here
+    /// (`force`, or the force of the state moved onto the equilibrium).
+    fn expand(&mut self, force: f64, clock: Clock) -> f64 {
+        let (saturated, snapped) = self.saturate();
+        let force = if snapped {
+            self.model.force(&self.y)
+        } else {
+            force
+        };
+        let rate_sign = f64::from(self.rate_class);
+        let model = self.model;
+        model.expand(&self.y, rate_sign, saturated, self.u, clock, &mut self.jet);
+        force
+    }
+
+    /// The event functions of a step from here (`force` and `velocity` at its start, `tol` its
+    /// tolerance).
+    fn watch(&self, force: f64, velocity: f64, tol: f64) -> [Watched; 5] {
+        // The separation F <= 0 <= V: a root of V matters only where F <= 0 already (F is
+        // nonpositive within the margin of its computed value; a force farther above zero
+        // reaches its own root, an event of this step, before it can be).
+        let force_may_be_down = force <= FORCE_MARGIN * tol;
+        [
+            (Event::Force, 1, force > 0.0),
+            (
+                Event::Velocity,
+                -1,
+                !M::RATE_IS_VELOCITY && velocity < 0.0 && force_may_be_down,
+            ),
+            (Event::Rate, self.rate_class, true),
+            (Event::Z, class(self.y[M::Z]), true),
+            (Event::Base, class(self.y[M::BASE]), true),
+        ]
+    }
+
+    /// One expansion in the logarithmic variable about `anchor` ([`Clock::Log`]), taken where
+    /// no event function changes sign at its end, or else at its middle (a step to the middle
+    /// ends the logarithmic steps: the event is near, and the steps in time locate it), and
+    /// the last one once it spans less than [`LOG_STEP_MIN`]. Declines, returning the force and
+    /// the velocity at the start for a step in time, where a function changes sign by the
+    /// middle or where the contact may be at rest (the step in time decides).
+    fn log_step(&mut self, anchor: f64, start: (f64, f64)) -> Result<Next<N>, (f64, f64)> {
+        let (model, settings) = (self.model, self.settings);
+        let span = self.t - anchor;
+        let (force, velocity) = (self.expand(start.0, Clock::Log(span)), start.1);
+        let rate_of_change = State::<N>::from_fn(|i, _| self.jet.state[i][1] / span);
+        if at_rest(model, &rate_of_change, settings.atol) {
+            self.anchor = None;
+            return Err((force, velocity));
+        }
+        let tol = step_tolerance(&self.y, settings);
+        // σ for the largest span in time the settings allow.
+        let limit = (settings.max_step.min(settings.t_max - self.t) / span).ln_1p();
+        let mut h = step_size(&self.jet, tol)
+            .min(MAX_GROWTH * self.h_log)
+            .min(limit);
+        let watch = self.watch(force, velocity, tol);
+        let changed = |at: &[f64; 5]| {
+            watch
+                .iter()
+                .zip(at)
+                .any(|(&(_, start, on), v)| on && class(*v) != start)
+        };
+        let (mut end, mut at_end) = self.values(h, tol);
+        if changed(&at_end) {
+            self.anchor = None;
+            let (mid, at_mid) = self.values(0.5 * h, tol);
+            if changed(&at_mid) {
+                return Err((force, velocity));
+            }
+            (h, end, at_end) = (0.5 * h, mid, at_mid);
+        }
+        self.series_steps += 1;
+        self.stats.accepted += 1;
+        self.h_log = h;
+        if h < LOG_STEP_MIN {
+            self.anchor = None;
+        }
+        self.h_last = span * h.exp_m1();
+        self.t = anchor + span * h.exp();
+        self.y = State::<N>::from(end);
+        self.force_here = Some(at_end[0]);
+        self.stalled = 0;
+        Ok(Next::Step)
     }
 
     /// Whether `Z` is held at its branch's equilibrium `Z*` ([`Expand::saturation`]) for this
@@ -399,6 +485,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     /// it).
     fn apply_event(&mut self, s: f64, event: Event) -> Next<N> {
         let model = self.model;
+        self.anchor = None;
         if self.t + s > self.t {
             self.stalled = 0;
         } else {
