@@ -1,5 +1,6 @@
-//! Global search with argmin's particle swarm, then Nelder-Mead polishing, from several seeded
-//! starts. Everything runs on the unit cube of the [`crate::Space`].
+//! Global search with argmin's particle swarm, then Levenberg-Marquardt and Nelder-Mead
+//! polishing, from several seeded starts. Everything runs on the unit cube of the
+//! [`crate::Space`].
 
 use crate::objective::{Costs, Objective, Prediction, TermOrder};
 use crate::IdentifyError;
@@ -16,16 +17,19 @@ use std::time::Instant;
 /// Optimizer budget and stopping rule of [`minimize`].
 ///
 /// Each *start* is an independent particle swarm (its own seed) whose best point is polished by
-/// Nelder-Mead until a fresh simplex no longer improves it. Starts run in batches until `agree`
-/// of them end within `tolerance` (relative) of the best cost found, or `max_starts` have run.
+/// Levenberg-Marquardt where the problem has residuals, and by Nelder-Mead where that does not
+/// converge or there are none, until a fresh simplex no longer improves it. Starts run in
+/// batches until `agree` of them end within `tolerance` (relative) of the best cost found, or
+/// `max_starts` have run; the best point is then verified by Nelder-Mead from a fresh simplex
+/// (and the batches go on if that moves it below the others).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Budget {
     /// Particles of each swarm.
     pub particles: usize,
     /// Swarm iterations per start.
     pub iterations: u64,
-    /// Nelder-Mead iterations per polishing round (a start polishes in up to
-    /// [`POLISH_ROUNDS`] rounds, each from a fresh simplex).
+    /// Nelder-Mead iterations per polishing round (a polish runs up to [`POLISH_ROUNDS`]
+    /// rounds, each from a fresh simplex).
     pub polish_iterations: u64,
     /// Independent starts run before the stopping rule is first checked.
     pub starts: usize,
@@ -290,12 +294,12 @@ fn start_seed(seed: u64, k: usize) -> u64 {
     seed ^ (k as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
 }
 
-/// Minimises a cube problem: independent starts (a seeded particle swarm, then Nelder-Mead
-/// until a fresh simplex no longer helps) in batches until `budget.agree` of them agree with
-/// the best (see [`Budget`]), `start` (if given) polished too; the best point is then moved onto
-/// any bound it lies within 1e-3 of where that does not raise the cost. Deterministic for a
-/// seed, whatever the number of threads: each start depends only on its own seed, and the
-/// batches do not depend on the threads.
+/// Minimises a cube problem: independent starts (a seeded particle swarm, then a polish) in
+/// batches until `budget.agree` of them agree with the best (see [`Budget`]), the best start
+/// verified by Nelder-Mead from a fresh simplex, `start` (if given) polished and verified too;
+/// the best point is then moved onto any bound it lies within 1e-3 of where that does not raise
+/// the cost. Deterministic for a seed, whatever the number of threads: each start depends only
+/// on its own seed, and the batches and the verification do not depend on the threads.
 ///
 /// # Errors
 /// [`IdentifyError::Optimizer`] for an inadmissible budget or an optimizer failure.
@@ -309,39 +313,37 @@ pub fn minimize<P: CubeProblem>(
     let d = problem.dim();
     let before = problem.evaluations();
     if d == 0 {
-        let cost = problem.cost_at(&[]);
-        let evaluations = problem.evaluations() - before;
-        return Ok(Minimum {
-            point: Vec::new(),
-            cost,
-            evaluations,
-            convergence: Convergence {
-                starts: 1,
-                agreeing: 1,
-                evaluations,
-                costs: vec![cost],
-            },
-        });
+        return Ok(nothing_free(problem, before));
     }
     let given = start
-        .map(|s| refine(problem, s.to_vec(), budget.polish_iterations))
+        .map(|s| refine(problem, s.to_vec(), budget.polish_iterations, Polish::Full))
         .transpose()?;
+    // Independent starts check each other; a single start polishes in full.
+    let polish = if budget.agree >= 2 {
+        Polish::Start
+    } else {
+        Polish::Full
+    };
     let mut runs: Vec<(Vec<f64>, f64)> = Vec::new();
+    // Starts whose end was verified by a fresh simplex.
+    let mut verified = Vec::new();
     let agreeing = loop {
         let k = runs.len();
         let batch = if k == 0 { budget.starts } else { BATCH };
         let batch = batch.min(budget.max_starts - k);
         let new: Vec<_> = (k..k + batch)
             .into_par_iter()
-            .map(|k| one_start(problem, budget, start_seed(seed, k)))
+            .map(|k| one_start(problem, budget, start_seed(seed, k), polish))
             .collect::<Result<_, _>>()?;
         runs.extend(new);
-        let best = best_cost(&runs, given.as_ref());
-        let agreeing = runs
-            .iter()
-            .filter(|(_, c)| *c <= best + budget.tolerance * best.abs())
-            .count();
-        if agreeing >= budget.agree || runs.len() >= budget.max_starts {
+        let mut agreeing = agreement(&runs, given.as_ref(), budget.tolerance);
+        let done =
+            |agreeing, runs: &[_]| agreeing >= budget.agree || runs.len() >= budget.max_starts;
+        if done(agreeing, &runs) && polish == Polish::Start {
+            verify_best(problem, budget, &mut runs, &mut verified)?;
+            agreeing = agreement(&runs, given.as_ref(), budget.tolerance);
+        }
+        if done(agreeing, &runs) {
             break agreeing;
         }
     };
@@ -366,6 +368,43 @@ pub fn minimize<P: CubeProblem>(
     })
 }
 
+/// The minimum where nothing is free: the cost of the empty point.
+fn nothing_free<P: CubeProblem>(problem: &P, before: u64) -> Minimum {
+    let cost = problem.cost_at(&[]);
+    let evaluations = problem.evaluations() - before;
+    Minimum {
+        point: Vec::new(),
+        cost,
+        evaluations,
+        convergence: Convergence {
+            starts: 1,
+            agreeing: 1,
+            evaluations,
+            costs: vec![cost],
+        },
+    }
+}
+
+/// Verifies the best start's end ([`Polish::Verify`]) unless it was verified already.
+fn verify_best<P: CubeProblem>(
+    problem: &P,
+    budget: &Budget,
+    runs: &mut [(Vec<f64>, f64)],
+    verified: &mut Vec<usize>,
+) -> Result<(), IdentifyError> {
+    let best = best_start(runs);
+    if verified.contains(&best) {
+        return Ok(());
+    }
+    verified.push(best);
+    let x = runs[best].0.clone();
+    let (y, c) = refine(problem, x, budget.polish_iterations, Polish::Verify)?;
+    if c < runs[best].1 {
+        runs[best] = (y, c);
+    }
+    Ok(())
+}
+
 fn best_cost(runs: &[(Vec<f64>, f64)], given: Option<&(Vec<f64>, f64)>) -> f64 {
     runs.iter()
         .chain(given)
@@ -373,11 +412,27 @@ fn best_cost(runs: &[(Vec<f64>, f64)], given: Option<&(Vec<f64>, f64)>) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-/// One independent start: a particle swarm seeded by `seed`, its best point refined.
+/// The starts whose cost is within `tolerance` (relative) of the best.
+fn agreement(runs: &[(Vec<f64>, f64)], given: Option<&(Vec<f64>, f64)>, tolerance: f64) -> usize {
+    let best = best_cost(runs, given);
+    runs.iter()
+        .filter(|(_, c)| *c <= best + tolerance * best.abs())
+        .count()
+}
+
+/// The index of the start with the lowest cost (the first of equals).
+fn best_start(runs: &[(Vec<f64>, f64)]) -> usize {
+    (0..runs.len())
+        .min_by(|&a, &b| runs[a].1.total_cmp(&runs[b].1))
+        .expect("at least one start")
+}
+
+/// One independent start: a particle swarm seeded by `seed`, its best point refined by `polish`.
 fn one_start<P: CubeProblem>(
     problem: &P,
     budget: &Budget,
     seed: u64,
+    polish: Polish,
 ) -> Result<(Vec<f64>, f64), IdentifyError> {
     let d = problem.dim();
     let rng = rand::rngs::StdRng::seed_from_u64(seed);
@@ -396,24 +451,49 @@ fn one_start<P: CubeProblem>(
         .get_best_param()
         .map(|b| b.position.clone())
         .unwrap_or_else(|| vec![0.5; d]);
-    refine(problem, x, budget.polish_iterations)
+    refine(problem, x, budget.polish_iterations, polish)
+}
+
+/// How [`refine`] polishes a point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Polish {
+    /// A start's end: Nelder-Mead only where Levenberg-Marquardt did not converge (or the
+    /// problem has no residuals). Over the fixtures' starts, a Nelder-Mead round after a
+    /// converged Levenberg-Marquardt polish never lowered the cost (BENCHMARKS.md, session 15);
+    /// the agreement of independent starts and the verification of the best check them instead.
+    Start,
+    /// The verification of a start's end: a Nelder-Mead round from a fresh simplex first (its
+    /// Levenberg-Marquardt polish has converged), then as [`Polish::Full`] if that gains.
+    Verify,
+    /// A given point: Levenberg-Marquardt, then Nelder-Mead rounds.
+    Full,
 }
 
 /// Local polish of `x`: Levenberg-Marquardt where the problem has residuals, then a
 /// Nelder-Mead round of `iterations` from a fresh simplex (which also escapes where the
-/// Levenberg-Marquardt steps stall); repeated while that round still gains more than 1e-9
-/// relative.
+/// Levenberg-Marquardt steps stall), repeated while that round still gains more than 1e-9
+/// relative; `kind` skips the parts of the first round that [`Polish`] says are not needed.
 fn refine<P: CubeProblem>(
     problem: &P,
     x: Vec<f64>,
     iterations: u64,
+    kind: Polish,
 ) -> Result<(Vec<f64>, f64), IdentifyError> {
     let (mut x, mut cost) = (x.clone(), problem.cost_at(&x));
-    for _ in 0..POLISH_ROUNDS {
-        if let Some((y, c)) = crate::lm::polish(problem, &x, cost) {
-            if c < cost {
-                (x, cost) = (y, c);
+    for round in 0..POLISH_ROUNDS {
+        let mut converged = false;
+        let least_squares = round > 0 || kind != Polish::Verify;
+        if let Some(end) = least_squares
+            .then(|| crate::lm::polish(problem, &x, cost))
+            .flatten()
+        {
+            if end.cost < cost {
+                (x, cost) = (end.x, end.cost);
             }
+            converged = end.converged;
+        }
+        if converged && kind == Polish::Start {
+            break;
         }
         let (y, c) = polish(problem, x.clone(), iterations)?;
         let gain = cost - c;

@@ -10,7 +10,8 @@
 //!   constraints `T_b = m U_b`, `(m/k) κ / T_b^(p+1) <= 1`;
 //! * [`Objective`]: the costs, evaluated in parallel over the data points;
 //! * [`fit`]: independent starts, each argmin's particle swarm (seeded, particles in parallel)
-//!   polished by Levenberg-Marquardt and Nelder-Mead, until several agree ([`Convergence`]);
+//!   polished by Levenberg-Marquardt (and Nelder-Mead where that does not converge), until
+//!   several agree ([`Convergence`]), the best verified by Nelder-Mead;
 //!   optimum snapped onto the bounds it touches ([`at_bound`]); identical results for any
 //!   thread count. A particle's evaluation stops once its cost passes the particle's best
 //!   ([`CubeProblem::cost_below`], [`TermOrder`]): the same search with less work;

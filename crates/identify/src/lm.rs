@@ -140,9 +140,20 @@ fn trial<P: CubeProblem>(
     Some(y)
 }
 
+/// The end of a Levenberg-Marquardt polish.
+pub(crate) struct Polished {
+    /// The best point.
+    pub(crate) x: Vec<f64>,
+    /// Its cost (never more than the start's).
+    pub(crate) cost: f64,
+    /// Whether it converged: its last step gained at most 1e-9 relative, every coordinate is
+    /// held on a face by its gradient, or the cost is zero. Otherwise no damping lowered the
+    /// cost (a kink, noise) or the Jacobians ran out.
+    pub(crate) converged: bool,
+}
+
 /// Polishes `x` (cost `c`) by Levenberg-Marquardt; `None` if the problem has no residuals.
-/// Returns the best point and its cost (never worse than the start).
-pub(crate) fn polish<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<(Vec<f64>, f64)> {
+pub(crate) fn polish<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<Polished> {
     let mut x: Vec<f64> = x.iter().map(|v| v.clamp(0.0, 1.0)).collect();
     let mut r = problem.residuals_at(&x)?;
     let mut c_now = cost(&r);
@@ -151,6 +162,7 @@ pub(crate) fn polish<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<(
         return None;
     }
     let mut lambda = 1e-3;
+    let mut converged = false;
     for _ in 0..MAX_JACOBIANS {
         let columns = jacobian(problem, &x, &r)?;
         let gradient: Vec<f64> = columns
@@ -164,6 +176,7 @@ pub(crate) fn polish<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<(
             })
             .collect();
         if free.is_empty() {
+            converged = true;
             break;
         }
         let mut improved = false;
@@ -179,6 +192,7 @@ pub(crate) fn polish<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<(
                 (x, r, c_now) = (y, ry, cy);
                 lambda = (lambda / 3.0).max(1e-12);
                 improved = gain > 1e-9 * c_now;
+                converged = !improved;
                 break;
             }
             lambda *= 4.0;
@@ -187,7 +201,12 @@ pub(crate) fn polish<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<(
             break;
         }
     }
-    Some((x, c_now))
+    Some(Polished {
+        x,
+        // A zero cost cannot be lowered.
+        converged: converged || c_now == 0.0,
+        cost: c_now,
+    })
 }
 
 #[cfg(test)]
@@ -280,7 +299,8 @@ mod tests {
     /// The polish of the valley with its minimum at `s0 = at`, from `start`.
     fn polished(at: f64, start: [f64; 2]) -> (Vec<f64>, f64) {
         let problem = Squares::new(valley(at));
-        polish(&problem, &start, problem.cost_at(&start)).unwrap()
+        let end = polish(&problem, &start, problem.cost_at(&start)).unwrap();
+        (end.x, end.cost)
     }
 
     fn assert_near(x: &[f64], want: [f64; 2], tol: f64) {
@@ -288,6 +308,32 @@ mod tests {
             (x[0] - want[0]).abs() < tol && (x[1] - want[1]).abs() < tol,
             "{x:?} against {want:?}"
         );
+    }
+
+    /// A smooth minimum converges (with residuals left, and at zero cost, which nothing
+    /// lowers); a minimum on a kink does not: no damping lowers the cost there and the
+    /// forward-difference Jacobian straddles the kink, so the caller's Nelder-Mead takes over.
+    #[test]
+    fn the_polish_says_whether_it_converged() {
+        type Residuals = Box<dyn Fn(&[f64]) -> Vec<f64> + Sync>;
+        let cases: [(Residuals, bool); 3] = [
+            (
+                Box::new(|s: &[f64]| vec![10.0 * (s[1] - s[0] * s[0]), s[0] - 0.7, 0.1]),
+                true,
+            ),
+            (Box::new(valley(0.7)), true),
+            (
+                Box::new(|s: &[f64]| vec![(s[0] - 0.3).abs() + 0.1, s[1] - 0.5]),
+                false,
+            ),
+        ];
+        for (i, (residuals, converges)) in cases.into_iter().enumerate() {
+            let problem = Squares::new(residuals);
+            let start = [0.6, 0.2];
+            let end = polish(&problem, &start, problem.cost_at(&start)).unwrap();
+            assert_eq!(end.converged, converges, "case {i}: {:?}", end.x);
+            assert!(end.cost < 0.0101, "case {i}: cost {}", end.cost);
+        }
     }
 
     #[test]
