@@ -1,5 +1,6 @@
 //! The jets of the series path: Taylor coefficients of the solution of each nondimensional model
-//! about the start of a step, by the recurrences of the powers and Cauchy products.
+//! about the start of a step, in time or in logarithmic time ([`Clock`]), by the recurrences of
+//! the powers and Cauchy products.
 
 use super::{crossing, ORDER};
 use crate::impact::Settings;

@@ -1,6 +1,7 @@
 //! The walk of one impact by Taylor series: from contact, step after step (a start step where
-//! a base vanishes, else an expansion, its step size, the earliest event inside the step and
-//! what that event does) until the separation, rest, or a hand-over to the Runge-Kutta path.
+//! a base vanishes, then expansions in logarithmic time about that zero while they grow fast,
+//! else an expansion in time, its step size, the earliest event inside the step and what that
+//! event does) until the separation, rest, or a hand-over to the Runge-Kutta path.
 
 use super::jet::{Clock, Expand, Jet, Series};
 use super::{
