@@ -197,6 +197,10 @@ pub(crate) trait Expand<const N: usize>: CollisionModel<N> {
     fn contact_step(&self, _u: f64, _settings: &Settings) -> Option<(f64, State<N>)> {
         None
     }
+
+    /// The time and state just after contact from the leading terms of the loading
+    /// ([`super::onset`]), where those left out are at most `tol`, under the constant input `u`.
+    fn contact_start(&self, u: f64, tol: f64) -> Option<(f64, State<N>)>;
 }
 
 /// `1/k` for `k = 0 ..= ORDER + 1` (`INVERSE[0]` unused): the recurrences multiply by it, off the
@@ -493,6 +497,11 @@ impl<I: Input> Expand<3> for Ndbwshccm<I> {
         &self.k
     }
 
+    fn contact_start(&self, u: f64, tol: f64) -> Option<(f64, State<3>)> {
+        let (t, [x, z, v]) = super::onset::shccm(&self.k, u, tol)?;
+        Some((t, State::<3>::new(x, z, v)))
+    }
+
     fn crossing_step(
         &self,
         y: &State<3>,
@@ -603,6 +612,11 @@ impl<I: Input> Expand<4> for Ndbwmcm<I> {
 
     fn coefficients(&self) -> &NdCoefficients {
         &self.k
+    }
+
+    fn contact_start(&self, u: f64, tol: f64) -> Option<(f64, State<4>)> {
+        let (t, [r, y, z, v]) = super::onset::mcm(&self.k, u, tol)?;
+        Some((t, State::<4>::new(r, y, z, v)))
     }
 
     fn crossing_step(

@@ -36,7 +36,10 @@
 //! `e^(a σ)`, analytic in `σ`, so these steps are not bounded by the distance to `T_a` as the
 //! steps in `T` are (which grow by at most `MAX_GROWTH` per step from the start step's span).
 //! They end at the first event ahead or once a step spans less than [`LOG_STEP_MIN`], where the
-//! solution's other singularities bound the steps and a step in time costs less.
+//! solution's other singularities bound the steps and a step in time costs less. At contact
+//! the start step is not the explicit method's: the loading's leading terms give the state at
+//! a time where the terms they leave out are below the start tolerance (`series/onset.rs`),
+//! and the logarithmic steps ramp from there.
 //!
 //! Off a root of `Z` into a branch without hysteresis bracket (`B + Γ = 0`, every fit of the
 //! paper), a series in `D = |Z|` and `D^p`, in which the solution is analytic, takes the first
@@ -61,6 +64,7 @@
 mod contact;
 mod crossing;
 mod jet;
+mod onset;
 mod path;
 
 use crate::impact::{Impact, Settings};

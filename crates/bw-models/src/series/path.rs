@@ -13,6 +13,23 @@ use crate::impact::{at_rest, Impact, Settings};
 use crate::{separated, State};
 use bwc_ode::Stats;
 
+/// Whether the root `a` (where, which function, its index in the watch list) comes before `b`.
+/// Roots within a few ulps of each other are a tie: a zero of a base (set exactly to zero) comes
+/// before a root of the force, which can vanish with it and is then flat there (its run onto
+/// the root would stop short); other ties go to the function listed first.
+fn earlier(a: (f64, Event, usize), b: (f64, Event, usize)) -> bool {
+    let tie = (a.0 - b.0).abs() <= 8.0 * f64::EPSILON * a.0.abs().max(b.0.abs());
+    if !tie {
+        return a.0 < b.0;
+    }
+    let zero = |e: Event| matches!(e, Event::Z | Event::Base);
+    match (zero(a.1), zero(b.1)) {
+        (true, false) if b.1 == Event::Force => true,
+        (false, true) if a.1 == Event::Force => false,
+        _ => a.0 < b.0 || (a.0 == b.0 && a.2 < b.2),
+    }
+}
+
 /// What ends a step early.
 #[derive(Clone, Copy, PartialEq)]
 enum Event {
@@ -169,11 +186,15 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
         Ok((force, velocity))
     }
 
-    /// Where a base vanishes: one step of the explicit method leaves the point; the Runge-Kutta
-    /// path retakes it if it met an event.
+    /// Where a base vanishes: at contact the loading's leading terms ([`Expand::contact_start`]),
+    /// elsewhere (or where those decline) one step of the explicit method leaves the point; the
+    /// Runge-Kutta path retakes it if it met an event.
     fn leave_zero(&mut self) -> Next<N> {
         let (model, settings) = (self.model, self.settings);
         if self.y[M::Z] == 0.0 && self.y[M::BASE] != 0.0 && self.leave_root_of_z() {
+            return Next::Step;
+        }
+        if self.t == 0.0 && self.leave_contact() {
             return Next::Step;
         }
         let (t_start, y_start, stats_start) = (self.t, self.y, self.stats);
@@ -197,6 +218,28 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             return Next::Finish(self.hand_over());
         }
         Next::Step
+    }
+
+    /// Off contact, the state from the loading's leading terms ([`Expand::contact_start`])
+    /// where no event function has changed sign there; whether it took that step.
+    fn leave_contact(&mut self) -> bool {
+        let (model, settings) = (self.model, self.settings);
+        let tol = START_TOLERANCE * step_tolerance(&self.y, settings);
+        let Some((t, y)) = model.contact_start(self.u, tol) else {
+            return false;
+        };
+        let met = class(model.kinks(t, &y)[0]) != self.rate_class
+            || class(y[M::BASE]) != -1
+            || class(y[M::Z]) != -1
+            || separated(model.force(&y), model.velocity(&y));
+        if met {
+            return false;
+        }
+        self.series_steps += 1;
+        self.stats.accepted += 1;
+        (self.t, self.y, self.h_last) = (t, y, t);
+        (self.anchor, self.h_log) = (Some(0.0), 1.0);
+        true
     }
 
     /// Off a root of `Z`, the model's series in `D = |Z|` where it has one for this branch
@@ -407,8 +450,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     /// half of the step if one has changed there already), then again up to the root found,
     /// until no function changes earlier (a function may cross and cross back inside a long
     /// step). The function whose root ends the search is not searched again: its iteration
-    /// would start on that root and return it. Ties go to the function listed first (the
-    /// separation).
+    /// would start on that root and return it. Ties are decided by [`earlier`].
     fn earliest_event(&self, h: f64, tol: f64, watch: &[Watched; 5]) -> Ahead<N> {
         let changed = |at: &[f64; 5]| {
             watch
@@ -437,7 +479,9 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
                 } else {
                     root(|s| eval_d(c, s), upto, start)
                 };
-                if best.is_none_or(|(b, j)| s < b || (s == b && i < j)) {
+                if best.is_none_or(|found| {
+                    earlier((s, watch[i].0, i), (found.0, watch[found.1].0, found.1))
+                }) {
                     best = Some((s, i));
                 }
             }

@@ -478,7 +478,9 @@ fn a_run_the_series_hand_over_is_finished_from_their_state() {
 /// (94 series steps, 206 RHS evaluations and 15 rejected trials for the first case; 62, 184 and
 /// 13 for the second). The third case's RHS evaluations are mostly the Runge-Kutta run onto the
 /// separation from the last step's start, whose length depends on where the steps fall: 88 with
-/// the steps in time alone, 111 since the first step off each vanished base is logarithmic.
+/// the steps in time alone, 111 since the first step off each vanished base is logarithmic,
+/// 86 since contact is left by the loading's leading terms (whose logarithmic ramp from a
+/// shorter first span takes 45 series steps where it took 40).
 #[test]
 fn fast_hysteresis_corners_take_few_steps() {
     let cases = [
@@ -495,7 +497,7 @@ fn fast_hysteresis_corners_take_few_steps() {
         (
             ModelKind::Shccm,
             base(3.0, 1.5, 0.5, 0.01, 2.0, 2.0),
-            (40, 115, 3),
+            (45, 115, 3),
         ),
     ];
     for (kind, b, (most_steps, most_rhs, most_rejected)) in cases {
@@ -523,19 +525,20 @@ fn fast_hysteresis_corners_take_few_steps() {
 /// leave the root with one expansion in `D = |Z|` and `D^p` instead of a Runge-Kutta start step
 /// and a ramp of steps: the answers of the Runge-Kutta path at rtol 1e-14, for exponents from 1
 /// to 6, with and without a constant input, with a DOP853 step fewer and fewer series steps than
-/// without it (the RHS evaluations and series steps in the table were measured with the start
-/// step and the ramp).
+/// without it (the RHS evaluations and series steps in the table were measured with the
+/// series in `D` turned off, that is with the start step and the steps after it, on the code of
+/// session 15).
 #[test]
 fn the_root_of_z_is_left_by_a_series_in_d_and_d_to_the_p() {
     for (kind, p, u, (rhs_without, steps_without)) in [
-        (ModelKind::Shccm, 2.62, 0.0, (27, 30)),
-        (ModelKind::Mcm, 1.75, 0.0, (85, 59)),
+        (ModelKind::Shccm, 2.62, 0.0, (27, 29)),
+        (ModelKind::Mcm, 1.75, 0.0, (49, 50)),
         (ModelKind::Shccm, 1.0, 0.0, (27, 20)),
-        (ModelKind::Mcm, 1.0, 0.0, (41, 25)),
+        (ModelKind::Mcm, 1.0, 0.0, (27, 30)),
         (ModelKind::Shccm, 6.0, 0.0, (27, 28)),
-        (ModelKind::Mcm, 4.0, 0.0, (64, 34)),
-        (ModelKind::Shccm, 2.0, -0.2, (41, 29)),
-        (ModelKind::Mcm, 2.0, -0.2, (64, 29)),
+        (ModelKind::Mcm, 4.0, 0.0, (27, 37)),
+        (ModelKind::Shccm, 2.0, -0.2, (27, 33)),
+        (ModelKind::Mcm, 2.0, -0.2, (27, 32)),
     ] {
         let b = base(2.0, -2.0, 0.6, 0.05, 2.0, p);
         let map = BaseMap::new(
