@@ -325,8 +325,9 @@ pub fn minimize<P: CubeProblem>(
         Polish::Full
     };
     let mut runs: Vec<(Vec<f64>, f64)> = Vec::new();
-    // Starts whose end was verified by a fresh simplex.
-    let mut verified = Vec::new();
+    // The start last verified by a fresh simplex (a verification only lowers its cost, so an
+    // earlier one cannot be the best again once another is).
+    let mut verified = None;
     let agreeing = loop {
         let k = runs.len();
         let batch = if k == 0 { budget.starts } else { BATCH };
@@ -390,13 +391,13 @@ fn verify_best<P: CubeProblem>(
     problem: &P,
     budget: &Budget,
     runs: &mut [(Vec<f64>, f64)],
-    verified: &mut Vec<usize>,
+    verified: &mut Option<usize>,
 ) -> Result<(), IdentifyError> {
     let best = best_start(runs);
-    if verified.contains(&best) {
+    if *verified == Some(best) {
         return Ok(());
     }
-    verified.push(best);
+    *verified = Some(best);
     let x = runs[best].0.clone();
     let (y, c) = refine(problem, x, budget.polish_iterations, Polish::Verify)?;
     if c < runs[best].1 {

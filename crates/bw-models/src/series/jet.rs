@@ -711,27 +711,17 @@ mod tests {
     use crate::input::Constant;
     use crate::{ModelKind, Nondim, NondimParams};
 
-    fn nd(
-        kind: ModelKind,
-        b: f64,
-        gamma: f64,
-        kappa: f64,
-        sigma: f64,
-        n: f64,
-        p: f64,
-    ) -> NondimParams {
-        NondimParams::new(
-            kind,
-            Nondim {
-                b,
-                gamma,
-                kappa,
-                sigma,
-                n,
-                p,
-            },
-        )
-        .unwrap()
+    /// Nondimensional parameters with `κ = 0.4` and `n = 1.7`.
+    fn nd(kind: ModelKind, b: f64, gamma: f64, sigma: f64, p: f64) -> NondimParams {
+        let nd = Nondim {
+            b,
+            gamma,
+            kappa: 0.4,
+            sigma,
+            n: 1.7,
+            p,
+        };
+        NondimParams::new(kind, nd).unwrap()
     }
 
     /// The NDBWSHCCM with `σ = 0`, `p = 1` and `Γ = -B` (so `Z = X` and `F = -X`), no input,
@@ -742,7 +732,7 @@ mod tests {
     #[test]
     fn a_logarithmic_expansion_meets_the_closed_form() {
         let t0: f64 = 1e-3;
-        let params = nd(ModelKind::Shccm, 1.5, -1.5, 0.4, 0.0, 1.7, 1.0);
+        let params = nd(ModelKind::Shccm, 1.5, -1.5, 0.0, 1.0);
         let model = Ndbwshccm::new(&params, Constant(0.0)).unwrap();
         let (x0, v0) = (-t0.sin(), -t0.cos());
         let mut jet = Jet::<3>::new();
@@ -769,7 +759,7 @@ mod tests {
     #[test]
     fn a_logarithmic_expansion_agrees_with_the_expansion_in_time() {
         let (span, u) = (0.3, 0.2);
-        let params = |kind| nd(kind, 1.5, -0.7, 0.4, 0.1, 1.7, 2.3);
+        let params = |kind| nd(kind, 1.5, -0.7, 0.1, 2.3);
         let shccm = Ndbwshccm::new(&params(ModelKind::Shccm), Constant(u)).unwrap();
         let mcm = Ndbwmcm::new(&params(ModelKind::Mcm), Constant(u)).unwrap();
         let y3 = State::<3>::new(-0.5, -0.3, -0.8);

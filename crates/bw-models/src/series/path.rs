@@ -13,21 +13,22 @@ use crate::impact::{at_rest, Impact, Settings};
 use crate::{separated, State};
 use bwc_ode::Stats;
 
-/// Whether the root `a` (where, which function, its index in the watch list) comes before `b`.
-/// Roots within a few ulps of each other are a tie: a zero of a base (set exactly to zero) comes
-/// before a root of the force, which can vanish with it and is then flat there (its run onto
-/// the root would stop short); other ties go to the function listed first.
-fn earlier(a: (f64, Event, usize), b: (f64, Event, usize)) -> bool {
+/// Whether the root at `a.0` of the function `watch[a.1]` comes before the root at `b.0` of
+/// `watch[b.1]`. Roots within a few ulps of each other are a tie: a zero of a base (set exactly
+/// to zero) comes before a root of the force, which can vanish with it and is then flat there
+/// (its run onto the root would stop short); other ties go to the function listed first.
+fn earlier(watch: &[Watched; 5], a: (f64, usize), b: (f64, usize)) -> bool {
     let tie = (a.0 - b.0).abs() <= 8.0 * f64::EPSILON * a.0.abs().max(b.0.abs());
     if !tie {
         return a.0 < b.0;
     }
-    let zero = |e: Event| matches!(e, Event::Z | Event::Base);
-    match (zero(a.1), zero(b.1)) {
-        (true, false) if b.1 == Event::Force => true,
-        (false, true) if a.1 == Event::Force => false,
-        _ => a.0 < b.0 || (a.0 == b.0 && a.2 < b.2),
+    let zero_before_force = |i: usize, j: usize| {
+        matches!(watch[i].0, Event::Z | Event::Base) && watch[j].0 == Event::Force
+    };
+    if zero_before_force(a.1, b.1) || zero_before_force(b.1, a.1) {
+        return zero_before_force(a.1, b.1);
     }
+    a.0 < b.0 || (a.0 == b.0 && a.1 < b.1)
 }
 
 /// What ends a step early.
@@ -207,17 +208,23 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
         };
         (self.t, self.y) = (t, y);
         self.h_last = t - t_start;
-        // The start step spans σ from -∞ to 0: the first logarithmic step may be MAX_GROWTH.
-        (self.anchor, self.h_log) = (Some(t_start), 1.0);
-        let met = class(model.kinks(t, &y)[0]) != self.rate_class
-            || y[M::BASE] == 0.0
-            || y[M::Z] == 0.0
-            || separated(model.force(&y), model.velocity(&y));
-        if met {
+        if self.met_an_event(t, &y) {
             (self.t, self.y, self.stats) = (t_start, y_start, stats_start);
             return Next::Finish(self.hand_over());
         }
+        // The start step spans σ from -∞ to 0: the first logarithmic step may be MAX_GROWTH.
+        (self.anchor, self.h_log) = (Some(t_start), 1.0);
         Next::Step
+    }
+
+    /// Whether a first step off a zero of a base, to `(t, y)`, met an event: the rate changed
+    /// sign, a base vanished, or the contact separated.
+    fn met_an_event(&self, t: f64, y: &State<N>) -> bool {
+        let model = self.model;
+        class(model.kinks(t, y)[0]) != self.rate_class
+            || y[M::BASE] == 0.0
+            || y[M::Z] == 0.0
+            || separated(model.force(y), model.velocity(y))
     }
 
     /// Off contact, the state from the loading's leading terms ([`Expand::contact_start`])
@@ -228,11 +235,8 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
         let Some((t, y)) = model.contact_start(self.u, tol) else {
             return false;
         };
-        let met = class(model.kinks(t, &y)[0]) != self.rate_class
-            || class(y[M::BASE]) != -1
-            || class(y[M::Z]) != -1
-            || separated(model.force(&y), model.velocity(&y));
-        if met {
+        // In loading every base is negative.
+        if self.met_an_event(t, &y) || y[M::BASE] > 0.0 || y[M::Z] > 0.0 {
             return false;
         }
         self.series_steps += 1;
@@ -479,9 +483,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
                 } else {
                     root(|s| eval_d(c, s), upto, start)
                 };
-                if best.is_none_or(|found| {
-                    earlier((s, watch[i].0, i), (found.0, watch[found.1].0, found.1))
-                }) {
+                if best.is_none_or(|found| earlier(watch, (s, i), found)) {
                     best = Some((s, i));
                 }
             }
