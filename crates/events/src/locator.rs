@@ -110,11 +110,10 @@ impl<C, S> Locator<C, S> {
     }
 
     /// Takes one accepted step of `it` (ending at `t_end` at the latest) and handles the events
-    /// inside it, in four phases: the values where the step starts ([`Locator::start`]), the
-    /// step itself, aimed at a predicted switching point ([`Locator::advance`]), a scan for a
-    /// boundary function that leaves its class and returns inside the step
-    /// ([`Locator::interior`]), and, where anything crossed, the earliest crossing located and
-    /// acted on ([`Locator::land`], [`Locator::locate`]).
+    /// inside it, in four phases: the values where the step starts, the step itself (aimed at a
+    /// predicted switching point), a scan for a boundary function that leaves its class and
+    /// returns inside the step, and, where anything crossed, the earliest crossing located and
+    /// acted on.
     ///
     /// # Errors
     /// [`Error::Solver`] when the integration fails, [`Error::TooManyFunctions`] for a condition

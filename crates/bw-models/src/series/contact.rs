@@ -18,7 +18,8 @@
 //! loop, in the variable `s`. Where the velocity reaches zero inside the step (the maximum
 //! compression), the step ends on that root.
 
-use super::jet::{Base, Power, Series};
+use super::jet::Series;
+use super::recurrence::{Base, Power};
 use super::{eval_d, jorba_zou, root, ORDER, TOLERANCE_SCALE};
 use crate::impact::Settings;
 use crate::power::Pow;

@@ -25,7 +25,7 @@
 //! inside it, where the other base's zero is within a tenth of the step (both bases vanishing
 //! together), and where its values are not finite.
 
-use super::jet::dot2;
+use super::recurrence::dot2;
 use super::{class, coarse_log2, root, START_TOLERANCE};
 use crate::models::NdCoefficients;
 use crate::State;

@@ -66,6 +66,7 @@ mod crossing;
 mod jet;
 mod onset;
 mod path;
+mod recurrence;
 
 use crate::impact::{Impact, Settings};
 use crate::models::CollisionModel;
