@@ -27,7 +27,9 @@
 //! on how fast a lone right-hand side runs against the rest of the code on the day. Each row
 //! with stops is timed side by side (in turns, `side_by_side`) with the two plain DOP853 runs
 //! whose errors bracket its error and, for a series row, with the right-hand side, so that the
-//! machine's drift within a run cancels from both ratios.
+//! machine's drift within a run cancels from both ratios. "Error" there is the larger of the
+//! errors in `e` and `T_s`; a series row also has `in_time_e`, the ratio in time at equal error
+//! in `e` alone (issue 21's measure), timed beside the plain runs that bracket that error.
 //!
 //! Side by side in the same run: the paper's setup in SciPy (benches/scipy_cor.py, skipped with a
 //! message when python3 is absent). Writes `cor.csv` and SVG plots into the directory given as
@@ -68,6 +70,8 @@ struct Row {
     /// Plain DOP853's time at this row's error over the row's time, both timed side by side
     /// (rows with stops whose error plain DOP853's rows bracket).
     in_time: Option<f64>,
+    /// The same at equal error in `e` alone (issue 21's measure; series rows only).
+    in_time_e: Option<f64>,
 }
 
 /// A thousand right-hand sides of the model of `map` at v0 = 2 m/s, at a state in the
@@ -100,7 +104,10 @@ fn thousand<const N: usize>(model: impl System<N> + 'static, y: State<N>) -> Box
 /// target.
 struct Plain {
     rtol: f64,
+    /// The larger of the errors in `e` and `T_s`.
     err: f64,
+    /// The error in `e`.
+    err_e: f64,
     evals: u64,
 }
 
@@ -134,11 +141,21 @@ fn errors(outs: &[Cor], refs: &[(Option<f64>, Option<f64>)]) -> (f64, f64) {
 /// The first two of plain DOP853's runs (in the order of the tolerances) whose errors bracket
 /// `err`, and where `err` lies between them on a log scale (0 at the first, 1 at the second).
 fn bracket(plain: &[Plain], err: f64) -> Option<(&Plain, &Plain, f64)> {
+    bracket_by(plain, err, |p| p.err)
+}
+
+/// [`bracket`] by the error `of` each run.
+fn bracket_by(
+    plain: &[Plain],
+    err: f64,
+    of: impl Fn(&Plain) -> f64,
+) -> Option<(&Plain, &Plain, f64)> {
     plain.windows(2).find_map(|w| {
         let (a, b) = (&w[0], &w[1]);
-        let (hi, lo) = (a.err.max(b.err), a.err.min(b.err));
+        let (ea, eb) = (of(a), of(b));
+        let (hi, lo) = (ea.max(eb), ea.min(eb));
         (err <= hi && err >= lo && hi > lo)
-            .then(|| (a, b, (err.ln() - a.err.ln()) / (b.err.ln() - a.err.ln())))
+            .then(|| (a, b, (err.ln() - ea.ln()) / (eb.ln() - ea.ln())))
     })
 }
 
@@ -165,11 +182,12 @@ fn rhs_target(name: &str, rows: &[Row], plain: &[Plain]) -> String {
             None => ("-".into(), "-".into()),
         };
         let time_ratio = r.in_time.map_or("-".into(), |t| format!("{t:.2}"));
+        let time_ratio_e = r.in_time_e.map_or(String::new(), |t| format!("{t:.2}"));
         let rhs = r.rhs_ns.map_or(String::new(), |ns| format!("{ns:.1}"));
         let _ = writeln!(
             out,
             "{name:<18} {:<9} {:>7.0e} {:>10.2e} {:>8.0} {plain_evals:>8} {ratio:>6} {rhs:>7} \
-             {time_ratio:>6}",
+             {time_ratio:>6} {time_ratio_e:>9}",
             r.method, r.rtol, r.err, work
         );
     }
@@ -317,6 +335,7 @@ fn main() {
                     Some(Plain {
                         rtol,
                         err: ee.max(et).max(1e-17),
+                        err_e: ee.max(1e-17),
                         evals: outs.iter().map(|o| o.stats.rhs_evals).sum(),
                     })
                 })
@@ -386,12 +405,27 @@ fn main() {
                             }));
                         }
                     }
+                    // For the series, also the plain runs that bracket its error in e alone.
+                    let bracketed_e = bracket_by(&plain, ee.max(1e-17), |p| p.err_e)
+                        .filter(|_| series)
+                        .map(|(a, b, f)| (a.rtol, b.rtol, f));
+                    if let Some((a, b, _)) = bracketed_e {
+                        for rtol in [a, b] {
+                            let plain = plain_dop853(rtol);
+                            fs.push(Box::new(move || {
+                                let _ = std::hint::black_box(run(&plain));
+                            }));
+                        }
+                    }
                     if series {
                         fs.push(rhs_batch(unit));
                     }
                     let times = side_by_side(&mut fs);
                     let secs = times[0];
                     let in_time = bracketed.map(|(_, _, f)| between(times[1], times[2], f) / secs);
+                    let at = if bracketed.is_some() { 3 } else { 1 };
+                    let in_time_e =
+                        bracketed_e.map(|(_, _, f)| between(times[at], times[at + 1], f) / secs);
                     let rhs_ns = series.then(|| times[times.len() - 1] * 1e6);
                     println!(
                         "{name:<18} {method:<9} {:<6} {:>7.0e} {:>10.2e} {:>10.2e} {:>8} {:>9.1} {:>6}",
@@ -417,6 +451,7 @@ fn main() {
                         time_us: secs * 1e6,
                         rhs_ns,
                         in_time,
+                        in_time_e,
                     });
                     pe.push((evals as f64, err));
                     pt.push((secs * 1e6, err));
@@ -475,12 +510,22 @@ fn main() {
          case's model, at DSS (1) for the cases that are not published fits, timed next to it; \
          rhs_ns) against plain DOP853's evaluations \
          at the same error (log-log interpolation between its rows; - outside their range); \
-         in_time: plain DOP853's time at the same error over the row's time; each row timed \
-         side by side with the plain runs that bracket its error and the right-hand side"
+         in_time: plain DOP853's time at the same error over the row's time; in_time_e: the \
+         same at equal error in e alone (series rows); each row timed side by side with the \
+         plain runs that bracket its errors and the right-hand side"
     );
     println!(
-        "{:<18} {:<9} {:>7} {:>10} {:>8} {:>8} {:>6} {:>7} {:>6}",
-        "case", "method", "rtol", "error", "work", "plain", "ratio", "rhs_ns", "in_time"
+        "{:<18} {:<9} {:>7} {:>10} {:>8} {:>8} {:>6} {:>7} {:>6} {:>9}",
+        "case",
+        "method",
+        "rtol",
+        "error",
+        "work",
+        "plain",
+        "ratio",
+        "rhs_ns",
+        "in_time",
+        "in_time_e"
     );
     print!("{target}");
     std::fs::write(out.join("cor.csv"), csv).unwrap();
