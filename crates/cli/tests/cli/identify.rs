@@ -1,0 +1,327 @@
+//! `bwc-identify`: evaluations, fits, warnings, coverage studies and bad configs.
+
+use super::*;
+
+#[test]
+fn identify_eval_reports_the_json_contract() {
+    let config = fixtures().join("kharaz.toml");
+    let v = json(&identify(&["eval", config.to_str().unwrap(), "--json"]));
+    let fits = v["fits"].as_array().unwrap();
+    assert_eq!(fits.len(), 4);
+    for f in fits {
+        for key in [
+            "name",
+            "model",
+            "params",
+            "J1",
+            "J2",
+            "evaluations",
+            "wall_s",
+        ] {
+            assert!(f.get(key).is_some(), "missing {key}");
+        }
+        for key in ["B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "U_b", "T_b"] {
+            assert!(f["params"].get(key).is_some(), "missing params.{key}");
+        }
+        // u = 0 and no durations: U_b, T_b and J2 are unused.
+        assert!(f["params"]["U_b"].is_null() && f["params"]["T_b"].is_null() && f["J2"].is_null());
+        let j1 = f["J1"].as_f64().unwrap();
+        // The published vectors fit the reconstructed data (the mean of their own curves).
+        assert!(j1 > 0.0 && j1 < 1e-4, "{}: J1 = {j1}", f["name"]);
+    }
+    assert_eq!(fits[0]["params"]["B_b"], 2.38);
+}
+
+/// Writes a synthetic dataset of a known NDBWSHCCM and a config that frees κ and σ_b.
+fn synthetic_config(dir: &Path) -> PathBuf {
+    use bw_models::{impact_at, input::Zero, BaseMap, BaseParams, ModelKind, Settings};
+    let truth = BaseParams {
+        b_b: 1.0,
+        gamma_b: -1.0,
+        kappa: 0.6,
+        sigma_b: 0.03,
+        n: 1.5,
+        p: 1.5,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    let map = BaseMap::new(ModelKind::Shccm, truth).unwrap();
+    let mut csv = String::from("# synthetic: kappa = 0.6, sigma_b = 0.03\nv_0,e\n");
+    for v0 in [0.2, 0.5, 1.0, 2.0, 4.0] {
+        csv += &format!(
+            "{v0},{}\n",
+            impact_at(&map, Zero, v0, &Settings::default()).unwrap().e
+        );
+    }
+    std::fs::write(dir.join("synthetic.csv"), csv).unwrap();
+    let config = dir.join("fit.toml");
+    std::fs::write(
+        &config,
+        "[[fit]]\nname = \"synthetic\"\nmodel = \"shccm\"\ndata = \"synthetic.csv\"\n[fit.bounds]\nkappa = [0.1, 0.9]\nsigma_b = [0.0, 0.1]\n\
+         [fit.fixed]\nB_b = 1.0\ng = -1.0\nn = 1.5\np = 1.5\n[fit.optimizer]\nparticles = 8\niterations = 10\npolish = 300\nstarts = 2\n",
+    )
+    .unwrap();
+    config
+}
+
+#[test]
+fn identify_run_recovers_synthetic_parameters_on_any_thread_count() {
+    let dir = scratch("identify-synthetic");
+    let config = synthetic_config(&dir);
+    let out_dir = dir.join("out");
+    let one = json(&identify(&[
+        "run",
+        config.to_str().unwrap(),
+        "--json",
+        "--threads",
+        "1",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]));
+    let two = json(&identify(&[
+        "run",
+        config.to_str().unwrap(),
+        "--json",
+        "--threads",
+        "2",
+    ]));
+    let strip = |mut v: serde_json::Value| {
+        v["fits"][0].as_object_mut().unwrap().remove("wall_s");
+        v
+    };
+    assert_eq!(strip(one.clone()), strip(two));
+    let f = &one["fits"][0];
+    assert!(
+        (f["params"]["kappa"].as_f64().unwrap() - 0.6).abs() < 1e-5,
+        "{f}"
+    );
+    assert!(
+        (f["params"]["sigma_b"].as_f64().unwrap() - 0.03).abs() < 1e-5,
+        "{f}"
+    );
+    assert!(f["J1"].as_f64().unwrap() < 1e-12);
+    assert_eq!(
+        f["identifiability"]["singular_values"]
+            .as_array()
+            .unwrap()
+            .len(),
+        2
+    );
+    let c = &f["convergence"];
+    assert!(c["agreeing"].as_u64().unwrap() >= 2, "{c}");
+    assert!(c["starts"].as_u64().unwrap() >= c["agreeing"].as_u64().unwrap());
+    assert_eq!(
+        c["costs"].as_array().unwrap().len() as u64,
+        c["starts"].as_u64().unwrap()
+    );
+    assert_eq!(f["at_bound"], serde_json::json!([]));
+    let iv = &f["intervals"];
+    assert_eq!(iv["level"], 0.95);
+    assert!(iv["method"].as_str().unwrap().contains("delta method"));
+    let kappa = iv["params"]["kappa"].as_array().unwrap();
+    let (lo, hi) = (kappa[0].as_f64().unwrap(), kappa[1].as_f64().unwrap());
+    // Noise-free data: an interval around the truth, and a narrow one.
+    assert!(lo <= 0.6 && 0.6 <= hi && hi - lo < 1e-3, "{iv}");
+    assert!(f["predictions"]["e"]["summary"]
+        .as_str()
+        .unwrap()
+        .starts_with("e is determined to"));
+    assert_eq!(f["warnings"], serde_json::json!([]));
+    let csv = std::fs::read_to_string(out_dir.join("synthetic.csv")).unwrap();
+    assert!(csv.starts_with("v_0,e,e_model,t_d,t_d_model,e_lo,e_hi,t_d_lo,t_d_hi"));
+    for row in csv.lines().skip(1) {
+        let v: Vec<f64> = row.split(',').filter_map(|x| x.parse().ok()).collect();
+        // v_0, e, e_model, e_lo, e_hi: the band holds the model.
+        assert!(v[3] <= v[2] && v[2] <= v[4], "{row}");
+    }
+    assert!(out_dir.join("synthetic_cor.svg").exists() && out_dir.join("summary.json").exists());
+}
+
+/// A bad config: exit 1, a message naming the file (and line and key where there is one),
+/// nothing written.
+fn identify_rejects(name: &str, config: &str, data: Option<&str>, needles: &[&str]) {
+    let dir = scratch(&format!("bad-identify-{name}"));
+    if let Some(d) = data {
+        std::fs::write(dir.join("d.csv"), d).unwrap();
+    }
+    let path = dir.join("c.toml");
+    std::fs::write(&path, config).unwrap();
+    let out_dir = dir.join("out");
+    let out = identify(&[
+        "run",
+        path.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{name}: {err}");
+    for n in needles {
+        assert!(err.contains(n), "{name}: {n:?} not in {err}");
+    }
+    assert!(!out_dir.exists(), "{name}: output written");
+}
+
+#[test]
+fn bad_identification_inputs_are_clear_errors() {
+    let good_data = "v_0,e\n0.5,0.9\n1.0,0.8\n";
+    let head = "[[fit]]\nname = \"f\"\nmodel = \"shccm\"\ndata = \"d.csv\"\n";
+    let bounds = "[fit.bounds]\nB_b = [0.0, 2.0]\ng = [-1.0, 1.0]\nkappa = [0.1, 0.9]\nsigma_b = [0.0, 0.1]\nn = [1.0, 2.0]\np = [1.0, 2.0]\n";
+    let good = format!("{head}{bounds}");
+    identify_rejects("missing-data-file", &good, None, &["d.csv"]);
+    identify_rejects(
+        "malformed-row",
+        &good,
+        Some("v_0,e\n0.5,0.9\n1.0,abc\n"),
+        &["d.csv:3", "abc"],
+    );
+    identify_rejects(
+        "negative-speed",
+        &good,
+        Some("v_0,e\n-0.5,0.9\n"),
+        &["d.csv:2", "v_0 > 0"],
+    );
+    identify_rejects(
+        "nan",
+        &good,
+        Some("v_0,e\n0.5,nan\n"),
+        &["d.csv:2", "not finite"],
+    );
+    identify_rejects("empty-data", &good, Some("v_0,e\n"), &["no data rows"]);
+    identify_rejects(
+        "swapped-bounds",
+        &good.replace("kappa = [0.1, 0.9]", "kappa = [0.9, 0.1]"),
+        Some(good_data),
+        &[
+            "c.toml:8",
+            "[fit.bounds].kappa",
+            "lower bound <= upper bound",
+        ],
+    );
+    identify_rejects(
+        "bound-outside-admissible",
+        &good.replace("kappa = [0.1, 0.9]", "kappa = [0.1, 1.5]"),
+        Some(good_data),
+        &["kappa", "0 < kappa < 1"],
+    );
+    identify_rejects(
+        "start-outside-bounds",
+        &format!("{good}[fit.start]\nB_b = 3.0\nGamma_b = 0.0\nkappa = 0.5\nsigma_b = 0.01\nn = 1.0\np = 1.0\n"),
+        Some(good_data),
+        &["[fit.start]", "B_b"],
+    );
+    identify_rejects(
+        "infeasible",
+        &format!("{head}objectives = {{ J1 = 1.0 }}\n{bounds}U_b = [1e-4, 1e-3]\n[fit.known]\nm = 0.5\nk = 255.0\n"),
+        Some(good_data),
+        &["infeasible"],
+    );
+    identify_rejects(
+        "unknown-key",
+        &format!("{good}speed = 3\n"),
+        Some(good_data),
+        &["c.toml:", "speed"],
+    );
+    identify_rejects(
+        "missing-bound",
+        &good.replace("n = [1.0, 2.0]\n", ""),
+        Some(good_data),
+        &["[fit.bounds].n", "missing"],
+    );
+    identify_rejects(
+        "duration-without-data",
+        &format!(
+            "{head}objectives = {{ J2 = 1.0 }}\n{bounds}U_b = [0.01, 1.0]\nT_b = [0.01, 1.0]\n"
+        ),
+        Some(good_data),
+        &["t_d"],
+    );
+    identify_rejects("no-fits", "", None, &["no fits"]);
+    identify_rejects(
+        "duplicate-names",
+        &format!("{good}{good}"),
+        Some(good_data),
+        &["used twice"],
+    );
+}
+
+#[test]
+fn identify_eval_of_loop_fits() {
+    let config = fixtures().join("cross.toml");
+    let v = json(&identify(&["eval", config.to_str().unwrap(), "--json"]));
+    let fits = v["fits"].as_array().unwrap();
+    assert_eq!(fits.len(), 2);
+    assert_eq!(fits[0]["kind"], "loops");
+    assert_eq!(fits[0]["params"]["k"], 117080063.0);
+    assert!(fits[0]["cost"].as_f64().unwrap() < 1e-7);
+    assert!(fits[1]["cost"].as_f64().unwrap() < 1e-2);
+}
+
+/// Suspicious data and an optimum on a bound are named on stderr and in the JSON; the fit still
+/// finishes (exit 0) with its results.
+#[test]
+fn identify_warns_about_data_and_bounds() {
+    let dir = scratch("identify-warnings");
+    std::fs::write(
+        dir.join("d.csv"),
+        "v_0,e\n0.2,0.95\n0.5,0.93\n1.0,1.02\n2.0,0.88\n4.0,0.84\n",
+    )
+    .unwrap();
+    let config = dir.join("fit.toml");
+    std::fs::write(
+        &config,
+        "[[fit]]\nname = \"w\"\nmodel = \"shccm\"\ndata = \"d.csv\"\n[fit.bounds]\nkappa = [0.1, 0.9]\nsigma_b = [0.0, 0.001]\n\
+         [fit.fixed]\nB_b = 0.0\ng = 0.0\nn = 1.5\np = 1.5\n[fit.optimizer]\nparticles = 8\niterations = 10\n",
+    )
+    .unwrap();
+    let out = identify(&["run", config.to_str().unwrap(), "--json"]);
+    let v = json(&out);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("d.csv:4: e = 1.02 > 1"), "{stderr}");
+    // Damping alone cannot reach e = 0.84: sigma_b ends on its upper bound.
+    assert!(
+        stderr.contains("sigma_b = 0.001 is on its upper bound 0.001"),
+        "{stderr}"
+    );
+    let f = &v["fits"][0];
+    assert_eq!(f["at_bound"], serde_json::json!(["sigma_b"]));
+    assert_eq!(f["intervals"]["params"]["sigma_b"], serde_json::Value::Null);
+    assert_eq!(f["warnings"].as_array().unwrap().len(), 2, "{f}");
+}
+
+/// A coverage study is a set of independent replicates: the same on any thread count, and a
+/// study split into shards (`--first-seed`, `--replicates`) gives the same replicates.
+#[test]
+fn identify_coverage_shards_and_threads() {
+    let dir = scratch("identify-coverage");
+    let config = synthetic_config(&dir);
+    let c = config.to_str().unwrap();
+    let run = |args: &[&str]| {
+        let mut all = vec!["coverage", c, "--json", "--noise", "0.01"];
+        all.extend_from_slice(args);
+        json(&identify(&all))
+    };
+    let whole = run(&["--replicates", "3", "--threads", "1"]);
+    assert_eq!(whole, run(&["--replicates", "3", "--threads", "2"]));
+    let a = run(&["--replicates", "2"]);
+    let b = run(&["--replicates", "1", "--first-seed", "3"]);
+    let reps = |v: &serde_json::Value| v["coverage"][0]["replicates"].as_array().unwrap().clone();
+    let mut joined = reps(&a);
+    joined.extend(reps(&b));
+    assert_eq!(joined, reps(&whole));
+    let s = &whole["coverage"][0];
+    assert_eq!(s["truth_from"], "fit");
+    assert_eq!(s["noise"], 0.01);
+    let cov = s["coverage"].as_f64().unwrap();
+    assert!((0.0..=1.0).contains(&cov));
+    assert_eq!(reps(&whole).len(), 3);
+    assert!(reps(&whole)
+        .iter()
+        .all(|r| r["points"] == 5 && r["error"].is_null()));
+    // A fit with a duration objective is refused with a message naming it.
+    let out = identify(&[
+        "coverage",
+        fixtures().join("villegas.toml").to_str().unwrap(),
+    ]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("CoR-only"));
+}

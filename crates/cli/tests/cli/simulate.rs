@@ -1,0 +1,479 @@
+//! `bwc-simulate`: the paper's fixtures, thread counts, outputs and bad scenes.
+
+use super::*;
+
+#[test]
+fn two_balls_fixtures_write_the_papers_columns_and_plots() {
+    for model in ["shccm", "mcm"] {
+        let out_dir = scratch(&format!("two-balls-{model}"));
+        let scene = fixtures().join(format!("two_balls_{model}.toml"));
+        let v = json(&simulate(&[
+            "run",
+            scene.to_str().unwrap(),
+            "--json",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ]));
+        let run = &v["runs"][0];
+        for key in ["v0", "t_s", "e", "t_d", "separated", "rhs_evals"] {
+            assert!(run.get(key).is_some(), "missing key {key}");
+        }
+        assert_eq!(run["v0"], 2.0);
+        assert_eq!(run["separated"], true);
+        let (e, ts) = (run["e"].as_f64().unwrap(), run["t_s"].as_f64().unwrap());
+        assert!(
+            e > 0.0 && e < 1.0 && ts > 1e-3 && ts < 5e-2,
+            "{model}: e {e}, t_s {ts}"
+        );
+        assert_eq!(run["t_d"], run["t_s"]);
+        let traj = std::fs::read_to_string(out_dir.join("trajectory.csv")).unwrap();
+        assert_eq!(
+            traj.lines().next().unwrap(),
+            if model == "shccm" {
+                "t,x_m_1,x_m_2,x_m,x,v_m_1,v_m_2,v_m,v,u_1,u_2,u,F,z"
+            } else {
+                "t,x_m_1,x_m_2,x_m,x,v_m_1,v_m_2,v_m,v,u_1,u_2,u,F,r,y,z"
+            }
+        );
+        // Last row: separation, where F <= 0 <= v.
+        let last: Vec<f64> = traj
+            .lines()
+            .last()
+            .unwrap()
+            .split(',')
+            .map(|x| x.parse().unwrap())
+            .collect();
+        assert!(
+            last[12] <= 1e-9 && last[8] >= 0.0,
+            "{model}: F {} v {}",
+            last[12],
+            last[8]
+        );
+        for f in [
+            "summary.json",
+            "displacements.svg",
+            "velocities.svg",
+            "forces.svg",
+        ] {
+            let text = std::fs::read_to_string(out_dir.join(f)).unwrap();
+            assert!(!text.is_empty(), "{f}");
+        }
+        assert!(std::fs::read_dir(&out_dir).unwrap().all(|e| !e
+            .unwrap()
+            .file_name()
+            .to_string_lossy()
+            .ends_with(".tmp")));
+    }
+}
+
+#[test]
+fn sweeps_are_identical_for_any_thread_count() {
+    let scene = fixtures().join("kharaz_curves.toml");
+    let one = simulate(&["run", scene.to_str().unwrap(), "--json", "--threads", "1"]);
+    let two = simulate(&["run", scene.to_str().unwrap(), "--json", "--threads", "2"]);
+    assert_eq!(json(&one), json(&two));
+    let v = json(&one);
+    let runs = v["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 8 * 40);
+    // No T_b: durations have no time scale.
+    assert!(runs
+        .iter()
+        .all(|r| r["t_d"].is_null() && r["time_unit"] == "nondimensional"));
+}
+
+#[test]
+fn cross_fixtures_write_loops_and_sweeps() {
+    for model in ["shccm", "mcm"] {
+        let out_dir = scratch(&format!("cross-{model}"));
+        let scene = fixtures().join(format!("cross_{model}.toml"));
+        let out = simulate(&[
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            out_dir.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let sweep = std::fs::read_to_string(out_dir.join("sweep.csv")).unwrap();
+        assert!(sweep.starts_with("v_0,e,t_d"));
+        assert_eq!(sweep.lines().count(), 5);
+        let loops = std::fs::read_to_string(out_dir.join("loop.csv")).unwrap();
+        assert!(loops.starts_with("v_0,x,F"));
+        for f in ["loops.svg", "cor.svg", "duration.svg"] {
+            assert!(out_dir.join(f).exists(), "{f}");
+        }
+    }
+}
+
+#[test]
+fn nondimensional_scene_reports_null_speed_and_duration() {
+    let dir = scratch("nd");
+    let scene = dir.join("hc.toml");
+    std::fs::write(&scene, "model = \"shccm\"\n[nondimensional]\nB = 0\nGamma = 0\nkappa = 0.5\nsigma = 0.5\nn = 1\np = 1.5\n").unwrap();
+    let v = json(&simulate(&["run", scene.to_str().unwrap(), "--json"]));
+    let run = &v["runs"][0];
+    assert!(run["v0"].is_null() && run["t_d"].is_null());
+    // Hunt-Crossley limit (B = Γ = 0): e is the root in (0, 1) of
+    // σ - ln(1+σ) = -σe - ln(1-σe); at σ = 0.5, e = 0.748434931597434.
+    assert!((run["e"].as_f64().unwrap() - 0.748434931597434).abs() < 1e-9);
+}
+
+/// A CoR-only nondimensional scene under a constant input takes the Taylor-series path by
+/// default (`series_steps` in the JSON summary); `[solver] series = false` the Runge-Kutta path;
+/// both give the Hunt-Crossley closed form.
+#[test]
+fn series_key_and_series_steps() {
+    let dir = scratch("series");
+    let hc = "model = \"shccm\"\n[nondimensional]\nB = 0\nGamma = 0\nkappa = 0.5\nsigma = 0.5\nn = 1\np = 1.5\n";
+    let scene = dir.join("hc.toml");
+    // The series are the default for CoR-only runs; `series = false` takes the Runge-Kutta path.
+    for (extra, series) in [("", true), ("[solver]\nseries = false\n", false)] {
+        std::fs::write(&scene, format!("{hc}{extra}")).unwrap();
+        let v = json(&simulate(&["run", scene.to_str().unwrap(), "--json"]));
+        let run = &v["runs"][0];
+        assert!((run["e"].as_f64().unwrap() - 0.748434931597434).abs() < 1e-10);
+        assert_eq!(run["series_steps"].as_u64().unwrap() > 0, series, "{run}");
+    }
+}
+
+/// `method = "rosenbrock"` runs RODAS4 (Jacobian evaluations reported, the Hunt-Crossley answer
+/// kept); a nearly rigid dashpot in the MCM makes the default explicit method switch, reported
+/// as `stiff_from`; `switch_when_stiff = false` keeps the explicit method.
+#[test]
+fn rosenbrock_method_and_the_stiffness_switch() {
+    let dir = scratch("rosenbrock");
+    let hc = dir.join("hc.toml");
+    std::fs::write(&hc, "model = \"shccm\"\n[nondimensional]\nB = 0\nGamma = 0\nkappa = 0.5\nsigma = 0.5\nn = 1\np = 1.5\n[solver]\nmethod = \"rosenbrock\"\n").unwrap();
+    let v = json(&simulate(&["run", hc.to_str().unwrap(), "--json"]));
+    let run = &v["runs"][0];
+    assert!((run["e"].as_f64().unwrap() - 0.748434931597434).abs() < 1e-9);
+    assert!(run["jacobians"].as_u64().unwrap() > 0 && run["stiff_from"].is_null());
+    let stiff = "model = \"mcm\"\n[nondimensional]\nB = 1\nGamma = -0.5\nkappa = 0.5\nsigma = 1e5\nn = 2\np = 1.5\n";
+    let scene = dir.join("stiff.toml");
+    std::fs::write(&scene, stiff).unwrap();
+    let v = json(&simulate(&["run", scene.to_str().unwrap(), "--json"]));
+    let run = &v["runs"][0];
+    assert!(run["stiff_from"].as_f64().unwrap() > 0.0, "{run}");
+    assert!(run["rhs_evals"].as_u64().unwrap() < 20_000, "{run}");
+    std::fs::write(
+        &scene,
+        format!("{stiff}[solver]\nswitch_when_stiff = false\nmax_steps = 20000\n"),
+    )
+    .unwrap();
+    let out = simulate(&["run", scene.to_str().unwrap(), "--json"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{err}");
+    assert!(err.contains("20000 steps"), "{err}");
+}
+
+const GOOD_PHYSICAL: &str = "model = \"shccm\"\nv0 = [1.0]\n[physical]\nm = 0.145\nk = 117080063.0\nc = 5854003.0\nn = 1.1\np = 1.7\nalpha = 0.1\nbeta = 981.05\ngamma = -961.4\nA = 0.925\n";
+
+#[test]
+fn bad_scenes_are_clear_errors() {
+    rejects(
+        "unknown-key",
+        &GOOD_PHYSICAL.replace("A = 0.925", "A = 0.925\nstiffness = 3"),
+        Some(13),
+        &["stiffness"],
+    );
+    rejects(
+        "missing-key",
+        &GOOD_PHYSICAL.replace("k = 117080063.0\n", ""),
+        Some(3),
+        &["[physical].k", "missing"],
+    );
+    rejects(
+        "two-systems",
+        &format!("{GOOD_PHYSICAL}[nondimensional]\nB = 0\n"),
+        None,
+        &["two system descriptions"],
+    );
+    rejects(
+        "wrong-type",
+        &GOOD_PHYSICAL.replace("n = 1.1", "n = \"one\""),
+        Some(7),
+        &["n"],
+    );
+    rejects(
+        "nan",
+        &GOOD_PHYSICAL.replace("c = 5854003.0", "c = nan"),
+        Some(6),
+        &["[physical].c", "finite"],
+    );
+    rejects(
+        "inf",
+        &GOOD_PHYSICAL.replace("k = 117080063.0", "k = inf"),
+        Some(5),
+        &["[physical].k", "finite"],
+    );
+    rejects(
+        "inadmissible",
+        &GOOD_PHYSICAL.replace("alpha = 0.1", "alpha = 1.5"),
+        Some(9),
+        &["[physical].alpha", "1.5", "0 < alpha < 1"],
+    );
+    rejects(
+        "gamma-range",
+        &GOOD_PHYSICAL.replace("gamma = -961.4", "gamma = -2000"),
+        Some(11),
+        &["[physical].gamma", "-beta <= gamma <= beta"],
+    );
+    rejects(
+        "negative-speed",
+        &GOOD_PHYSICAL.replace("v0 = [1.0]", "v0 = [1.0, -2.0]"),
+        Some(2),
+        &["v0", "-2"],
+    );
+    rejects(
+        "no-speeds",
+        &GOOD_PHYSICAL.replace("v0 = [1.0]\n", ""),
+        None,
+        &["v0", "missing"],
+    );
+    rejects(
+        "bad-model",
+        &GOOD_PHYSICAL.replace("\"shccm\"", "\"maxwell\""),
+        Some(1),
+        &["model", "maxwell"],
+    );
+    rejects(
+        "bad-method",
+        &format!("{GOOD_PHYSICAL}[solver]\nmethod = \"euler\"\n"),
+        Some(14),
+        &["[solver].method", "euler", "rosenbrock"],
+    );
+    rejects(
+        "bad-rtol",
+        &format!("{GOOD_PHYSICAL}[solver]\nrtol = 0.0\n"),
+        Some(14),
+        &["[solver].rtol"],
+    );
+    rejects("not-toml", "model = \n", Some(1), &[]);
+    rejects("empty", "", None, &["no system description"]);
+    rejects(
+        "mcm-c-zero",
+        &GOOD_PHYSICAL
+            .replace("\"shccm\"", "\"mcm\"")
+            .replace("c = 5854003.0", "c = 0.0"),
+        Some(6),
+        &["[physical].c", "c > 0"],
+    );
+    rejects(
+        "nd-kappa",
+        "model = \"mcm\"\n[nondimensional]\nB = 1\nGamma = 0\nkappa = 1.0\nsigma = 0.1\nn = 1\np = 1\n",
+        Some(5),
+        &["[nondimensional].kappa", "0 < kappa < 1"],
+    );
+    rejects(
+        "base-input-needs-scales",
+        "model = \"shccm\"\nv0 = [1]\n[base]\nB_b = 1\nGamma_b = 0\nkappa = 0.5\nsigma_b = 0.1\nn = 1\np = 1\n[input]\nkind = \"gravity\"\nm = 1\n",
+        Some(3),
+        &["U_b"],
+    );
+    rejects(
+        "input-key-for-other-kind",
+        &format!("{GOOD_PHYSICAL}[input]\nkind = \"constant\"\nvalue = 1\nomega = 3\n"),
+        Some(16),
+        &["[input].omega", "does not apply"],
+    );
+    rejects(
+        "bodies-apart",
+        "model = \"shccm\"\n[bodies]\nm1 = 1\nm2 = \"inf\"\nv1 = 1\nv2 = 0\n[physical]\nk = 1e6\nc = 1e3\nn = 1.5\np = 1.5\nalpha = 0.5\nbeta = 1e4\ngamma = 0\nA = 1\n",
+        Some(5),
+        &["v0 = v2 - v1 > 0"],
+    );
+    rejects("missing-file", "", None, &[]);
+    let out = simulate(&["run", "/nonexistent/scene.toml"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/scene.toml"));
+}
+
+#[test]
+fn several_mistakes_are_reported_at_once_in_file_order() {
+    rejects(
+        "scalar-v0",
+        &GOOD_PHYSICAL.replace("v0 = [1.0]", "v0 = 1.5"),
+        Some(2),
+        &["`v0` expects a list of impact speeds", "range"],
+    );
+    let three = GOOD_PHYSICAL
+        .replace("k = 117080063.0", "k = -1.0")
+        .replace("n = 1.1", "n = \"one\"")
+        .replace("A = 0.925", "A = 0.925\nstiffness = 3");
+    rejects(
+        "three",
+        &format!("{three}[solver]\nrtol = -1\n"),
+        Some(5),
+        &[
+            "4 mistakes",
+            ":5: `[physical].k`: -1 is not admissible: k > 0",
+            ":7:5: `[physical].n` expects a number",
+            ":13:1: unknown field `stiffness`",
+            ":15: `[solver].rtol`",
+        ],
+    );
+    // A J2 weight on data without durations comes first, before what it makes required.
+    let dir = scratch("many-config");
+    std::fs::write(dir.join("d.csv"), "v_0,e\n1.0,0.8\n2.0,0.7\n").unwrap();
+    let config = dir.join("c.toml");
+    std::fs::write(
+        &config,
+        "[[fit]]\nname = \"x\"\nmodel = \"shccm\"\ndata = \"d.csv\"\nobjectives = { J1 = 1.0, J2 = 1.0 }\n[fit.bounds]\nB_b = [0.0, -10.0]\ng = [-1.0, 1.0]\nkappa = [0.02, 0.98]\nsigma_b = [1e-5, 1.0]\nn = [1.0, \"4\"]\np = [1.0, 4.0]\n",
+    )
+    .unwrap();
+    let out = identify(&["run", config.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    let lines: Vec<&str> = err.lines().collect();
+    assert!(lines[0].contains("3 mistakes"), "{err}");
+    assert!(
+        lines[1].contains(":5: `objectives.J2`") && lines[1].contains("no `t_d` column"),
+        "{err}"
+    );
+    assert!(lines[2].contains(":7: `[fit.bounds].B_b`"), "{err}");
+    assert!(
+        lines[3].contains(":11:") && lines[3].contains("`[fit.bounds].n` expects a number"),
+        "{err}"
+    );
+}
+
+#[test]
+fn each_run_stands_alone_and_the_output_says_what_it_is() {
+    let dir = scratch("alone");
+    let out_dir = dir.join("out");
+    std::fs::create_dir_all(&out_dir).unwrap();
+    // Left by an earlier run that wrote a trajectory; and a file of the user's.
+    std::fs::write(
+        out_dir.join("summary.json"),
+        r#"{"files": ["summary.json", "trajectory.csv", "../outside.txt"]}"#,
+    )
+    .unwrap();
+    std::fs::write(out_dir.join("trajectory.csv"), "stale").unwrap();
+    std::fs::write(out_dir.join("notes.txt"), "mine").unwrap();
+    let scene = dir.join("s.toml");
+    // Undamped, 1.5 m/s separates; 1e12 m/s needs far more than 2000 steps.
+    let sweep = "model = \"shccm\"\nv0 = [1.5, 1e12]\n[physical]\nm = 0.145\nk = 117080063.0\nc = 0.0\nn = 1.5\np = 1.5\nalpha = 0.5\nbeta = 1.0e4\ngamma = -5.0e3\nA = 1.0\n";
+    std::fs::write(&scene, format!("{sweep}[solver]\nmax_steps = 2000\n")).unwrap();
+    let out = simulate(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(3), "{err}");
+    assert!(
+        err.contains("failed") && err.contains("[solver].max_steps (now 2000)"),
+        "{err}"
+    );
+    let table = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        table.contains("separated") && table.contains("failed"),
+        "{table}"
+    );
+    assert!(
+        table.contains("t_s (s)") && table.contains("t_d (s)"),
+        "{table}"
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
+            .unwrap();
+    let runs = v["runs"].as_array().unwrap();
+    assert_eq!(runs[0]["outcome"], "separated");
+    assert!(runs[0]["error"].is_null() && runs[0]["e"].as_f64().unwrap() > 0.5);
+    assert_eq!(runs[1]["outcome"], "failed");
+    assert!(runs[1]["e"].is_null());
+    assert!(runs[1]["error"].as_str().unwrap().contains("max_steps"));
+    // T_c = (m/k)^(1/(p+1)) D^(-1/(p+1)) v0^(-(p-1)/(p+1)) of Table 1 at 1.5 m/s.
+    let (m, k, p, alpha, a): (f64, f64, f64, f64, f64) = (0.145, 117080063.0, 1.5, 0.5, 1.0);
+    let d = alpha + (1.0 - alpha) * a.powf(p);
+    let t_c = (m / k / d).powf(1.0 / (p + 1.0)) * 1.5f64.powf(-(p - 1.0) / (p + 1.0));
+    assert!((runs[0]["T_c"].as_f64().unwrap() / t_c - 1.0).abs() < 1e-12);
+    assert_eq!(
+        runs[0]["nondimensional"]["kappa"].as_f64().unwrap(),
+        alpha / d
+    );
+    // Provenance: the files written, the version, the command, the scene with its defaults.
+    assert_eq!(v["files"], serde_json::json!(["summary.json", "sweep.csv"]));
+    assert_eq!(v["version"], env!("CARGO_PKG_VERSION"));
+    assert_eq!(v["command"][1], "run");
+    assert_eq!(v["scene"]["solver"]["max_steps"], 2000);
+    assert_eq!(v["scene"]["solver"]["rtol"].as_f64(), Some(1e-11));
+    assert_eq!(v["scene"]["systems"][0]["physical"]["k"].as_f64(), Some(k));
+    assert_eq!(v["units"]["sweep.csv"]["t_s"], "s");
+    assert_eq!(v["units"]["runs"]["T_c"], "s");
+    let sweep_csv = std::fs::read_to_string(out_dir.join("sweep.csv")).unwrap();
+    assert!(
+        sweep_csv.starts_with("v_0,e,t_d,t_s,separated,outcome\n"),
+        "{sweep_csv}"
+    );
+    assert!(
+        sweep_csv.contains("1000000000000,,,,false,failed"),
+        "{sweep_csv}"
+    );
+    // The earlier run's trajectory is gone; the user's file stays.
+    assert!(!out_dir.join("trajectory.csv").exists());
+    assert_eq!(
+        std::fs::read_to_string(out_dir.join("notes.txt")).unwrap(),
+        "mine"
+    );
+}
+
+#[test]
+fn horizons_and_settled_contacts_are_outcomes_not_results() {
+    let dir = scratch("outcomes");
+    let scene = dir.join("horizon.toml");
+    std::fs::write(&scene, format!("{GOOD_PHYSICAL}[solver]\nt_max = 0.5\n")).unwrap();
+    let out = simulate(&["run", scene.to_str().unwrap(), "--json"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("raise [solver].t_max") && err.contains("T_c"),
+        "{err}"
+    );
+    let v = json(&out);
+    assert_eq!(v["runs"][0]["outcome"], "horizon");
+    assert_eq!(v["runs"][0]["separated"], false);
+    // Under a constant push U = -2 the NDBWSHCCM with B = 0 comes to rest where the force
+    // balances it: F = -U = 2.
+    let settle = dir.join("settle.toml");
+    std::fs::write(&settle, "model = \"shccm\"\n[nondimensional]\nB = 0\nGamma = 0\nkappa = 0.5\nsigma = 0.5\nn = 1\np = 1.5\nU = -2\n").unwrap();
+    let v = json(&simulate(&["run", settle.to_str().unwrap(), "--json"]));
+    let run = &v["runs"][0];
+    assert_eq!(run["outcome"], "settled", "{run}");
+    assert!(
+        (run["rest"]["F"].as_f64().unwrap() - 2.0).abs() < 1e-9,
+        "{run}"
+    );
+    assert_eq!(run["rest"]["u"].as_f64(), Some(-2.0));
+    assert!(run["T_c"].is_null());
+}
+
+#[test]
+fn an_unusable_out_is_refused_before_any_work() {
+    let dir = scratch("badout");
+    let blocker = dir.join("file");
+    std::fs::write(&blocker, "x").unwrap();
+    let scene = dir.join("s.toml");
+    std::fs::write(&scene, GOOD_PHYSICAL).unwrap();
+    let out_dir = blocker.join("sub");
+    let out = simulate(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("--out") && out.stdout.is_empty(), "{err}");
+}
+
+#[test]
+fn help_shows_examples() {
+    let out = simulate(&["--help"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("Examples") && text.contains("bwc-simulate run"));
+}
