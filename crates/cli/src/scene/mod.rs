@@ -29,7 +29,7 @@ use bw_models::{
     BaseMap, BaseParams, Bodies, ModelKind, Nondim, NondimParams, Physical, PhysicalParams,
     Settings,
 };
-use raw::{RawBase, RawScene, SeqOrMap};
+use raw::{RawBase, RawNondim, RawPhysical, RawScene, SeqOrMap};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
@@ -137,198 +137,37 @@ impl Scene {
     fn parse_one(path: &Path, src: &str) -> Result<Self, CliError> {
         let ctx = Ctx { path, src };
         let raw: RawScene = toml::from_str(src).map_err(|e| syntax_error(&ctx, &e))?;
-        let whole = 0..0;
         let model = match &raw.model {
             Some(m) => Some(model_kind(&ctx, m, "model")?),
             None => None,
         };
-
-        let descriptions: Vec<(&str, Range<usize>)> = [
-            ("[nondimensional]", span(&raw.nondimensional)),
-            ("[base]", span(&raw.base)),
-            (
-                "[physical]",
-                if raw.bodies.is_some() {
-                    None
-                } else {
-                    span(&raw.physical)
-                },
-            ),
-            ("[bodies]", span(&raw.bodies)),
-        ]
-        .into_iter()
-        .filter_map(|(n, s)| s.map(|s| (n, s)))
-        .collect();
-        match descriptions.as_slice() {
-            [] => {
-                return Err(ctx.invalid(&whole, "system", "no system description: give one of [nondimensional], [base], [physical], or [bodies] with [physical]"))
-            }
-            [_] => {}
-            [(a, _), (b, sb), ..] => {
-                return Err(ctx.invalid(sb, *b, format!("two system descriptions ({a} and {b}): give exactly one")))
-            }
-        }
-        let need_model = |ctx: &Ctx| {
+        let described = description(&ctx, &raw)?;
+        let sequence = sequence::sequence(&ctx, &raw)?;
+        let speeds = parse_speeds(&ctx, &raw)?;
+        unused_keys(&ctx, &raw, &described, &speeds, sequence.is_some())?;
+        let need_model = || {
             model.ok_or_else(|| {
                 ctx.invalid(
-                    &whole,
+                    &(0..0),
                     "model",
                     "missing required key: \"shccm\" or \"mcm\"",
                 )
             })
         };
-
-        let sequence = sequence::sequence(&ctx, &raw)?;
-        let speeds = parse_speeds(&ctx, &raw)?;
-        let uses_speeds = raw.base.is_some() || (raw.physical.is_some() && raw.bodies.is_none());
-        if uses_speeds && speeds.is_empty() && sequence.is_none() {
-            return Err(ctx.invalid(
-                &descriptions[0].1,
-                "v0",
-                "missing required key: impact speeds in m/s for [base] and [physical] scenes",
-            ));
-        }
-        if !uses_speeds {
-            if let Some(v) = &raw.v0 {
-                let why = if raw.bodies.is_some() {
-                    "[bodies] scenes take v0 = v2 - v1 from the bodies"
-                } else {
-                    "nondimensional scenes start at V(0) = -1"
-                };
-                return Err(ctx.invalid(&v.span(), "v0", format!("not used here: {why}")));
-            }
-        }
-        if let Some(i) = &raw.input {
-            if raw.nondimensional.is_some() || raw.bodies.is_some() {
-                let why = if raw.bodies.is_some() {
-                    "use [bodies.u1] and [bodies.u2]"
-                } else {
-                    "use the key U in [nondimensional]"
-                };
-                return Err(ctx.invalid(&i.span(), "[input]", format!("not used here: {why}")));
-            }
-        }
-
         let systems = if let Some(nd) = &raw.nondimensional {
-            let kind = need_model(&ctx)?;
-            let t = nd.span();
-            let r = nd.get_ref();
-            let p = Nondim {
-                b: ctx.req(&r.b, &t, "[nondimensional].B")?,
-                gamma: ctx.req(&r.gamma, &t, "[nondimensional].Gamma")?,
-                kappa: ctx.req(&r.kappa, &t, "[nondimensional].kappa")?,
-                sigma: ctx.req(&r.sigma, &t, "[nondimensional].sigma")?,
-                n: ctx.req(&r.n, &t, "[nondimensional].n")?,
-                p: ctx.req(&r.p, &t, "[nondimensional].p")?,
-            };
-            let u = ctx.opt(&r.u, "[nondimensional].U")?.unwrap_or(0.0);
-            let span_of = |name: &str| match name {
-                "B" => span(&r.b),
-                "Gamma" => span(&r.gamma),
-                "kappa" => span(&r.kappa),
-                "sigma" => span(&r.sigma),
-                "n" => span(&r.n),
-                "p" => span(&r.p),
-                _ => None,
-            };
-            let params = NondimParams::new(kind, p)
-                .map_err(|e| ctx.model_error(e, "[nondimensional]", span_of, &t))?;
-            vec![SystemSpec {
-                name: None,
-                kind,
-                system: System::Nondimensional { params, u },
-            }]
+            vec![nondimensional_system(&ctx, nd, need_model()?)?]
         } else if let Some(base) = &raw.base {
-            let entries: Vec<(&RawBase, Range<usize>)> = match base.get_ref() {
-                SeqOrMap::Map(b) => vec![(b, base.span())],
-                SeqOrMap::Seq(list) => list.iter().map(|b| (b.get_ref(), b.span())).collect(),
-            };
-            if entries.is_empty() {
-                return Err(ctx.invalid(&base.span(), "[base]", "no base parameter vectors"));
-            }
-            let input = match &raw.input {
-                Some(i) => signal(&ctx, i, "[input]", None)?,
-                None => Signal::zero(),
-            };
-            entries
-                .into_iter()
-                .map(|(b, t)| base_system(&ctx, b, &t, model, &input))
-                .collect::<Result<_, _>>()?
+            base_systems(&ctx, &raw, base, model)?
         } else {
             let phys = raw.physical.as_ref().ok_or_else(|| {
                 ctx.invalid(
-                    &descriptions[0].1,
+                    &described,
                     "[physical]",
                     "missing: [bodies] take their contact-law parameters from [physical]",
                 )
             })?;
-            let kind = need_model(&ctx)?;
-            let t = phys.span();
-            let r = phys.get_ref();
-            let law = Physical {
-                k: ctx.req(&r.k, &t, "[physical].k")?,
-                c: ctx.req(&r.c, &t, "[physical].c")?,
-                n: ctx.req(&r.n, &t, "[physical].n")?,
-                p: ctx.req(&r.p, &t, "[physical].p")?,
-                alpha: ctx.req(&r.alpha, &t, "[physical].alpha")?,
-                beta: ctx.req(&r.beta, &t, "[physical].beta")?,
-                gamma: ctx.req(&r.gamma, &t, "[physical].gamma")?,
-                a: ctx.req(&r.a, &t, "[physical].A")?,
-            };
-            let span_of = |name: &str| match name {
-                "k" => span(&r.k),
-                "c" => span(&r.c),
-                "n" => span(&r.n),
-                "p" => span(&r.p),
-                "alpha" => span(&r.alpha),
-                "beta" => span(&r.beta),
-                "gamma" => span(&r.gamma),
-                "A" => span(&r.a),
-                "m" => span(&r.m),
-                _ => None,
-            };
-            let params = PhysicalParams::new(kind, law)
-                .map_err(|e| ctx.model_error(e, "[physical]", span_of, &t))?;
-            match &raw.bodies {
-                None => {
-                    let m = ctx.req(&r.m, &t, "[physical].m")?;
-                    if m <= 0.0 {
-                        return Err(ctx.invalid(
-                            &span(&r.m).unwrap_or(t),
-                            "[physical].m",
-                            format!("{m} is not admissible: m > 0 (kg)"),
-                        ));
-                    }
-                    let input = match &raw.input {
-                        Some(i) => signal(&ctx, i, "[input]", Some(m))?,
-                        None => Signal::zero(),
-                    };
-                    vec![SystemSpec {
-                        name: None,
-                        kind,
-                        system: System::Physical { params, m, input },
-                    }]
-                }
-                Some(b) => {
-                    if let Some(m) = &r.m {
-                        return Err(ctx.invalid(
-                            &m.span(),
-                            "[physical].m",
-                            "not used with [bodies]: the effective mass follows from m1 and m2",
-                        ));
-                    }
-                    vec![SystemSpec {
-                        name: None,
-                        kind,
-                        system: System::Bodies {
-                            params,
-                            bodies: bodies(&ctx, b)?,
-                        },
-                    }]
-                }
-            }
+            vec![physical_system(&ctx, &raw, phys, need_model()?)?]
         };
-
         Ok(Scene {
             path: path.to_owned(),
             systems,
@@ -338,6 +177,204 @@ impl Scene {
             sequence,
         })
     }
+}
+
+/// The span of the scene's one system description; an error for none or several.
+fn description(ctx: &Ctx, raw: &RawScene) -> Result<Range<usize>, CliError> {
+    let physical = if raw.bodies.is_some() {
+        None
+    } else {
+        span(&raw.physical)
+    };
+    let descriptions: Vec<(&str, Range<usize>)> = [
+        ("[nondimensional]", span(&raw.nondimensional)),
+        ("[base]", span(&raw.base)),
+        ("[physical]", physical),
+        ("[bodies]", span(&raw.bodies)),
+    ]
+    .into_iter()
+    .filter_map(|(n, s)| s.map(|s| (n, s)))
+    .collect();
+    match descriptions.as_slice() {
+        [] => Err(ctx.invalid(
+            &(0..0),
+            "system",
+            "no system description: give one of [nondimensional], [base], [physical], or \
+             [bodies] with [physical]",
+        )),
+        [(_, s)] => Ok(s.clone()),
+        [(a, _), (b, sb), ..] => Err(ctx.invalid(
+            sb,
+            *b,
+            format!("two system descriptions ({a} and {b}): give exactly one"),
+        )),
+    }
+}
+
+/// Impact speeds and an `[input]` where the description takes them, and only there.
+fn unused_keys(
+    ctx: &Ctx,
+    raw: &RawScene,
+    described: &Range<usize>,
+    speeds: &[f64],
+    sequence: bool,
+) -> Result<(), CliError> {
+    let uses_speeds = raw.base.is_some() || (raw.physical.is_some() && raw.bodies.is_none());
+    if uses_speeds && speeds.is_empty() && !sequence {
+        return Err(ctx.invalid(
+            described,
+            "v0",
+            "missing required key: impact speeds in m/s for [base] and [physical] scenes",
+        ));
+    }
+    if let Some(v) = raw.v0.as_ref().filter(|_| !uses_speeds) {
+        let why = if raw.bodies.is_some() {
+            "[bodies] scenes take v0 = v2 - v1 from the bodies"
+        } else {
+            "nondimensional scenes start at V(0) = -1"
+        };
+        return Err(ctx.invalid(&v.span(), "v0", format!("not used here: {why}")));
+    }
+    let own_inputs = raw.nondimensional.is_some() || raw.bodies.is_some();
+    if let Some(i) = raw.input.as_ref().filter(|_| own_inputs) {
+        let why = if raw.bodies.is_some() {
+            "use [bodies.u1] and [bodies.u2]"
+        } else {
+            "use the key U in [nondimensional]"
+        };
+        return Err(ctx.invalid(&i.span(), "[input]", format!("not used here: {why}")));
+    }
+    Ok(())
+}
+
+/// The system of a `[nondimensional]` table.
+fn nondimensional_system(
+    ctx: &Ctx,
+    nd: &Spanned<RawNondim>,
+    kind: ModelKind,
+) -> Result<SystemSpec, CliError> {
+    let t = nd.span();
+    let r = nd.get_ref();
+    let p = Nondim {
+        b: ctx.req(&r.b, &t, "[nondimensional].B")?,
+        gamma: ctx.req(&r.gamma, &t, "[nondimensional].Gamma")?,
+        kappa: ctx.req(&r.kappa, &t, "[nondimensional].kappa")?,
+        sigma: ctx.req(&r.sigma, &t, "[nondimensional].sigma")?,
+        n: ctx.req(&r.n, &t, "[nondimensional].n")?,
+        p: ctx.req(&r.p, &t, "[nondimensional].p")?,
+    };
+    let u = ctx.opt(&r.u, "[nondimensional].U")?.unwrap_or(0.0);
+    let span_of = |name: &str| match name {
+        "B" => span(&r.b),
+        "Gamma" => span(&r.gamma),
+        "kappa" => span(&r.kappa),
+        "sigma" => span(&r.sigma),
+        "n" => span(&r.n),
+        "p" => span(&r.p),
+        _ => None,
+    };
+    let params = NondimParams::new(kind, p)
+        .map_err(|e| ctx.model_error(e, "[nondimensional]", span_of, &t))?;
+    Ok(SystemSpec {
+        name: None,
+        kind,
+        system: System::Nondimensional { params, u },
+    })
+}
+
+/// The systems of a `[base]` table or array of tables, under the scene's `[input]`.
+fn base_systems(
+    ctx: &Ctx,
+    raw: &RawScene,
+    base: &Spanned<SeqOrMap<Vec<Spanned<RawBase>>, RawBase>>,
+    model: Option<ModelKind>,
+) -> Result<Vec<SystemSpec>, CliError> {
+    let entries: Vec<(&RawBase, Range<usize>)> = match base.get_ref() {
+        SeqOrMap::Map(b) => vec![(b, base.span())],
+        SeqOrMap::Seq(list) => list.iter().map(|b| (b.get_ref(), b.span())).collect(),
+    };
+    if entries.is_empty() {
+        return Err(ctx.invalid(&base.span(), "[base]", "no base parameter vectors"));
+    }
+    let input = match &raw.input {
+        Some(i) => signal(ctx, i, "[input]", None)?,
+        None => Signal::zero(),
+    };
+    entries
+        .into_iter()
+        .map(|(b, t)| base_system(ctx, b, &t, model, &input))
+        .collect()
+}
+
+/// The system of a `[physical]` table: one mass under the scene's `[input]`, or the two
+/// `[bodies]`.
+fn physical_system(
+    ctx: &Ctx,
+    raw: &RawScene,
+    phys: &Spanned<RawPhysical>,
+    kind: ModelKind,
+) -> Result<SystemSpec, CliError> {
+    let t = phys.span();
+    let r = phys.get_ref();
+    let law = Physical {
+        k: ctx.req(&r.k, &t, "[physical].k")?,
+        c: ctx.req(&r.c, &t, "[physical].c")?,
+        n: ctx.req(&r.n, &t, "[physical].n")?,
+        p: ctx.req(&r.p, &t, "[physical].p")?,
+        alpha: ctx.req(&r.alpha, &t, "[physical].alpha")?,
+        beta: ctx.req(&r.beta, &t, "[physical].beta")?,
+        gamma: ctx.req(&r.gamma, &t, "[physical].gamma")?,
+        a: ctx.req(&r.a, &t, "[physical].A")?,
+    };
+    let span_of = |name: &str| match name {
+        "k" => span(&r.k),
+        "c" => span(&r.c),
+        "n" => span(&r.n),
+        "p" => span(&r.p),
+        "alpha" => span(&r.alpha),
+        "beta" => span(&r.beta),
+        "gamma" => span(&r.gamma),
+        "A" => span(&r.a),
+        "m" => span(&r.m),
+        _ => None,
+    };
+    let params = PhysicalParams::new(kind, law)
+        .map_err(|e| ctx.model_error(e, "[physical]", span_of, &t))?;
+    let system = match &raw.bodies {
+        None => {
+            let m = ctx.req(&r.m, &t, "[physical].m")?;
+            if m <= 0.0 {
+                return Err(ctx.invalid(
+                    &span(&r.m).unwrap_or(t),
+                    "[physical].m",
+                    format!("{m} is not admissible: m > 0 (kg)"),
+                ));
+            }
+            let input = match &raw.input {
+                Some(i) => signal(ctx, i, "[input]", Some(m))?,
+                None => Signal::zero(),
+            };
+            System::Physical { params, m, input }
+        }
+        Some(b) => {
+            if let Some(m) = &r.m {
+                return Err(ctx.invalid(
+                    &m.span(),
+                    "[physical].m",
+                    "not used with [bodies]: the effective mass follows from m1 and m2",
+                ));
+            }
+            System::Bodies {
+                params,
+                bodies: bodies(ctx, b)?,
+            }
+        }
+    };
+    Ok(SystemSpec {
+        name: None,
+        kind,
+        system,
+    })
 }
 
 fn parse_speeds(ctx: &Ctx, raw: &RawScene) -> Result<Vec<f64>, CliError> {
