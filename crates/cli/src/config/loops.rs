@@ -4,9 +4,10 @@ use super::{optimizer, param_of, Pair, RawOptimizer};
 use crate::tables::{model_kind, span, Ctx, Num};
 use crate::CliError;
 use bw_models::ModelKind;
-use bwc_identify::{Budget, IdentifyError, Param};
+use bwc_identify::{Budget, IdentifyError, LawSpace, Param, LAW_NAMES};
 use serde::Deserialize;
-use std::path::Path;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
 use toml::Spanned;
 
 #[derive(Debug, Deserialize)]
@@ -46,6 +47,22 @@ struct RawLaw<T> {
     a: Option<T>,
 }
 
+impl<T> Default for RawLaw<T> {
+    fn default() -> Self {
+        Self {
+            k: None,
+            c: None,
+            n: None,
+            p: None,
+            alpha: None,
+            beta: None,
+            g: None,
+            gamma: None,
+            a: None,
+        }
+    }
+}
+
 /// One validated hysteresis-loop fit.
 #[derive(Debug, Clone)]
 pub struct LoopFitConfig {
@@ -74,7 +91,6 @@ pub(super) fn parse_loop_fit(
     f: &Spanned<RawLoopFit>,
     index: usize,
 ) -> Result<LoopDraft, CliError> {
-    use bwc_identify::{LawSpace, LAW_NAMES};
     let t = f.span();
     let r = f.get_ref();
     let name = r.name.as_ref().map_or_else(
@@ -99,9 +115,38 @@ pub(super) fn parse_loop_fit(
             format!("{m} is not admissible: m > 0 (kg)"),
         ));
     }
+    let sources = loop_sources(ctx, dir, r, &t)?;
+    let space = law_space(ctx, r, kind, &name, &t)?;
+    let params = match &r.params {
+        None => None,
+        Some(p) => Some(law_to_evaluate(ctx, p, kind)?),
+    };
+    let (budget, seed) = optimizer(ctx, &r.optimizer, "[loop_fit.optimizer]", index)?;
+    Ok(LoopDraft {
+        fit: LoopFitConfig {
+            name,
+            kind,
+            m,
+            loops: Vec::new(),
+            space,
+            budget,
+            seed,
+            params,
+        },
+        sources,
+    })
+}
+
+/// Each loop's CSV file (relative to `dir`) and impact speed.
+fn loop_sources(
+    ctx: &Ctx,
+    dir: &Path,
+    r: &RawLoopFit,
+    t: &Range<usize>,
+) -> Result<Vec<(PathBuf, f64)>, CliError> {
     let refs = r.loops.as_ref().ok_or_else(|| {
         ctx.invalid(
-            &t,
+            t,
             "[[loop_fit]].loops",
             "missing: [{ data = \"...csv\", v0 = ... }, ...]",
         )
@@ -115,47 +160,41 @@ pub(super) fn parse_loop_fit(
     if sources.is_empty() {
         return Err(ctx.invalid(&refs.span(), "[[loop_fit]].loops", "no loops"));
     }
+    Ok(sources)
+}
+
+/// Which contact-law quantities are searched on a log scale (`log = [...]`).
+fn log_scales(ctx: &Ctx, r: &RawLoopFit) -> Result<[bool; 8], CliError> {
     let mut log = [false; 8];
-    if let Some(l) = &r.log {
-        for item in l.get_ref() {
-            match LAW_NAMES.iter().position(|n| n == item.get_ref()) {
-                Some(i) => log[i] = true,
-                None => {
-                    return Err(ctx.invalid(
-                        &item.span(),
-                        "[[loop_fit]].log",
-                        format!(
-                            "\"{}\" is not a contact-law quantity: use {}",
-                            item.get_ref(),
-                            LAW_NAMES.join(", ")
-                        ),
-                    ))
-                }
+    for item in r.log.iter().flat_map(|l| l.get_ref()) {
+        match LAW_NAMES.iter().position(|n| n == item.get_ref()) {
+            Some(i) => log[i] = true,
+            None => {
+                return Err(ctx.invalid(
+                    &item.span(),
+                    "[[loop_fit]].log",
+                    format!(
+                        "\"{}\" is not a contact-law quantity: use {}",
+                        item.get_ref(),
+                        LAW_NAMES.join(", ")
+                    ),
+                ))
             }
         }
     }
-    let empty_b = RawLaw {
-        k: None,
-        c: None,
-        n: None,
-        p: None,
-        alpha: None,
-        beta: None,
-        g: None,
-        gamma: None,
-        a: None,
-    };
-    let empty_v = RawLaw {
-        k: None,
-        c: None,
-        n: None,
-        p: None,
-        alpha: None,
-        beta: None,
-        g: None,
-        gamma: None,
-        a: None,
-    };
+    Ok(log)
+}
+
+/// The search space from `[loop_fit.bounds]` and `[loop_fit.fixed]`.
+fn law_space(
+    ctx: &Ctx,
+    r: &RawLoopFit,
+    kind: ModelKind,
+    name: &str,
+    t: &Range<usize>,
+) -> Result<LawSpace, CliError> {
+    let log = log_scales(ctx, r)?;
+    let (empty_b, empty_v) = (RawLaw::default(), RawLaw::default());
     let b = r.bounds.as_ref().map_or(&empty_b, |b| b.get_ref());
     let v = r.fixed.as_ref().map_or(&empty_v, |v| v.get_ref());
     let bounds = [&b.k, &b.c, &b.n, &b.p, &b.alpha, &b.beta, &b.g, &b.a];
@@ -174,13 +213,20 @@ pub(super) fn parse_loop_fit(
     }
     let bounds_span = r.bounds.as_ref().map_or(t.clone(), |b| b.span());
     let mut params = [Param::Fixed(1.0); 8];
-    for i in 0..8 {
+    for (i, param) in params.iter_mut().enumerate() {
         let key = LAW_NAMES[i];
-        params[i] = param_of(ctx, "loop_fit", key, bounds[i], fixed[i], log[i])?.ok_or_else(|| {
-            ctx.invalid(&bounds_span, format!("[loop_fit.bounds].{key}"), format!("missing: give bounds for {key} in [loop_fit.bounds] or a value in [loop_fit.fixed]"))
+        *param = param_of(ctx, "loop_fit", key, bounds[i], fixed[i], log[i])?.ok_or_else(|| {
+            ctx.invalid(
+                &bounds_span,
+                format!("[loop_fit.bounds].{key}"),
+                format!(
+                    "missing: give bounds for {key} in [loop_fit.bounds] or a value in \
+                     [loop_fit.fixed]"
+                ),
+            )
         })?;
     }
-    let space = LawSpace::new(kind, params).map_err(|e| match e {
+    LawSpace::new(kind, params).map_err(|e| match e {
         IdentifyError::Bounds {
             name,
             lo,
@@ -199,55 +245,44 @@ pub(super) fn parse_loop_fit(
                 format!("[{lo}, {hi}] is not admissible: {allowed}"),
             )
         }
-        other => ctx.invalid(&t, format!("[[loop_fit]] \"{name}\""), other.to_string()),
-    })?;
-    let params_eval = match &r.params {
-        None => None,
-        Some(p) => {
-            let s = p.span();
-            let q = p.get_ref();
-            let key = |k: &str| format!("[loop_fit.params].{k}");
-            let law = bw_models::Physical {
-                k: ctx.req(&q.k, &s, &key("k"))?,
-                c: ctx.req(&q.c, &s, &key("c"))?,
-                n: ctx.req(&q.n, &s, &key("n"))?,
-                p: ctx.req(&q.p, &s, &key("p"))?,
-                alpha: ctx.req(&q.alpha, &s, &key("alpha"))?,
-                beta: ctx.req(&q.beta, &s, &key("beta"))?,
-                gamma: ctx.req(&q.gamma, &s, &key("gamma"))?,
-                a: ctx.req(&q.a, &s, &key("A"))?,
-            };
-            bw_models::PhysicalParams::new(kind, law).map_err(|e| {
-                let span_of = |n: &str| match n {
-                    "k" => span(&q.k),
-                    "c" => span(&q.c),
-                    "n" => span(&q.n),
-                    "p" => span(&q.p),
-                    "alpha" => span(&q.alpha),
-                    "beta" => span(&q.beta),
-                    "gamma" => span(&q.gamma),
-                    "A" => span(&q.a),
-                    _ => None,
-                };
-                ctx.model_error(e, "[loop_fit.params]", span_of, &s)
-            })?;
-            Some(law)
-        }
-    };
-    let (budget, seed) = optimizer(ctx, &r.optimizer, "[loop_fit.optimizer]", index)?;
-    Ok(LoopDraft {
-        fit: LoopFitConfig {
-            name,
-            kind,
-            m,
-            loops: Vec::new(),
-            space,
-            budget,
-            seed,
-            params: params_eval,
-        },
-        sources,
+        other => ctx.invalid(t, format!("[[loop_fit]] \"{name}\""), other.to_string()),
     })
+}
+
+/// The contact law of `[loop_fit.params]` (for `eval`), validated.
+fn law_to_evaluate(
+    ctx: &Ctx,
+    p: &Spanned<RawLaw<Num>>,
+    kind: ModelKind,
+) -> Result<bw_models::Physical, CliError> {
+    let s = p.span();
+    let q = p.get_ref();
+    let key = |k: &str| format!("[loop_fit.params].{k}");
+    let law = bw_models::Physical {
+        k: ctx.req(&q.k, &s, &key("k"))?,
+        c: ctx.req(&q.c, &s, &key("c"))?,
+        n: ctx.req(&q.n, &s, &key("n"))?,
+        p: ctx.req(&q.p, &s, &key("p"))?,
+        alpha: ctx.req(&q.alpha, &s, &key("alpha"))?,
+        beta: ctx.req(&q.beta, &s, &key("beta"))?,
+        gamma: ctx.req(&q.gamma, &s, &key("gamma"))?,
+        a: ctx.req(&q.a, &s, &key("A"))?,
+    };
+    bw_models::PhysicalParams::new(kind, law).map_err(|e| {
+        let span_of = |n: &str| match n {
+            "k" => span(&q.k),
+            "c" => span(&q.c),
+            "n" => span(&q.n),
+            "p" => span(&q.p),
+            "alpha" => span(&q.alpha),
+            "beta" => span(&q.beta),
+            "gamma" => span(&q.gamma),
+            "A" => span(&q.a),
+            _ => None,
+        };
+        ctx.model_error(e, "[loop_fit.params]", span_of, &s)
+    })?;
+    Ok(law)
 }
 
 /// A `[[loop_fit]]` validated up to its loop files.
