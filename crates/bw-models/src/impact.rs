@@ -267,47 +267,36 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
     if let Sampling::Grid { dt } = sampling {
         check("dt", dt, dt > 0.0, "grid spacing dt > 0")?;
     }
+    sink(0.0, &model.initial_state());
     // Where the series hand over, the Runge-Kutta path starts from their state with their work.
-    let (mut t0, mut y0) = (0.0, model.initial_state());
-    let (mut done, mut series_steps) = (Stats::default(), 0);
-    sink(0.0, &y0);
-    if sampling == Sampling::None && settings.series && settings.stiffness != Stiffness::Rosenbrock
-    {
-        match model.series_impact(crate::series::Private(()), settings) {
-            Some(SeriesRun::Done(out)) => {
-                if let Some(t) = out.t_s {
-                    sink(t, &out.state);
-                }
-                return Ok(out);
+    let (t0, y0, done, series_steps) = match series_phase(model, settings, sampling) {
+        Err(finished) => {
+            if let Some(t) = finished.t_s {
+                sink(t, &finished.state);
             }
-            Some(SeriesRun::HandOver {
-                t,
-                state,
-                stats,
-                series_steps: steps,
-            }) => {
-                (t0, y0) = (t, state);
-                (done, series_steps) = (stats, steps);
-            }
-            None => {}
+            return Ok(finished);
         }
-    }
-    let ts = model.time_scale();
-    let scale = model.state_scale();
-    let options = Options::per_component(State::<N>::repeat(settings.rtol), scale * settings.atol)
-        .with_max_step(settings.max_step * ts)
-        .with_max_steps(settings.max_steps);
-    let method = match settings.stiffness {
-        Stiffness::Ignore => Method::Explicit(settings.method),
-        Stiffness::Switch => Method::SwitchWhenStiff(settings.method),
-        Stiffness::Rosenbrock => Method::Rosenbrock,
+        Ok(start) => start,
     };
-    let mut it =
-        Solver::new(Rhs(model), method, t0, y0, options).map_err(bwc_events::Error::from)?;
-    let stats = |it: &Solver<Rhs<'_, M>, N>| {
-        let mut s = it.stats();
-        s += done;
-        s
+    let mut it = runge_kutta(model, settings, t0, y0)?;
+    // The impact at the solver's state: separated at `t_s`, settled, or at the horizon.
+    let finish = |it: &Solver<Rhs<'_, M>, N>, t_s: Option<f64>, state: State<N>, settled_at| {
+        let mut stats = it.stats();
+        stats += done;
+        // v(t_s) >= 0 by the definition of t_s; the state of the step retaken to end at t_s may
+        // carry a rounding-level negative value, clamped here so that e >= 0.
+        let e = t_s.map_or(0.0, |_| {
+            model.velocity(&state).max(0.0) / model.impact_speed()
+        });
+        Impact {
+            t_s,
+            e,
+            state,
+            stats,
+            settled_at,
+            stiff_from: it.switched_at(),
+            series_steps,
+        }
     };
     let mut locator = Locator::new(
         Separation(|_t: f64, y: &State<N>| (model.force(y), model.velocity(y))),
@@ -317,7 +306,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
             floor: 10.0 * settings.atol,
         },
     );
-    let t_end = settings.t_max * ts;
+    let t_end = settings.t_max * model.time_scale();
     let mut grid = GridSampler { sampling, next: 1 };
     // Once the input is constant, a state where the right-hand side vanishes is an equilibrium:
     // the contact has settled and will never end.
@@ -328,18 +317,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
                 let upto = t.min(it.t());
                 grid.emit(&mut it, upto, &mut sink)?;
                 sink(t, &y);
-                // v(t_s) >= 0 by the definition of t_s; the state of the step retaken to end at
-                // t_s may carry a rounding-level negative value, clamped here so that e >= 0.
-                let e = model.velocity(&y).max(0.0) / model.impact_speed();
-                return Ok(Impact {
-                    t_s: Some(t),
-                    e,
-                    state: y,
-                    stats: stats(&it),
-                    settled_at: None,
-                    stiff_from: it.switched_at(),
-                    series_steps,
-                });
+                return Ok(finish(&it, Some(t), y, None));
             }
             Step::Continued | Step::Switched { .. } => {
                 let upto = it.t();
@@ -349,28 +327,60 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
                 }
                 let constant_input = constant_from.is_some_and(|t0| it.t() >= t0);
                 if constant_input && at_rest(model, it.derivative(), settings.atol) {
-                    return Ok(Impact {
-                        t_s: None,
-                        e: 0.0,
-                        state: *it.y(),
-                        stats: stats(&it),
-                        settled_at: Some(it.t()),
-                        stiff_from: it.switched_at(),
-                        series_steps,
-                    });
+                    return Ok(finish(&it, None, *it.y(), Some(it.t())));
                 }
             }
         }
     }
-    Ok(Impact {
-        t_s: None,
-        e: 0.0,
-        state: *it.y(),
-        stats: stats(&it),
-        settled_at: None,
-        stiff_from: it.switched_at(),
-        series_steps,
-    })
+    Ok(finish(&it, None, *it.y(), None))
+}
+
+/// The impact by the Taylor-series path where the settings and the sampling allow it: `Err`
+/// with the finished impact, else `Ok` with where the Runge-Kutta path starts (time, state, the
+/// series' statistics and steps; contact and nothing done where the series did not run).
+fn series_phase<M: CollisionModel<N>, const N: usize>(
+    model: &M,
+    settings: &Settings,
+    sampling: Sampling,
+) -> Result<(f64, State<N>, Stats, u64), Impact<N>> {
+    let contact = (0.0, model.initial_state(), Stats::default(), 0);
+    let allowed = sampling == Sampling::None
+        && settings.series
+        && settings.stiffness != Stiffness::Rosenbrock;
+    if !allowed {
+        return Ok(contact);
+    }
+    match model.series_impact(crate::series::Private(()), settings) {
+        Some(SeriesRun::Done(out)) => Err(out),
+        Some(SeriesRun::HandOver {
+            t,
+            state,
+            stats,
+            series_steps,
+        }) => Ok((t, state, stats, series_steps)),
+        None => Ok(contact),
+    }
+}
+
+/// The Runge-Kutta solver of the settings from `(t0, y0)`, in the model's units.
+fn runge_kutta<'a, M: CollisionModel<N>, const N: usize>(
+    model: &'a M,
+    settings: &Settings,
+    t0: f64,
+    y0: State<N>,
+) -> Result<Solver<Rhs<'a, M>, N>, ModelError> {
+    let options = Options::per_component(
+        State::<N>::repeat(settings.rtol),
+        model.state_scale() * settings.atol,
+    )
+    .with_max_step(settings.max_step * model.time_scale())
+    .with_max_steps(settings.max_steps);
+    let method = match settings.stiffness {
+        Stiffness::Ignore => Method::Explicit(settings.method),
+        Stiffness::Switch => Method::SwitchWhenStiff(settings.method),
+        Stiffness::Rosenbrock => Method::Rosenbrock,
+    };
+    Ok(Solver::new(Rhs(model), method, t0, y0, options).map_err(bwc_events::Error::from)?)
 }
 
 /// A model as the solvers see it: its right-hand side, its Jacobian, autonomous when its input

@@ -4,7 +4,10 @@ use crate::{
     aim, class, find_crossing, interior, Bracket, Condition, Error, Switches, Values, LANDING,
     MAX_FUNCTIONS,
 };
-use bwc_ode::{State, Stepper};
+use bwc_ode::{Dense, State, Stepper};
+
+/// The earliest crossing of one kind of function in a span, if any: where (bracketed) and which.
+type Crossing = Option<(Bracket, usize)>;
 
 /// What one call of [`Locator::step`] did.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -356,36 +359,13 @@ impl<C, S> Locator<C, S> {
         C: Condition<N>,
         S: Switches<N>,
     {
-        let floor = self.switches.floor();
         let (t0, t1) = (start.t, end.t);
         let dense = it.dense();
         let (mut ta, mut ga, mut sa) = (t0, start.g, start.s);
         let (mut te, mut ge, mut se) = scan_end;
         loop {
-            // Earliest crossing in (ta, te] of a boundary function and of a switching function.
-            let earliest = |acc: Option<(Bracket, usize)>, b: Bracket, i: usize| match acc {
-                Some((a, _)) if a.hi <= b.hi => acc,
-                _ => Some((b, i)),
-            };
-            let mut boundary: Option<(Bracket, usize)> = None;
-            for i in 0..c.nc {
-                if crosses(ga[i], class(ga[i]), ge[i]) {
-                    let g = |t: f64| self.condition.values(t, &dense.eval(t))[i];
-                    boundary = earliest(boundary, find_crossing(g, ta, te, ga[i], ge[i]), i);
-                }
-            }
-            let mut switch: Option<(Bracket, usize)> = None;
-            for i in 0..c.ns {
-                let ca = if ta == t0 {
-                    start.s_class[i]
-                } else {
-                    class(sa[i])
-                };
-                if crosses(sa[i], ca, se[i]) && above(&floor, i, sa[i], se[i]) {
-                    let g = |t: f64| self.switches.values(t, &dense.eval(t))[i];
-                    switch = earliest(switch, find_crossing(g, ta, te, sa[i], se[i]), i);
-                }
-            }
+            let (boundary, switch) =
+                self.crossings(&dense, c, start, (ta, &ga, &sa), (te, &ge, &se));
             if let Some((b, _)) = boundary {
                 if switch.is_none_or(|(s, _)| b.hi <= s.hi) {
                     let t = b.hi;
@@ -425,52 +405,115 @@ impl<C, S> Locator<C, S> {
                 return Ok(Step::Continued);
             };
             it.record_event();
-            if te == t1
-                && ta == t0
-                && passed(&floor, start, end, index)
-                && landed(&floor, end, index)
-            {
-                // The step ends on the switching point. A boundary crossing just past the
-                // point (inside the landing zone) is still the event: the next step would start
-                // inside the set and never see it cross.
-                if let Some((b, _)) = boundary {
-                    let y = dense.eval(b.hi);
-                    if self
-                        .condition
-                        .holds(&start.g, &self.condition.values(b.hi, &y))
-                    {
-                        if b.hi < t1 {
-                            it.retake_to(b.hi)?;
-                            return Ok(self.fired(Step::Event {
-                                t: b.hi,
-                                y: *it.y(),
-                            }));
-                        }
-                        return Ok(self.fired(Step::Event { t: t1, y: end.y }));
-                    }
-                }
-                self.forced[index] = Some(-start.s_class[index]);
-                self.resume(it);
-                return Ok(Step::Switched { index, t: t1 });
-            }
-            let t = bracket.hi;
-            self.forced[index] = Some(class(self.switches.values(t, &dense.eval(t))[index]));
-            if t < t1 {
-                self.resume_h = self.resume_h.max(t1 - t0);
-                it.retake_to(t)?;
-            }
-            // The condition may hold at the switching point itself (a boundary function that
-            // reaches zero there).
-            if c.armed
-                && self
-                    .condition
-                    .holds(&start.g, &self.condition.values(t, it.y()))
-            {
-                return Ok(self.fired(Step::Event { t, y: *it.y() }));
-            }
-            self.resume(it);
-            return Ok(Step::Switched { index, t });
+            let whole = te == t1 && ta == t0;
+            return self.stop_at_switch(it, c, (start, end), whole, (bracket, index), boundary);
         }
+    }
+
+    /// The step's earliest switching point, `switch` (function `index`), found when scanning the
+    /// whole step (`whole`) or a part of it: where the step ends on it, its boundary crossing
+    /// just past it is the event, else the integrator stops there with the function's class
+    /// forced; elsewhere the step is retaken to end on it, and the condition may hold there.
+    fn stop_at_switch<T: Stepper<N>, const N: usize>(
+        &mut self,
+        it: &mut T,
+        c: Counts,
+        (start, end): (&Ends<N>, &Ends<N>),
+        whole: bool,
+        (bracket, index): (Bracket, usize),
+        boundary: Crossing,
+    ) -> Result<Step<N>, Error>
+    where
+        C: Condition<N>,
+        S: Switches<N>,
+    {
+        let floor = self.switches.floor();
+        let (t0, t1) = (start.t, end.t);
+        let dense = it.dense();
+        if whole && passed(&floor, start, end, index) && landed(&floor, end, index) {
+            // The step ends on the switching point. A boundary crossing just past the point
+            // (inside the landing zone) is still the event: the next step would start inside
+            // the set and never see it cross.
+            if let Some((b, _)) = boundary {
+                let y = dense.eval(b.hi);
+                if self
+                    .condition
+                    .holds(&start.g, &self.condition.values(b.hi, &y))
+                {
+                    if b.hi < t1 {
+                        it.retake_to(b.hi)?;
+                        return Ok(self.fired(Step::Event {
+                            t: b.hi,
+                            y: *it.y(),
+                        }));
+                    }
+                    return Ok(self.fired(Step::Event { t: t1, y: end.y }));
+                }
+            }
+            self.forced[index] = Some(-start.s_class[index]);
+            self.resume(it);
+            return Ok(Step::Switched { index, t: t1 });
+        }
+        let t = bracket.hi;
+        self.forced[index] = Some(class(self.switches.values(t, &dense.eval(t))[index]));
+        if t < t1 {
+            self.resume_h = self.resume_h.max(t1 - t0);
+            it.retake_to(t)?;
+        }
+        // The condition may hold at the switching point itself (a boundary function that
+        // reaches zero there).
+        if c.armed
+            && self
+                .condition
+                .holds(&start.g, &self.condition.values(t, it.y()))
+        {
+            return Ok(self.fired(Step::Event { t, y: *it.y() }));
+        }
+        self.resume(it);
+        Ok(Step::Switched { index, t })
+    }
+
+    /// The earliest crossing in `(ta, te]` of a boundary function and of a switching function,
+    /// from their values at both ends (`a`, `e`: time, boundary values, switching values); a
+    /// switching function counts where it leaves its class at the step's start and moves by
+    /// more than its floor.
+    fn crossings<const N: usize>(
+        &self,
+        dense: &Dense<N>,
+        c: Counts,
+        start: &Ends<N>,
+        (ta, ga, sa): (f64, &Values, &Values),
+        (te, ge, se): (f64, &Values, &Values),
+    ) -> (Crossing, Crossing)
+    where
+        C: Condition<N>,
+        S: Switches<N>,
+    {
+        let floor = self.switches.floor();
+        let earliest = |acc: Crossing, b: Bracket, i: usize| match acc {
+            Some((a, _)) if a.hi <= b.hi => acc,
+            _ => Some((b, i)),
+        };
+        let mut boundary: Crossing = None;
+        for i in 0..c.nc {
+            if crosses(ga[i], class(ga[i]), ge[i]) {
+                let g = |t: f64| self.condition.values(t, &dense.eval(t))[i];
+                boundary = earliest(boundary, find_crossing(g, ta, te, ga[i], ge[i]), i);
+            }
+        }
+        let mut switch: Crossing = None;
+        for i in 0..c.ns {
+            let ca = if ta == start.t {
+                start.s_class[i]
+            } else {
+                class(sa[i])
+            };
+            if crosses(sa[i], ca, se[i]) && above(&floor, i, sa[i], se[i]) {
+                let g = |t: f64| self.switches.values(t, &dense.eval(t))[i];
+                switch = earliest(switch, find_crossing(g, ta, te, sa[i], se[i]), i);
+            }
+        }
+        (boundary, switch)
     }
 
     /// Disarms the condition after reporting `event` (see [`Locator::after_event`]).
