@@ -67,110 +67,35 @@ impl Dataset {
             .headers()
             .map_err(|e| err(header_line, e.to_string()))?
             .clone();
-        let col = |name: &str| headers.iter().position(|h| h == name);
         let header_at = text
             .lines()
             .position(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty())
             .map_or(1, |i| i as u64 + 1);
-        let v0_col = col("v_0").ok_or_else(|| {
-            err(
-                header_at,
-                format!(
-                    "no column `v_0` in header {:?}",
-                    headers.iter().collect::<Vec<_>>()
-                ),
-            )
-        })?;
-        let (e_col, td_col) = (col("e"), col("t_d"));
-        let (spread_col, spread_factor) = match (col("e_std"), col("e_spread")) {
-            (Some(c), _) => (Some(c), 1.0),
-            (None, Some(c)) => (Some(c), 0.5),
-            (None, None) => (None, 1.0),
-        };
+        let columns = Columns::of(&headers).map_err(|message| err(header_at, message))?;
         let mut warnings = Vec::new();
-        if e_col.is_none() && td_col.is_none() {
-            return Err(err(
-                header_at,
-                "no column `e` or `t_d`: nothing to fit".into(),
-            ));
-        }
         let mut points = Vec::new();
         for record in reader.records() {
             let record =
                 record.map_err(|e| err(e.position().map_or(0, |p| p.line()), e.to_string()))?;
             let line = record.position().map_or(0, |p| p.line());
-            let field = |c: usize, name: &str| -> Result<f64, IdentifyError> {
-                let raw = record
-                    .get(c)
-                    .ok_or_else(|| err(line, format!("column `{name}` missing in this row")))?;
-                let v: f64 = raw
-                    .parse()
-                    .map_err(|_| err(line, format!("column `{name}`: {raw:?} is not a number")))?;
-                if v.is_finite() {
-                    Ok(v)
+            let point = columns
+                .point(&headers, &record)
+                .map_err(|message| err(line, message))?;
+            if let Some(e) = point.e.filter(|&e| e == 0.0 || e > 1.0) {
+                let why = if e == 0.0 {
+                    "e = 0 (no rebound): the models give e = 0 only when the bodies never separate"
+                        .to_string()
                 } else {
-                    Err(err(line, format!("column `{name}`: {raw} is not finite")))
-                }
-            };
-            let v0 = field(v0_col, "v_0")?;
-            if v0 <= 0.0 {
-                return Err(err(
-                    line,
-                    format!("column `v_0`: {v0} is not admissible: v_0 > 0 (m/s)"),
-                ));
+                    format!("e = {e} > 1 (energy gained): no model without input reaches it")
+                };
+                warnings.push(format!("{}:{line}: {why}", path.display()));
             }
-            let e = e_col.map(|c| field(c, "e")).transpose()?;
-            if let Some(e) = e {
-                if e < 0.0 {
-                    return Err(err(
-                        line,
-                        format!("column `e`: {e} is not admissible: e >= 0"),
-                    ));
-                }
-                if e == 0.0 {
-                    warnings.push(format!(
-                        "{}:{line}: e = 0 (no rebound): the models give e = 0 only when the bodies never separate",
-                        path.display()
-                    ));
-                }
-                if e > 1.0 {
-                    warnings.push(format!(
-                        "{}:{line}: e = {e} > 1 (energy gained): no model without input reaches it",
-                        path.display()
-                    ));
-                }
-            }
-            let spread = spread_col
-                .filter(|&c| record.get(c).is_some_and(|s| !s.is_empty()))
-                .map(|c| field(c, headers.get(c).unwrap_or("e_std")).map(|x| x * spread_factor))
-                .transpose()?;
-            let t_d = td_col.map(|c| field(c, "t_d")).transpose()?;
-            if let Some(t) = t_d {
-                if t <= 0.0 {
-                    return Err(err(
-                        line,
-                        format!("column `t_d`: {t} is not admissible: t_d > 0 (s)"),
-                    ));
-                }
-            }
-            points.push(Point { v0, e, t_d, spread });
+            points.push(point);
         }
         if points.is_empty() {
             return Err(err(header_at, "the dataset has no data rows".into()));
         }
-        if points.len() == 1 {
-            warnings.push(format!(
-                "{}: a single data point: any parameters that fit it are optimal, and no \
-                 interval can be estimated",
-                path.display()
-            ));
-        } else if points.iter().all(|p| p.v0 == points[0].v0) {
-            warnings.push(format!(
-                "{}: every point is at v_0 = {} m/s: the data say nothing about other speeds",
-                path.display(),
-                points[0].v0
-            ));
-        }
+        warnings.extend(speeds_warning(path, &points));
         let reconstructed = text
             .lines()
             .any(|l| l.trim_start().starts_with('#') && l.contains("RECONSTRUCTED"));
@@ -208,6 +133,99 @@ impl Dataset {
     /// Whether any point has a measured CoR.
     pub fn has_cor(&self) -> bool {
         self.points.iter().any(|p| p.e.is_some())
+    }
+}
+
+/// The columns of a dataset's header.
+struct Columns {
+    v0: usize,
+    e: Option<usize>,
+    t_d: Option<usize>,
+    /// The spread's column, and the factor to its half-length (`e_std` 1, `e_spread` 0.5).
+    spread: Option<(usize, f64)>,
+}
+
+impl Columns {
+    /// The columns of `headers`; a message for a missing `v_0`, or neither `e` nor `t_d`.
+    fn of(headers: &csv::StringRecord) -> Result<Self, String> {
+        let col = |name: &str| headers.iter().position(|h| h == name);
+        let v0 = col("v_0").ok_or_else(|| {
+            format!(
+                "no column `v_0` in header {:?}",
+                headers.iter().collect::<Vec<_>>()
+            )
+        })?;
+        let (e, t_d) = (col("e"), col("t_d"));
+        if e.is_none() && t_d.is_none() {
+            return Err("no column `e` or `t_d`: nothing to fit".into());
+        }
+        let spread = match (col("e_std"), col("e_spread")) {
+            (Some(c), _) => Some((c, 1.0)),
+            (None, Some(c)) => Some((c, 0.5)),
+            (None, None) => None,
+        };
+        Ok(Self { v0, e, t_d, spread })
+    }
+
+    /// The measurement of one row; a message for a missing, malformed or inadmissible value.
+    fn point(
+        &self,
+        headers: &csv::StringRecord,
+        record: &csv::StringRecord,
+    ) -> Result<Point, String> {
+        let field = |c: usize, name: &str| -> Result<f64, String> {
+            let raw = record
+                .get(c)
+                .ok_or_else(|| format!("column `{name}` missing in this row"))?;
+            let v: f64 = raw
+                .parse()
+                .map_err(|_| format!("column `{name}`: {raw:?} is not a number"))?;
+            if v.is_finite() {
+                Ok(v)
+            } else {
+                Err(format!("column `{name}`: {raw} is not finite"))
+            }
+        };
+        let v0 = field(self.v0, "v_0")?;
+        if v0 <= 0.0 {
+            return Err(format!(
+                "column `v_0`: {v0} is not admissible: v_0 > 0 (m/s)"
+            ));
+        }
+        let e = self.e.map(|c| field(c, "e")).transpose()?;
+        if let Some(e) = e.filter(|&e| e < 0.0) {
+            return Err(format!("column `e`: {e} is not admissible: e >= 0"));
+        }
+        let spread = self
+            .spread
+            .filter(|&(c, _)| record.get(c).is_some_and(|s| !s.is_empty()))
+            .map(|(c, factor)| field(c, headers.get(c).unwrap_or("e_std")).map(|x| x * factor))
+            .transpose()?;
+        let t_d = self.t_d.map(|c| field(c, "t_d")).transpose()?;
+        if let Some(t) = t_d.filter(|&t| t <= 0.0) {
+            return Err(format!("column `t_d`: {t} is not admissible: t_d > 0 (s)"));
+        }
+        Ok(Point { v0, e, t_d, spread })
+    }
+}
+
+/// A warning where the points cannot pin down a speed dependence: one point, or all at one
+/// speed.
+fn speeds_warning(path: &Path, points: &[Point]) -> Option<String> {
+    if points.len() == 1 {
+        Some(format!(
+            "{}: a single data point: any parameters that fit it are optimal, and no \
+             interval can be estimated",
+            path.display()
+        ))
+    } else if points.iter().all(|p| p.v0 == points[0].v0) {
+        Some(format!(
+            "{}: every point is at v_0 = {} m/s: the data say nothing about other speeds",
+            path.display(),
+            points[0].v0
+        ))
+    } else {
+        None
     }
 }
 
