@@ -1,7 +1,7 @@
 //! `bwc-identify`: identify base parameters of the Bouc-Wen collision models from data.
 
 use bwc_cli::config::Config;
-use bwc_cli::identify::{render, render_loops, summary, FitReport};
+use bwc_cli::identify::{render, render_loops, summary, FitReport, LoopReport};
 use bwc_cli::outdir::{self, exit};
 use bwc_cli::CliError;
 use clap::{Parser, Subcommand};
@@ -142,126 +142,23 @@ fn run(
     if let Some(dir) = out {
         outdir::prepare(dir)?;
     }
-    let total = seed.map_or(0, |_| bwc_cli::identify::planned_evaluations(&config));
-    let target = if json || seed.is_none() {
-        ProgressDrawTarget::hidden()
-    } else {
-        ProgressDrawTarget::stderr()
-    };
-    let bar = ProgressBar::with_draw_target(Some(total), target);
-    bar.set_style(
-        ProgressStyle::with_template("{msg:24} {bar:32} {pos}/{len} evaluations, eta {eta}")
-            .expect("valid template"),
-    );
-    let count = config.fits.len() + config.loop_fits.len();
-    bar.set_message(format!("{count} fit{}", if count == 1 { "" } else { "s" }));
+    let bar = progress_bar(&config, json, seed);
     let tick = || bar.inc(1);
     let work = || bwc_cli::identify::fit_all(path, &config, seed, &tick);
     let (reports, loop_reports) = bwc_cli::with_threads(threads, work)?;
     bar.finish_and_clear();
-    for w in reports.iter().flat_map(|r| &r.warnings) {
-        eprintln!("bwc-identify: warning: {w}");
-    }
-    for r in &loop_reports {
-        if let Some(c) = r.convergence.as_ref().filter(|c| c.agreeing < 2) {
-            eprintln!(
-                "bwc-identify: warning: \"{}\": only {} of {} starts reached the best cost within \
-                 the tolerance: the optimum may not be global; raise [loop_fit.optimizer].max_starts",
-                r.name, c.agreeing, c.starts
-            );
-        }
-        for name in &r.at_bound {
-            eprintln!(
-                "bwc-identify: warning: \"{}\": {name} is on a bound of [loop_fit.bounds]",
-                r.name
-            );
-        }
-    }
+    warn(&reports, &loop_reports);
     let summary = bwc_cli::identify::summary_of(&config, &reports, &loop_reports);
     // The results are printed before the files are written: a failed write loses nothing.
     if json {
         bwc_cli::out!("{summary}");
     } else {
         for r in &reports {
-            let p = r.params;
-            let costs = match &r.drop {
-                Some(d) => format!("J_drop = {:.3e} {}", d.cost, d.unit()),
-                None => format!(
-                    "J1 = {}, J2 = {}",
-                    r.costs.j1.map_or("-".into(), |j| format!("{j:.3e}")),
-                    r.costs.j2.map_or("-".into(), |j| format!("{j:.3e} s^2"))
-                ),
-            };
-            bwc_cli::out!(
-                "{} ({}): {costs}, {} evaluations, {:.2} s",
-                r.name,
-                r.model,
-                r.evaluations,
-                r.wall_s
-            );
-            bwc_cli::outp!("    B_b = {:.6}, Gamma_b = {:.6}, kappa = {:.6}, sigma_b = {:.6e}, n = {:.6}, p = {:.6}", p.b_b, p.gamma_b, p.kappa, p.sigma_b, p.n, p.p);
-            if r.uses_input_scales {
-                bwc_cli::outp!(", U_b = {:.6e}, T_b = {:.6e}", p.u_b, p.t_b);
-            }
-            bwc_cli::out!();
-            if let Some(id) = &r.identifiability {
-                let sv: Vec<String> = id
-                    .singular_values
-                    .iter()
-                    .map(|s| format!("{s:.2e}"))
-                    .collect();
-                bwc_cli::out!(
-                    "    sensitivity singular values [{}]; weakest direction: {}",
-                    sv.join(", "),
-                    id.weakest_names().join(" + ")
-                );
-            }
-            if let Some(c) = &r.convergence {
-                bwc_cli::out!(
-                    "    search: {} of {} starts agree within {} %{}",
-                    c.agreeing,
-                    c.starts,
-                    config_tolerance(&config, &r.name) * 100.0,
-                    if r.at_bound.is_empty() {
-                        String::new()
-                    } else {
-                        format!("; on a bound: {}", r.at_bound.join(", "))
-                    }
-                );
-            }
-            if let Some(Ok(u)) = &r.uncertainty {
-                let iv: Vec<String> = u
-                    .params
-                    .iter()
-                    .map(|(n, i)| match i {
-                        Some([lo, hi]) => format!("{n} [{lo:.4}, {hi:.4}]"),
-                        None => format!("{n} on its bound"),
-                    })
-                    .collect();
-                bwc_cli::out!("    95 % intervals ({}): {}", u.method, iv.join(", "));
-            }
-            if let Some(s) = r.curve.first().and(predictions_summary(r)) {
-                bwc_cli::out!("    {s}");
-            }
+            print_fit(&config, r);
         }
-    }
-    for r in &loop_reports {
-        if json {
-            break;
+        for r in &loop_reports {
+            print_loop_fit(r);
         }
-        let l = r.law;
-        bwc_cli::out!(
-            "{} ({}, loops): cost = {:.3e}, {} evaluations, {:.2} s",
-            r.name,
-            r.model,
-            r.cost,
-            r.evaluations,
-            r.wall_s
-        );
-        bwc_cli::out!(
-            "    k = {:.6e}, c = {:.6e}, n = {:.4}, p = {:.4}, alpha = {:.4}, beta = {:.4e}, gamma = {:.4e}, A = {:.4}",
-            l.k, l.c, l.n, l.p, l.alpha, l.beta, l.gamma, l.a
-        );
     }
     if let Some(dir) = out {
         let mut files = render(&config.fits, &reports, dir)?;
@@ -276,6 +173,145 @@ fn run(
         }
     }
     Ok(())
+}
+
+/// The progress of a run's evaluations on stderr: hidden for JSON output and without a seed
+/// (where the number of evaluations is not planned).
+fn progress_bar(config: &Config, json: bool, seed: Option<u64>) -> ProgressBar {
+    let total = seed.map_or(0, |_| bwc_cli::identify::planned_evaluations(config));
+    let target = if json || seed.is_none() {
+        ProgressDrawTarget::hidden()
+    } else {
+        ProgressDrawTarget::stderr()
+    };
+    let bar = ProgressBar::with_draw_target(Some(total), target);
+    bar.set_style(
+        ProgressStyle::with_template("{msg:24} {bar:32} {pos}/{len} evaluations, eta {eta}")
+            .expect("valid template"),
+    );
+    let count = config.fits.len() + config.loop_fits.len();
+    bar.set_message(format!("{count} fit{}", if count == 1 { "" } else { "s" }));
+    bar
+}
+
+/// The fits' warnings on stderr.
+fn warn(reports: &[FitReport], loop_reports: &[LoopReport]) {
+    for w in reports.iter().flat_map(|r| &r.warnings) {
+        eprintln!("bwc-identify: warning: {w}");
+    }
+    for r in loop_reports {
+        if let Some(c) = r.convergence.as_ref().filter(|c| c.agreeing < 2) {
+            eprintln!(
+                "bwc-identify: warning: \"{}\": only {} of {} starts reached the best cost within \
+                 the tolerance: the optimum may not be global; raise [loop_fit.optimizer].max_starts",
+                r.name, c.agreeing, c.starts
+            );
+        }
+        for name in &r.at_bound {
+            eprintln!(
+                "bwc-identify: warning: \"{}\": {name} is on a bound of [loop_fit.bounds]",
+                r.name
+            );
+        }
+    }
+}
+
+/// One fit's result as text: costs, parameters, identifiability, search, intervals and
+/// predictions.
+fn print_fit(config: &Config, r: &FitReport) {
+    let p = r.params;
+    let costs = match &r.drop {
+        Some(d) => format!("J_drop = {:.3e} {}", d.cost, d.unit()),
+        None => format!(
+            "J1 = {}, J2 = {}",
+            r.costs.j1.map_or("-".into(), |j| format!("{j:.3e}")),
+            r.costs.j2.map_or("-".into(), |j| format!("{j:.3e} s^2"))
+        ),
+    };
+    bwc_cli::out!(
+        "{} ({}): {costs}, {} evaluations, {:.2} s",
+        r.name,
+        r.model,
+        r.evaluations,
+        r.wall_s
+    );
+    bwc_cli::outp!(
+        "    B_b = {:.6}, Gamma_b = {:.6}, kappa = {:.6}, sigma_b = {:.6e}, n = {:.6}, p = {:.6}",
+        p.b_b,
+        p.gamma_b,
+        p.kappa,
+        p.sigma_b,
+        p.n,
+        p.p
+    );
+    if r.uses_input_scales {
+        bwc_cli::outp!(", U_b = {:.6e}, T_b = {:.6e}", p.u_b, p.t_b);
+    }
+    bwc_cli::out!();
+    if let Some(id) = &r.identifiability {
+        let sv: Vec<String> = id
+            .singular_values
+            .iter()
+            .map(|s| format!("{s:.2e}"))
+            .collect();
+        bwc_cli::out!(
+            "    sensitivity singular values [{}]; weakest direction: {}",
+            sv.join(", "),
+            id.weakest_names().join(" + ")
+        );
+    }
+    if let Some(c) = &r.convergence {
+        bwc_cli::out!(
+            "    search: {} of {} starts agree within {} %{}",
+            c.agreeing,
+            c.starts,
+            config_tolerance(config, &r.name) * 100.0,
+            if r.at_bound.is_empty() {
+                String::new()
+            } else {
+                format!("; on a bound: {}", r.at_bound.join(", "))
+            }
+        );
+    }
+    if let Some(Ok(u)) = &r.uncertainty {
+        let iv: Vec<String> = u
+            .params
+            .iter()
+            .map(|(n, i)| match i {
+                Some([lo, hi]) => format!("{n} [{lo:.4}, {hi:.4}]"),
+                None => format!("{n} on its bound"),
+            })
+            .collect();
+        bwc_cli::out!("    95 % intervals ({}): {}", u.method, iv.join(", "));
+    }
+    if let Some(s) = r.curve.first().and(predictions_summary(r)) {
+        bwc_cli::out!("    {s}");
+    }
+}
+
+/// One hysteresis-loop fit's result as text.
+fn print_loop_fit(r: &LoopReport) {
+    let l = r.law;
+    bwc_cli::out!(
+        "{} ({}, loops): cost = {:.3e}, {} evaluations, {:.2} s",
+        r.name,
+        r.model,
+        r.cost,
+        r.evaluations,
+        r.wall_s
+    );
+    bwc_cli::out!(
+        "    k = {:.6e}, c = {:.6e}, n = {:.4}, p = {:.4}, alpha = {:.4}, beta = {:.4e}, gamma = \
+         {:.4e}, A = {:.4}",
+        l.k,
+        l.c,
+        l.n,
+        l.p,
+        l.alpha,
+        l.beta,
+        l.gamma,
+        l.a
+    );
 }
 
 /// `bwc-identify coverage`.
