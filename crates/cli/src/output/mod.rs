@@ -302,30 +302,9 @@ pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Ve
     }
 
     if sweep {
-        let mut w = csv::Writer::from_writer(Vec::new());
-        let mut header = vec!["v_0", "e", "t_d", "t_s", "separated"];
-        if several_systems {
-            header.push("name");
-        }
-        header.push("outcome");
-        w.write_record(&header).map_err(csv_err("sweep.csv"))?;
-        for r in runs {
-            let mut rec = vec![
-                opt(r.v0),
-                opt(Some(r.e).filter(|e| e.is_finite())),
-                opt(r.t_d),
-                opt(r.t_s),
-                (r.outcome == Outcome::Separated).to_string(),
-            ];
-            if several_systems {
-                rec.push(r.name.clone().unwrap_or_default());
-            }
-            rec.push(r.outcome.name().to_string());
-            w.write_record(&rec).map_err(csv_err("sweep.csv"))?;
-        }
         files.push((
             "sweep.csv".into(),
-            w.into_inner().expect("in-memory writer"),
+            sweep_csv(runs, several_systems).map_err(csv_err("sweep.csv"))?,
         ));
         if spec.plots {
             for f in figures::sweep(scene, runs) {
@@ -338,53 +317,9 @@ pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Ve
         let bodies = runs
             .iter()
             .any(|r| r.trajectory.iter().any(|s| s.bodies.is_some()));
-        let mcm = runs.first().is_some_and(|r| r.model == ModelKind::Mcm);
-        let mut header: Vec<&str> = Vec::new();
-        if several_runs {
-            header.extend(["v_0", "name"]);
-        }
-        if bodies {
-            header.extend([
-                "t", "x_m_1", "x_m_2", "x_m", "x", "v_m_1", "v_m_2", "v_m", "v", "u_1", "u_2", "u",
-                "F",
-            ]);
-        } else {
-            header.extend(["t", "x", "v", "u", "F"]);
-        }
-        header.extend(if mcm {
-            ["r", "y", "z"].as_slice()
-        } else {
-            ["z"].as_slice()
-        });
-        let mut w = csv::Writer::from_writer(Vec::new());
-        w.write_record(&header).map_err(csv_err("trajectory.csv"))?;
-        for r in runs {
-            for s in &r.trajectory {
-                let mut rec: Vec<String> = Vec::with_capacity(header.len());
-                if several_runs {
-                    rec.push(opt(r.v0));
-                    rec.push(r.name.clone().unwrap_or_default());
-                }
-                rec.push(s.t.to_string());
-                match &s.bodies {
-                    Some(b) if bodies => rec.extend(
-                        [
-                            b.x_m_1, b.x_m_2, b.x_m, s.x, b.v_m_1, b.v_m_2, b.v_m, s.v, b.u_1,
-                            b.u_2, s.u, s.f,
-                        ]
-                        .iter()
-                        .map(f64::to_string),
-                    ),
-                    _ => rec.extend([s.x, s.v, s.u, s.f].iter().map(f64::to_string)),
-                }
-                let extra: &[f64] = if mcm { &s.state[..3] } else { &s.state[1..2] };
-                rec.extend(extra.iter().map(f64::to_string));
-                w.write_record(&rec).map_err(csv_err("trajectory.csv"))?;
-            }
-        }
         files.push((
             "trajectory.csv".into(),
-            w.into_inner().expect("in-memory writer"),
+            trajectory_csv(runs, several_runs, bodies).map_err(csv_err("trajectory.csv"))?,
         ));
         if spec.plots {
             for f in figures::time_histories(scene, runs, bodies) {
@@ -394,27 +329,110 @@ pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Ve
     }
 
     if spec.loops {
-        let mut w = csv::Writer::from_writer(Vec::new());
-        let mut header = vec!["v_0", "x", "F"];
-        if several_systems {
-            header.push("name");
-        }
-        w.write_record(&header).map_err(csv_err("loop.csv"))?;
-        for r in runs {
-            for s in &r.trajectory {
-                let mut rec = vec![opt(r.v0), s.x.to_string(), s.f.to_string()];
-                if several_systems {
-                    rec.push(r.name.clone().unwrap_or_default());
-                }
-                w.write_record(&rec).map_err(csv_err("loop.csv"))?;
-            }
-        }
-        files.push(("loop.csv".into(), w.into_inner().expect("in-memory writer")));
+        files.push((
+            "loop.csv".into(),
+            loop_csv(runs, several_systems).map_err(csv_err("loop.csv"))?,
+        ));
         if spec.plots {
             files.push(figures::loops(scene, runs).map_err(|(name, m)| plot_err(&name)(m))?);
         }
     }
     Ok(files)
+}
+
+/// `sweep.csv`: one row per run (`name` where the scene has several systems).
+fn sweep_csv(runs: &[Run], several_systems: bool) -> Result<Vec<u8>, csv::Error> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let mut header = vec!["v_0", "e", "t_d", "t_s", "separated"];
+    if several_systems {
+        header.push("name");
+    }
+    header.push("outcome");
+    w.write_record(&header)?;
+    for r in runs {
+        let mut rec = vec![
+            opt(r.v0),
+            opt(Some(r.e).filter(|e| e.is_finite())),
+            opt(r.t_d),
+            opt(r.t_s),
+            (r.outcome == Outcome::Separated).to_string(),
+        ];
+        if several_systems {
+            rec.push(r.name.clone().unwrap_or_default());
+        }
+        rec.push(r.outcome.name().to_string());
+        w.write_record(&rec)?;
+    }
+    Ok(w.into_inner().expect("in-memory writer"))
+}
+
+/// `trajectory.csv`: every sample of every run (`v_0` and `name` where there are several runs;
+/// the bodies' columns where a run has two bodies; `r`, `y`, `z` for the MCM, else `z`).
+fn trajectory_csv(runs: &[Run], several_runs: bool, bodies: bool) -> Result<Vec<u8>, csv::Error> {
+    let mcm = runs.first().is_some_and(|r| r.model == ModelKind::Mcm);
+    let mut header: Vec<&str> = Vec::new();
+    if several_runs {
+        header.extend(["v_0", "name"]);
+    }
+    if bodies {
+        header.extend([
+            "t", "x_m_1", "x_m_2", "x_m", "x", "v_m_1", "v_m_2", "v_m", "v", "u_1", "u_2", "u", "F",
+        ]);
+    } else {
+        header.extend(["t", "x", "v", "u", "F"]);
+    }
+    header.extend(if mcm {
+        ["r", "y", "z"].as_slice()
+    } else {
+        ["z"].as_slice()
+    });
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(&header)?;
+    for r in runs {
+        for s in &r.trajectory {
+            let mut rec: Vec<String> = Vec::with_capacity(header.len());
+            if several_runs {
+                rec.push(opt(r.v0));
+                rec.push(r.name.clone().unwrap_or_default());
+            }
+            rec.push(s.t.to_string());
+            match &s.bodies {
+                Some(b) if bodies => rec.extend(
+                    [
+                        b.x_m_1, b.x_m_2, b.x_m, s.x, b.v_m_1, b.v_m_2, b.v_m, s.v, b.u_1, b.u_2,
+                        s.u, s.f,
+                    ]
+                    .iter()
+                    .map(f64::to_string),
+                ),
+                _ => rec.extend([s.x, s.v, s.u, s.f].iter().map(f64::to_string)),
+            }
+            let extra: &[f64] = if mcm { &s.state[..3] } else { &s.state[1..2] };
+            rec.extend(extra.iter().map(f64::to_string));
+            w.write_record(&rec)?;
+        }
+    }
+    Ok(w.into_inner().expect("in-memory writer"))
+}
+
+/// `loop.csv`: the force against the displacement, every sample of every run.
+fn loop_csv(runs: &[Run], several_systems: bool) -> Result<Vec<u8>, csv::Error> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let mut header = vec!["v_0", "x", "F"];
+    if several_systems {
+        header.push("name");
+    }
+    w.write_record(&header)?;
+    for r in runs {
+        for s in &r.trajectory {
+            let mut rec = vec![opt(r.v0), s.x.to_string(), s.f.to_string()];
+            if several_systems {
+                rec.push(r.name.clone().unwrap_or_default());
+            }
+            w.write_record(&rec)?;
+        }
+    }
+    Ok(w.into_inner().expect("in-memory writer"))
 }
 
 /// `bounces.csv`: the columns of [`BounceSummary`], one row per contact.
