@@ -22,6 +22,8 @@ pub struct RawInput {
     pub terms: Option<Vec<Spanned<RawInput>>>,
 }
 
+/// The signal of an input table `table` (`default_m`: the mass a force acts on where the table
+/// does not give one).
 pub(crate) fn signal(
     ctx: &Ctx,
     raw: &Spanned<RawInput>,
@@ -37,45 +39,8 @@ pub(crate) fn signal(
             "missing: constant, gravity, arctan, table or sum",
         )
     })?;
-    let allowed: &[&str] = match kind.get_ref().as_str() {
-        "constant" => &["value"],
-        "gravity" => &["m", "g"],
-        "arctan" => &["m", "D", "omega"],
-        "table" => &["points"],
-        "sum" => &["terms"],
-        other => {
-            return Err(ctx.invalid(
-                &kind.span(),
-                format!("{table}.kind"),
-                format!("\"{other}\": use constant, gravity, arctan, table or sum"),
-            ))
-        }
-    };
-    let present = [
-        ("value", span(&r.value)),
-        ("m", span(&r.m)),
-        ("g", span(&r.g)),
-        ("D", span(&r.d)),
-        ("omega", span(&r.omega)),
-        ("points", span(&r.points)),
-        ("terms", r.terms.as_ref().map(|_| t.clone())),
-    ];
-    for (key, s) in present {
-        if let Some(s) = s {
-            if !allowed.contains(&key) {
-                return Err(ctx.invalid(
-                    &s,
-                    format!("{table}.{key}"),
-                    format!(
-                        "does not apply to kind \"{}\" (it takes {})",
-                        kind.get_ref(),
-                        allowed.join(", ")
-                    ),
-                ));
-            }
-        }
-    }
-    let mass = |ctx: &Ctx| -> Result<f64, CliError> {
+    only_its_keys(ctx, raw, table, kind)?;
+    let mass = || -> Result<f64, CliError> {
         let m = match ctx.opt(&r.m, &format!("{table}.m"))? {
             Some(m) => m,
             None => default_m.ok_or_else(|| {
@@ -100,37 +65,14 @@ pub(crate) fn signal(
         "constant" => Signal::Constant(ctx.req(&r.value, &t, &format!("{table}.value"))?),
         "gravity" => {
             let g = ctx.opt(&r.g, &format!("{table}.g"))?.unwrap_or(9.81);
-            Signal::Constant(-mass(ctx)? * g)
+            Signal::Constant(-mass()? * g)
         }
         "arctan" => Signal::Arctan(Arctan {
-            m: mass(ctx)?,
+            m: mass()?,
             d: ctx.req(&r.d, &t, &format!("{table}.D"))?,
             omega: ctx.req(&r.omega, &t, &format!("{table}.omega"))?,
         }),
-        "table" => {
-            let pts = r.points.as_ref().ok_or_else(|| {
-                ctx.invalid(&t, format!("{table}.points"), "missing: [[t, u], ...]")
-            })?;
-            let mut points = Vec::with_capacity(pts.get_ref().len());
-            for p in pts.get_ref() {
-                if p.len() != 2 {
-                    return Err(ctx.invalid(
-                        &pts.span(),
-                        format!("{table}.points"),
-                        "each point is [t, u]",
-                    ));
-                }
-                points.push((
-                    ctx.num(&p[0], &format!("{table}.points"))?,
-                    ctx.num(&p[1], &format!("{table}.points"))?,
-                ));
-            }
-            Signal::Table(
-                Table::new(&points).map_err(|e| {
-                    ctx.invalid(&pts.span(), format!("{table}.points"), e.to_string())
-                })?,
-            )
-        }
+        "table" => Signal::Table(points(ctx, raw, table)?),
         _ => {
             let terms = r.terms.as_ref().ok_or_else(|| {
                 ctx.invalid(&t, format!("{table}.terms"), "missing: a list of inputs")
@@ -143,4 +85,78 @@ pub(crate) fn signal(
             )
         }
     })
+}
+
+/// An error for an unknown `kind`, or for a key that this kind does not take.
+fn only_its_keys(
+    ctx: &Ctx,
+    raw: &Spanned<RawInput>,
+    table: &str,
+    kind: &Spanned<String>,
+) -> Result<(), CliError> {
+    let r = raw.get_ref();
+    let allowed: &[&str] = match kind.get_ref().as_str() {
+        "constant" => &["value"],
+        "gravity" => &["m", "g"],
+        "arctan" => &["m", "D", "omega"],
+        "table" => &["points"],
+        "sum" => &["terms"],
+        other => {
+            return Err(ctx.invalid(
+                &kind.span(),
+                format!("{table}.kind"),
+                format!("\"{other}\": use constant, gravity, arctan, table or sum"),
+            ))
+        }
+    };
+    let present = [
+        ("value", span(&r.value)),
+        ("m", span(&r.m)),
+        ("g", span(&r.g)),
+        ("D", span(&r.d)),
+        ("omega", span(&r.omega)),
+        ("points", span(&r.points)),
+        ("terms", r.terms.as_ref().map(|_| raw.span())),
+    ];
+    for (key, s) in present {
+        if let Some(s) = s.filter(|_| !allowed.contains(&key)) {
+            return Err(ctx.invalid(
+                &s,
+                format!("{table}.{key}"),
+                format!(
+                    "does not apply to kind \"{}\" (it takes {})",
+                    kind.get_ref(),
+                    allowed.join(", ")
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The table of a `kind = "table"` input: `points = [[t, u], ...]`.
+fn points(ctx: &Ctx, raw: &Spanned<RawInput>, table: &str) -> Result<Table, CliError> {
+    let pts = raw.get_ref().points.as_ref().ok_or_else(|| {
+        ctx.invalid(
+            &raw.span(),
+            format!("{table}.points"),
+            "missing: [[t, u], ...]",
+        )
+    })?;
+    let mut points = Vec::with_capacity(pts.get_ref().len());
+    for p in pts.get_ref() {
+        if p.len() != 2 {
+            return Err(ctx.invalid(
+                &pts.span(),
+                format!("{table}.points"),
+                "each point is [t, u]",
+            ));
+        }
+        points.push((
+            ctx.num(&p[0], &format!("{table}.points"))?,
+            ctx.num(&p[1], &format!("{table}.points"))?,
+        ));
+    }
+    Table::new(&points)
+        .map_err(|e| ctx.invalid(&pts.span(), format!("{table}.points"), e.to_string()))
 }
