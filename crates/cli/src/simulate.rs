@@ -4,7 +4,8 @@ use crate::scene::{Scene, System, SystemSpec};
 use bw_models::input::{Constant, Input, Scaled};
 use bw_models::{
     impact, nondimensionalize, simulate as sim, BodyMotion, Bwmcm, Bwshccm, CollisionModel, Cor,
-    ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Nondim, PhysicalParams, Sampling, Settings,
+    ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Nondim, NondimParams, PhysicalParams, Sampling,
+    Settings,
 };
 use bwc_ode::Stats;
 use rayon::prelude::*;
@@ -247,61 +248,11 @@ fn run_one(
     sampling: Option<Sampling>,
 ) -> Result<Run, ModelError> {
     let scaling = scaling(spec, v0)?;
-    let mk = |driven: Driven, t_scale: Option<f64>| {
-        let Driven {
-            impact,
-            trajectory,
-            rest,
-        } = driven;
-        let scale = t_scale.unwrap_or(1.0);
-        let t_s = impact.t_s.map(|t| t * scale);
-        let outcome = if impact.t_s.is_some() {
-            Outcome::Separated
-        } else if impact.settled_at.is_some() {
-            Outcome::Settled
-        } else {
-            Outcome::Horizon
-        };
-        Run {
-            name: spec.name.clone(),
-            model: spec.kind,
-            v0,
-            t_s,
-            e: impact.e,
-            outcome,
-            error: None,
-            rest: rest.map(|r| Rest {
-                t: r.t * scale,
-                ..r
-            }),
-            t_c: scaling.t_c,
-            nondimensional: Some(scaling.nondimensional),
-            t_d: if t_scale.is_some() { t_s } else { None },
-            time_unit: time_unit(spec),
-            stats: impact.stats,
-            stiff_from: impact.stiff_from.map(|t| t * scale),
-            series_steps: impact.series_steps,
-            trajectory,
-            bounces: Vec::new(),
-        }
-    };
+    let record = |driven, t_scale| record(spec, v0, &scaling, driven, t_scale);
     match &spec.system {
         System::Nondimensional { params, u } => {
-            let driven = match spec.kind {
-                ModelKind::Shccm => drive(
-                    &Ndbwshccm::new(params, Constant(*u))?,
-                    settings,
-                    sampling,
-                    1.0,
-                )?,
-                ModelKind::Mcm => drive(
-                    &Ndbwmcm::new(params, Constant(*u))?,
-                    settings,
-                    sampling,
-                    1.0,
-                )?,
-            };
-            Ok(mk(driven, None))
+            let driven = drive_nd(spec.kind, params, Constant(*u), settings, sampling, 1.0)?;
+            Ok(record(driven, None))
         }
         System::Base {
             map,
@@ -316,26 +267,13 @@ fn run_one(
                 time_scale: s.time_scale,
             };
             let scale = time_scale_known.then(|| map.time_scale(v0v));
-            let driven = match spec.kind {
-                ModelKind::Shccm => drive(
-                    &Ndbwshccm::new(&nd, u)?,
-                    settings,
-                    sampling,
-                    scale.unwrap_or(1.0),
-                )?,
-                ModelKind::Mcm => drive(
-                    &Ndbwmcm::new(&nd, u)?,
-                    settings,
-                    sampling,
-                    scale.unwrap_or(1.0),
-                )?,
-            };
-            Ok(mk(driven, scale))
+            let driven = drive_nd(spec.kind, &nd, u, settings, sampling, scale.unwrap_or(1.0))?;
+            Ok(record(driven, scale))
         }
         System::Physical { params, m, input } => {
             let v0v = v0.unwrap_or(1.0);
             let driven = physical(spec.kind, params, *m, v0v, input, settings, sampling)?;
-            Ok(mk(driven, Some(1.0)))
+            Ok(record(driven, Some(1.0)))
         }
         System::Bodies { params, bodies } => {
             let (m, v0b) = (bodies.effective_mass(), bodies.impact_speed());
@@ -347,10 +285,73 @@ fn run_one(
                     s.bodies = Some(motion.at(s.t, s.x, s.v)?);
                 }
             }
-            let mut run = mk(driven, Some(1.0));
+            let mut run = record(driven, Some(1.0));
             run.v0 = Some(v0b);
             Ok(run)
         }
+    }
+}
+
+/// The nondimensional model of `kind` with parameters `nd` under `input`, driven
+/// ([`drive`]; `t_scale`: seconds per unit of its time).
+fn drive_nd<I: Input>(
+    kind: ModelKind,
+    nd: &NondimParams,
+    input: I,
+    settings: &Settings,
+    sampling: Option<Sampling>,
+    t_scale: f64,
+) -> Result<Driven, ModelError> {
+    match kind {
+        ModelKind::Shccm => drive(&Ndbwshccm::new(nd, input)?, settings, sampling, t_scale),
+        ModelKind::Mcm => drive(&Ndbwmcm::new(nd, input)?, settings, sampling, t_scale),
+    }
+}
+
+/// The record of a driven run at `v0` of the system `spec`: its times in s where the run has a
+/// time scale (`t_scale`, s per unit), in its own unit otherwise.
+fn record(
+    spec: &SystemSpec,
+    v0: Option<f64>,
+    scaling: &Scaling,
+    driven: Driven,
+    t_scale: Option<f64>,
+) -> Run {
+    let Driven {
+        impact,
+        trajectory,
+        rest,
+    } = driven;
+    let scale = t_scale.unwrap_or(1.0);
+    let t_s = impact.t_s.map(|t| t * scale);
+    let outcome = if impact.t_s.is_some() {
+        Outcome::Separated
+    } else if impact.settled_at.is_some() {
+        Outcome::Settled
+    } else {
+        Outcome::Horizon
+    };
+    Run {
+        name: spec.name.clone(),
+        model: spec.kind,
+        v0,
+        t_s,
+        e: impact.e,
+        outcome,
+        error: None,
+        rest: rest.map(|r| Rest {
+            t: r.t * scale,
+            ..r
+        }),
+        t_c: scaling.t_c,
+        nondimensional: Some(scaling.nondimensional),
+        t_d: if t_scale.is_some() { t_s } else { None },
+        time_unit: time_unit(spec),
+        stats: impact.stats,
+        stiff_from: impact.stiff_from.map(|t| t * scale),
+        series_steps: impact.series_steps,
+        trajectory,
+        bounces: Vec::new(),
     }
 }
 
