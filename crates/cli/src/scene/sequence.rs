@@ -2,10 +2,11 @@
 //! gravity, each contact the scene's `[physical]` (or `[base]`, with `[sequence].m`) model with
 //! input `u = -m g`.
 
-use super::raw::RawScene;
-use crate::tables::{span, Ctx};
+use super::raw::{RawScene, RawSequence};
+use crate::tables::{span, Ctx, Num};
 use crate::CliError;
 use bw_models::sequence::{Flight, Policy, SequenceSettings, Start};
+use std::ops::Range;
 
 /// A validated `[sequence]`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,66 +29,9 @@ pub(super) fn sequence(ctx: &Ctx, raw: &RawScene) -> Result<Option<SequenceSpec>
     };
     let t = seq.span();
     let r = seq.get_ref();
-    let conflict = |what: &Option<std::ops::Range<usize>>, key: &str, why: &str| match what {
-        Some(s) => Err(ctx.invalid(s, key, why.to_string())),
-        None => Ok(()),
-    };
-    conflict(
-        &span(&raw.bodies),
-        "[bodies]",
-        "not with [sequence], which drops one body on a fixed surface: describe its contact with [physical]",
-    )?;
-    conflict(
-        &span(&raw.nondimensional),
-        "[nondimensional]",
-        "not with [sequence], whose flights need SI units: describe the contact with [physical]",
-    )?;
-    let m = base_mass(ctx, raw, r, &t)?;
-    conflict(
-        &raw.v0.as_ref().map(|v| v.span()),
-        "v0",
-        "not with [sequence]: give [sequence].h0 (drop height) or [sequence].v0 (first impact speed)",
-    )?;
-    conflict(
-        &span(&raw.input),
-        "[input]",
-        "not with [sequence]: gravity -m g is the input of every contact ([sequence].g)",
-    )?;
-    let positive = |v: &Option<crate::tables::Num>, key: &str, unit: &str| {
-        v.as_ref()
-            .map(|x| {
-                let value = ctx.num(x, key)?;
-                if value > 0.0 {
-                    Ok(value)
-                } else {
-                    Err(ctx.invalid(
-                        &x.span(),
-                        key,
-                        format!("{value} is not admissible: > 0 ({unit})"),
-                    ))
-                }
-            })
-            .transpose()
-    };
-    let start = match (
-        positive(&r.h0, "[sequence].h0", "m")?,
-        positive(&r.v0, "[sequence].v0", "m/s")?,
-    ) {
-        (Some(h), None) => Start::Height(h),
-        (None, Some(v)) => Start::Speed(v),
-        (None, None) => {
-            return Err(ctx.invalid(
-                &t,
-                "[sequence].h0",
-                "missing: give h0 (drop height, m) or v0 (first impact speed, m/s)",
-            ))
-        }
-        (Some(_), Some(_)) => {
-            let s = span(&r.v0).unwrap_or(t);
-            return Err(ctx.invalid(&s, "[sequence].v0", "give h0 or v0, not both"));
-        }
-    };
-    let g = positive(&r.g, "[sequence].g", "m/s^2")?.unwrap_or(9.81);
+    let m = with_the_scene(ctx, raw, r, &t)?;
+    let start = start(ctx, r, &t)?;
+    let g = positive(ctx, &r.g, "[sequence].g", "m/s^2")?.unwrap_or(9.81);
     let drag = match &r.drag {
         None => 0.0,
         Some(d) => {
@@ -138,13 +82,89 @@ pub(super) fn sequence(ctx: &Ctx, raw: &RawScene) -> Result<Option<SequenceSpec>
     }))
 }
 
+/// Errors for the scene's tables and keys that a sequence does not take (`[bodies]`,
+/// `[nondimensional]`, `v0`, `[input]`); the body's mass where the contact is a `[base]`.
+fn with_the_scene(
+    ctx: &Ctx,
+    raw: &RawScene,
+    r: &RawSequence,
+    t: &Range<usize>,
+) -> Result<Option<f64>, CliError> {
+    let conflict = |what: &Option<Range<usize>>, key: &str, why: &str| match what {
+        Some(s) => Err(ctx.invalid(s, key, why.to_string())),
+        None => Ok(()),
+    };
+    conflict(
+        &span(&raw.bodies),
+        "[bodies]",
+        "not with [sequence], which drops one body on a fixed surface: describe its contact with \
+         [physical]",
+    )?;
+    conflict(
+        &span(&raw.nondimensional),
+        "[nondimensional]",
+        "not with [sequence], whose flights need SI units: describe the contact with [physical]",
+    )?;
+    let m = base_mass(ctx, raw, r, t)?;
+    conflict(
+        &raw.v0.as_ref().map(|v| v.span()),
+        "v0",
+        "not with [sequence]: give [sequence].h0 (drop height) or [sequence].v0 (first impact \
+         speed)",
+    )?;
+    conflict(
+        &span(&raw.input),
+        "[input]",
+        "not with [sequence]: gravity -m g is the input of every contact ([sequence].g)",
+    )?;
+    Ok(m)
+}
+
+/// A positive value of `key` (in `unit`), if given.
+fn positive(ctx: &Ctx, v: &Option<Num>, key: &str, unit: &str) -> Result<Option<f64>, CliError> {
+    v.as_ref()
+        .map(|x| {
+            let value = ctx.num(x, key)?;
+            if value > 0.0 {
+                Ok(value)
+            } else {
+                Err(ctx.invalid(
+                    &x.span(),
+                    key,
+                    format!("{value} is not admissible: > 0 ({unit})"),
+                ))
+            }
+        })
+        .transpose()
+}
+
+/// The start: a drop height `h0` or a first impact speed `v0`, exactly one of them.
+fn start(ctx: &Ctx, r: &RawSequence, t: &Range<usize>) -> Result<Start, CliError> {
+    match (
+        positive(ctx, &r.h0, "[sequence].h0", "m")?,
+        positive(ctx, &r.v0, "[sequence].v0", "m/s")?,
+    ) {
+        (Some(h), None) => Ok(Start::Height(h)),
+        (None, Some(v)) => Ok(Start::Speed(v)),
+        (None, None) => Err(ctx.invalid(
+            t,
+            "[sequence].h0",
+            "missing: give h0 (drop height, m) or v0 (first impact speed, m/s)",
+        )),
+        (Some(_), Some(_)) => {
+            let s = span(&r.v0).unwrap_or(t.clone());
+            Err(ctx.invalid(&s, "[sequence].v0", "give h0 or v0, not both"))
+        }
+    }
+}
+
 /// `[sequence].m` (kg): required with `[base]` (whose contacts feel gravity through `U_b` and
 /// last `t_s T_c` seconds, so `U_b` and `T_b` are required too), not used with `[physical]`.
 fn base_mass(
     ctx: &Ctx,
     raw: &RawScene,
-    r: &super::raw::RawSequence,
-    t: &std::ops::Range<usize>,
+    r: &RawSequence,
+    t: &Range<usize>,
 ) -> Result<Option<f64>, CliError> {
     use super::raw::SeqOrMap;
     let Some(base) = &raw.base else {
