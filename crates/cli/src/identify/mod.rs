@@ -10,6 +10,7 @@ pub use drops::DropOutcome;
 pub use render::{loop_summary, render, render_loops, slug, summary, units};
 
 use crate::config::FitConfig;
+use crate::signal::Signal;
 use crate::CliError;
 use bw_models::{BaseParams, Settings};
 use bwc_identify::{
@@ -212,48 +213,11 @@ pub fn run_fit(
             (Err(e.to_string()), curve, Vec::new())
         }
     };
-    let mut evaluations = result.evaluations;
-    let mut pareto = Vec::new();
-    if let Some(count) = f.pareto {
-        // Normalise each cost by the variance of its data so the weights are comparable.
-        let var = |xs: Vec<f64>| {
-            let m = xs.iter().sum::<f64>() / xs.len() as f64;
-            (xs.iter().map(|x| (x - m).powi(2)).sum::<f64>() / xs.len() as f64).max(1e-30)
-        };
-        let ve = var(f.data.points.iter().filter_map(|p| p.e).collect());
-        let vt = var(f.data.points.iter().filter_map(|p| p.t_d).collect());
-        // Each weight starts from the main optimum: a small swarm and the full polish suffice.
-        let budget = Budget {
-            particles: (f.budget.particles / 4).max(8),
-            iterations: f.budget.iterations / 4,
-            ..f.budget.single()
-        };
-        for k in 0..count {
-            let w = k as f64 / (count - 1) as f64;
-            let weights = Weights {
-                j1: w / ve,
-                j2: (1.0 - w) / vt,
-            };
-            let o = Objective::new(&f.space, &f.data, &f.input, f.settings, weights)
-                .map_err(&err)?
-                .with_progress(progress);
-            let r = fit(
-                &o,
-                &budget,
-                seed ^ f.seed ^ (k as u64 + 1),
-                Some(&result.point),
-            )
-            .map_err(&err)?;
-            evaluations += r.evaluations;
-            let (_, c) = exact.evaluate(&r.point).map_err(&err)?;
-            pareto.push(ParetoPoint {
-                w,
-                j1: c.j1.unwrap_or(f64::NAN),
-                j2: c.j2.unwrap_or(f64::NAN),
-                params: r.params,
-            });
-        }
-    }
+    let (pareto, pareto_evaluations) = match f.pareto {
+        Some(count) => pareto_front(config, f, count, seed, progress, &exact, &result.point)?,
+        None => (Vec::new(), 0),
+    };
+    let evaluations = result.evaluations + pareto_evaluations;
     Ok(FitReport {
         name: f.name.clone(),
         model: f.kind.name(),
@@ -273,6 +237,54 @@ pub fn run_fit(
         warnings,
         drop: None,
     })
+}
+
+/// The Pareto front of `f`'s two costs: `count` fits with weights from all CoR to all duration,
+/// each from the main optimum `from` with a small swarm and the full polish, their costs at the
+/// accurate settings (`exact`); and the evaluations they took.
+fn pareto_front(
+    config: &Path,
+    f: &FitConfig,
+    count: usize,
+    seed: u64,
+    progress: &(dyn Fn() + Sync),
+    exact: &Objective<'_, Signal>,
+    from: &[f64],
+) -> Result<(Vec<ParetoPoint>, u64), CliError> {
+    let err = fail(config, &f.name);
+    // Normalise each cost by the variance of its data so the weights are comparable.
+    let var = |xs: Vec<f64>| {
+        let m = xs.iter().sum::<f64>() / xs.len() as f64;
+        (xs.iter().map(|x| (x - m).powi(2)).sum::<f64>() / xs.len() as f64).max(1e-30)
+    };
+    let ve = var(f.data.points.iter().filter_map(|p| p.e).collect());
+    let vt = var(f.data.points.iter().filter_map(|p| p.t_d).collect());
+    let budget = Budget {
+        particles: (f.budget.particles / 4).max(8),
+        iterations: f.budget.iterations / 4,
+        ..f.budget.single()
+    };
+    let (mut front, mut evaluations) = (Vec::with_capacity(count), 0);
+    for k in 0..count {
+        let w = k as f64 / (count - 1) as f64;
+        let weights = Weights {
+            j1: w / ve,
+            j2: (1.0 - w) / vt,
+        };
+        let o = Objective::new(&f.space, &f.data, &f.input, f.settings, weights)
+            .map_err(&err)?
+            .with_progress(progress);
+        let r = fit(&o, &budget, seed ^ f.seed ^ (k as u64 + 1), Some(from)).map_err(&err)?;
+        evaluations += r.evaluations;
+        let (_, c) = exact.evaluate(&r.point).map_err(&err)?;
+        front.push(ParetoPoint {
+            w,
+            j1: c.j1.unwrap_or(f64::NAN),
+            j2: c.j2.unwrap_or(f64::NAN),
+            params: r.params,
+        });
+    }
+    Ok((front, evaluations))
 }
 
 /// Evaluates the costs of `f` at its `[fit.params]`.
