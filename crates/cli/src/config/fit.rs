@@ -90,6 +90,8 @@ pub(super) fn parse_fit(
         Some(i) => signal(ctx, i, "[fit.input]", known.map(|k| k.m))?,
         None => Signal::zero(),
     };
+    // The input scales U_b, T_b matter under an input, for durations, with a known body, and
+    // for drop tests where they are given.
     let scales_given = r
         .bounds
         .as_ref()
@@ -110,17 +112,16 @@ pub(super) fn parse_fit(
         known,
         uses_input_scales,
     };
-    let start = match &r.start {
-        Some(p) => {
+    let start = r
+        .start
+        .as_ref()
+        .map(|p| {
             let bp = point(ctx, p, "start", &scales)?;
-            Some(
-                space
-                    .encode(&bp)
-                    .map_err(|e| ctx.invalid(&p.span(), "[fit.start]", e.to_string()))?,
-            )
-        }
-        None => None,
-    };
+            space
+                .encode(&bp)
+                .map_err(|e| ctx.invalid(&p.span(), "[fit.start]", e.to_string()))
+        })
+        .transpose()?;
     let params = r
         .params
         .as_ref()
@@ -133,12 +134,12 @@ pub(super) fn parse_fit(
         ..Settings::default()
     };
     let settings = solver_settings(ctx, &r.solver, "[fit.solver]", search)?;
-    let pareto = match &r.pareto {
-        None => None,
-        Some(p) => Some(
-            super::count(ctx, &p.get_ref().count, "[fit.pareto].count", 2, 1_000, 11)? as usize,
-        ),
-    };
+    let pareto = r
+        .pareto
+        .as_ref()
+        .map(|p| super::count(ctx, &p.get_ref().count, "[fit.pareto].count", 2, 1_000, 11))
+        .transpose()?
+        .map(|n| n as usize);
     Ok(Draft {
         fit: FitConfig {
             name,
