@@ -44,7 +44,7 @@ use bw_models::{
 };
 use bwc_benches::{cor, side_by_side};
 use bwc_cli::plot::{chart, Axis, Series, Style};
-use bwc_ode::{tableau, System, DOP853, VERN7};
+use bwc_ode::{tableau, System, Tableau, DOP853, VERN7};
 use std::fmt::Write as _;
 
 /// A case: its name, its runs at given settings, their references `(e, T_s)`, and the model
@@ -201,6 +201,73 @@ fn main() {
             .unwrap_or_else(|| "target/work-precision".into()),
     );
     std::fs::create_dir_all(&out).expect("output directory");
+    let cases = cases();
+    let mut target = String::new();
+    let mut csv = String::from("case,method,kinks,rtol,err_e,err_Ts,rhs_evals,time_us,steps\n");
+    println!(
+        "{:<18} {:<9} {:<6} {:>7} {:>10} {:>10} {:>8} {:>9} {:>6}",
+        "case", "method", "kinks", "rtol", "err_e", "err_Ts", "evals", "time_us", "steps"
+    );
+    for case in &cases {
+        target.push_str(&run_case(case, &out, &mut csv));
+    }
+    println!(
+        "\n# RHS-evaluation target (>= 2x fewer than plain DOP853 at equal error): the work of \
+         each row with stops and of each series row (its time over one RHS evaluation of the \
+         case's model, at DSS (1) for the cases that are not published fits, timed next to it; \
+         rhs_ns) against plain DOP853's evaluations \
+         at the same error (log-log interpolation between its rows; - outside their range); \
+         in_time: plain DOP853's time at the same error over the row's time; in_time_e: the \
+         same at equal error in e alone (series rows); each row timed side by side with the \
+         plain runs that bracket its errors and the right-hand side"
+    );
+    println!(
+        "{:<18} {:<9} {:>7} {:>10} {:>8} {:>8} {:>6} {:>7} {:>6} {:>9}",
+        "case",
+        "method",
+        "rtol",
+        "error",
+        "work",
+        "plain",
+        "ratio",
+        "rhs_ns",
+        "in_time",
+        "in_time_e"
+    );
+    print!("{target}");
+    std::fs::write(out.join("cor.csv"), csv).unwrap();
+    scipy_comparison(&cases[0].2);
+    println!("\nwrote {}", out.display());
+}
+
+/// The cases: the four published fits, the two limits with known answers, the stiff case.
+fn cases() -> Vec<Case> {
+    let mut cases: Vec<Case> = vec![
+        published("shccm_dss1", cor::dss1(ModelKind::Shccm)),
+        published("mcm_dss1", cor::dss1(ModelKind::Mcm)),
+        published("shccm_dsa1", cor::dsa1(ModelKind::Shccm)),
+        published("mcm_dsa1", cor::dsa1(ModelKind::Mcm)),
+    ];
+    #[allow(clippy::excessive_precision)]
+    cases.push(limit(
+        "elastic_p2.5",
+        0.0,
+        2.5,
+        (Some(1.0), Some(3.1698318538197101997)),
+    ));
+    #[allow(clippy::excessive_precision)]
+    cases.push(limit(
+        "hunt_crossley_0.5",
+        0.5,
+        1.5,
+        (Some(0.748434931597434158), None),
+    ));
+    cases.push(stiff());
+    cases
+}
+
+/// A published fit at v0 = 0.5, 2, 5 m/s, against Vern7 at rtol 1e-14.
+fn published(name: &'static str, map: BaseMap) -> Case {
     let speeds = [0.5, 2.0, 5.0];
     let tight = Settings {
         method: &VERN7,
@@ -209,60 +276,49 @@ fn main() {
         series: false,
         ..Settings::default()
     };
-    let published = |name, map: BaseMap| -> Case {
-        let run = move |s: &Settings| {
-            speeds
-                .iter()
-                .map(|&v0| cor::evaluate(&map, v0, s).map_err(|e| e.to_string()))
-                .collect::<Result<Vec<_>, _>>()
-        };
-        let refs = run(&tight)
-            .expect("reference")
+    let run = move |s: &Settings| {
+        speeds
             .iter()
-            .map(|o| (Some(o.e), o.t_s))
-            .collect();
-        (name, Box::new(run), refs, map)
+            .map(|&v0| cor::evaluate(&map, v0, s).map_err(|e| e.to_string()))
+            .collect::<Result<Vec<_>, _>>()
     };
-    let mut cases: Vec<Case> = vec![
-        published("shccm_dss1", cor::dss1(ModelKind::Shccm)),
-        published("mcm_dss1", cor::dss1(ModelKind::Mcm)),
-        published("shccm_dsa1", cor::dsa1(ModelKind::Shccm)),
-        published("mcm_dsa1", cor::dsa1(ModelKind::Mcm)),
-    ];
-    let limit = |sigma: f64, p: f64| {
-        let params = NondimParams::new(
-            ModelKind::Shccm,
-            Nondim {
-                b: 0.0,
-                gamma: 0.0,
-                kappa: 0.5,
-                sigma,
-                n: 1.0,
-                p,
-            },
-        )
-        .unwrap();
-        let model = Ndbwshccm::new(&params, Zero).unwrap();
-        move |s: &Settings| Ok(vec![impact(&model, s).map_err(|e| e.to_string())?.cor()])
-    };
-    #[allow(clippy::excessive_precision)]
-    cases.push((
-        "elastic_p2.5",
-        Box::new(limit(0.0, 2.5)),
-        vec![(Some(1.0), Some(3.1698318538197101997))],
-        cor::dss1(ModelKind::Shccm),
-    ));
-    #[allow(clippy::excessive_precision)]
-    cases.push((
-        "hunt_crossley_0.5",
-        Box::new(limit(0.5, 1.5)),
-        vec![(Some(0.748434931597434158), None)],
-        cor::dss1(ModelKind::Shccm),
-    ));
+    let refs = run(&tight)
+        .expect("reference")
+        .iter()
+        .map(|o| (Some(o.e), o.t_s))
+        .collect();
+    (name, Box::new(run), refs, map)
+}
 
-    // A stiff case from the stress sweep (MCM, n = 8.7, kappa = 9e-4, v0 = 124 m/s): explicit
-    // methods alone exhaust 10^6 steps; they run here with the switch to RODAS4. Reference:
-    // RODAS4 at rtol 1e-13 (checked against DOP853 switching at rtol 1e-13).
+/// The NDBWSHCCM without hysteresis (`κ = 0.5`, `B = Γ = 0`, `n = 1`) at damping `sigma` and
+/// exponent `p`, whose answer `reference` is known exactly.
+fn limit(name: &'static str, sigma: f64, p: f64, reference: (Option<f64>, Option<f64>)) -> Case {
+    let params = NondimParams::new(
+        ModelKind::Shccm,
+        Nondim {
+            b: 0.0,
+            gamma: 0.0,
+            kappa: 0.5,
+            sigma,
+            n: 1.0,
+            p,
+        },
+    )
+    .unwrap();
+    let model = Ndbwshccm::new(&params, Zero).unwrap();
+    let run = move |s: &Settings| Ok(vec![impact(&model, s).map_err(|e| e.to_string())?.cor()]);
+    (
+        name,
+        Box::new(run),
+        vec![reference],
+        cor::dss1(ModelKind::Shccm),
+    )
+}
+
+/// A stiff case from the stress sweep (MCM, n = 8.7, kappa = 9e-4, v0 = 124 m/s): explicit
+/// methods alone exhaust 10^6 steps; they run here with the switch to RODAS4. Reference:
+/// RODAS4 at rtol 1e-13 (checked against DOP853 switching at rtol 1e-13).
+fn stiff() -> Case {
     let stiff_map = BaseMap::new(
         ModelKind::Mcm,
         BaseParams {
@@ -300,237 +356,229 @@ fn main() {
         (stiff_check.e - stiff_ref.e).abs(),
         (stiff_check.t_s.unwrap() - stiff_ref.t_s.unwrap()).abs()
     );
-    cases.push((
+    (
         "mcm_stiff",
         Box::new(stiff_run),
         vec![(Some(stiff_ref.e), stiff_ref.t_s)],
         cor::dss1(ModelKind::Mcm),
-    ));
+    )
+}
 
-    let mut target = String::new();
-    let mut csv = String::from("case,method,kinks,rtol,err_e,err_Ts,rhs_evals,time_us,steps\n");
-    println!(
-        "{:<18} {:<9} {:<6} {:>7} {:>10} {:>10} {:>8} {:>9} {:>6}",
-        "case", "method", "kinks", "rtol", "err_e", "err_Ts", "evals", "time_us", "steps"
-    );
-    for (name, run, refs, unit) in &cases {
-        let mut rows: Vec<Row> = Vec::new();
-        let mut by_evals = Vec::new();
-        let mut by_time = Vec::new();
-        // Explicit methods alone, or (on the stiff case) switching to RODAS4; RODAS4 throughout.
-        let explicit = if *name == "mcm_stiff" {
-            Stiffness::Switch
+/// Plain DOP853 at rtol 1e-4 ... 1e-13 on a case (its rows come again in the table).
+fn plain_runs((_, run, refs, _): &Case) -> Vec<Plain> {
+    (4..=13)
+        .filter_map(|k| {
+            let rtol = 10f64.powi(-k);
+            let outs = run(&plain_dop853(rtol)).ok()?;
+            let (ee, et) = errors(&outs, refs);
+            Some(Plain {
+                rtol,
+                err: ee.max(et).max(1e-17),
+                err_e: ee.max(1e-17),
+                evals: outs.iter().map(|o| o.stats.rhs_evals).sum(),
+            })
+        })
+        .collect()
+}
+
+/// A method of the report: its name, tableau, stiffness handling, whether it is the series
+/// path, and whether it stops at the kinks.
+struct Method {
+    name: String,
+    tab: &'static Tableau,
+    stiffness: Stiffness,
+    series: bool,
+    kinks: bool,
+}
+
+/// Every method on one case: the table rows (and their CSV lines), the two plots, and the
+/// case's lines of the RHS-evaluation target.
+fn run_case(case: &Case, out: &std::path::Path, csv: &mut String) -> String {
+    let name = case.0;
+    // Explicit methods alone, or (on the stiff case) switching to RODAS4; RODAS4 throughout.
+    let explicit = if name == "mcm_stiff" {
+        Stiffness::Switch
+    } else {
+        Stiffness::Ignore
+    };
+    // Each row with stops is timed beside the plain runs whose errors bracket its error. Not on
+    // the stiff case, where the explicit methods alone exhaust the step limit.
+    let plain = if explicit == Stiffness::Ignore {
+        plain_runs(case)
+    } else {
+        Vec::new()
+    };
+    let methods = tableau::all()
+        .map(|tab| (tab.name, tab, explicit, false))
+        .into_iter()
+        .chain([
+            ("RODAS4", &DOP853, Stiffness::Rosenbrock, false),
+            ("Taylor16", &DOP853, Stiffness::Switch, true),
+        ]);
+    let (mut rows, mut by_evals, mut by_time) = (Vec::new(), Vec::new(), Vec::new());
+    for (method, tab, stiffness, series) in methods {
+        let method = if stiffness == Stiffness::Switch && !series {
+            format!("{method}>R")
         } else {
-            Stiffness::Ignore
+            method.to_string()
         };
-        // Plain DOP853 first (its rows come again in the table): each row with stops is timed
-        // beside the plain runs whose errors bracket its error. Not on the stiff case, where the
-        // explicit methods alone exhaust the step limit.
-        let plain: Vec<Plain> = if explicit == Stiffness::Ignore {
-            (4..=13)
-                .filter_map(|k| {
-                    let rtol = 10f64.powi(-k);
-                    let outs = run(&plain_dop853(rtol)).ok()?;
-                    let (ee, et) = errors(&outs, refs);
-                    Some(Plain {
-                        rtol,
-                        err: ee.max(et).max(1e-17),
-                        err_e: ee.max(1e-17),
-                        evals: outs.iter().map(|o| o.stats.rhs_evals).sum(),
-                    })
-                })
-                .collect()
-        } else {
-            Vec::new()
-        };
-        let methods = tableau::all()
-            .map(|tab| (tab.name, tab, explicit, false))
-            .into_iter()
-            .chain([
-                ("RODAS4", &DOP853, Stiffness::Rosenbrock, false),
-                ("Taylor16", &DOP853, Stiffness::Switch, true),
-            ]);
-        for (method, tab, stiffness, series) in methods {
-            let method = if stiffness == Stiffness::Switch && !series {
-                format!("{method}>R")
-            } else {
-                method.to_string()
+        let stops: &[bool] = if series { &[true] } else { &[false, true] };
+        for &kinks in stops {
+            let m = Method {
+                name: method.clone(),
+                tab,
+                stiffness,
+                series,
+                kinks,
             };
-            let stops: &[bool] = if series { &[true] } else { &[false, true] };
-            for &kinks in stops {
-                let mut pe = Vec::new();
-                let mut pt = Vec::new();
-                for k in 4..=13 {
-                    let rtol = 10f64.powi(-k);
-                    let s = Settings {
-                        method: tab,
-                        rtol,
-                        atol: rtol * 1e-2,
-                        stop_at_kinks: kinks,
-                        stiffness,
-                        series,
-                        ..Settings::default()
-                    };
-                    // A run that fails (the stiff case at loose tolerances can exceed the step
-                    // limit, depending on where the series hand over) is reported, not plotted.
-                    let outs = match run(&s) {
-                        Ok(outs) => outs,
-                        Err(e) => {
-                            println!("{name:<18} {method:<9} {kinks:<6} {rtol:>7.0e} failed: {e}");
-                            let _ = writeln!(csv, "{name},{method},{kinks},{rtol:e},,,,,");
-                            continue;
-                        }
-                    };
-                    let (ee, et) = errors(&outs, refs);
-                    let evals: u64 = outs.iter().map(|o| o.stats.rhs_evals).sum();
-                    let steps: u64 = outs
-                        .iter()
-                        .map(|o| o.stats.accepted + o.stats.rejected)
-                        .sum();
-                    let err = ee.max(et).max(1e-17);
-                    // A row with stops is timed side by side with the plain DOP853 runs that
-                    // bracket its error and, for the series, with one right-hand side of the
-                    // case's model (the unit of their work for the RHS-evaluation target).
-                    let bracketed = bracket(&plain, err)
-                        .filter(|_| kinks)
-                        .map(|(a, b, f)| (a.rtol, b.rtol, f));
-                    let mut fs: Vec<Box<dyn FnMut() + '_>> = vec![Box::new(|| {
-                        let _ = std::hint::black_box(run(&s));
-                    })];
-                    if let Some((a, b, _)) = bracketed {
-                        for rtol in [a, b] {
-                            let plain = plain_dop853(rtol);
-                            fs.push(Box::new(move || {
-                                let _ = std::hint::black_box(run(&plain));
-                            }));
-                        }
-                    }
-                    // For the series, also the plain runs that bracket its error in e alone.
-                    let bracketed_e = bracket_by(&plain, ee.max(1e-17), |p| p.err_e)
-                        .filter(|_| series)
-                        .map(|(a, b, f)| (a.rtol, b.rtol, f));
-                    if let Some((a, b, _)) = bracketed_e {
-                        for rtol in [a, b] {
-                            let plain = plain_dop853(rtol);
-                            fs.push(Box::new(move || {
-                                let _ = std::hint::black_box(run(&plain));
-                            }));
-                        }
-                    }
-                    if series {
-                        fs.push(rhs_batch(unit));
-                    }
-                    let times = side_by_side(&mut fs);
-                    let secs = times[0];
-                    let in_time = bracketed.map(|(_, _, f)| between(times[1], times[2], f) / secs);
-                    let at = if bracketed.is_some() { 3 } else { 1 };
-                    let in_time_e =
-                        bracketed_e.map(|(_, _, f)| between(times[at], times[at + 1], f) / secs);
-                    let rhs_ns = series.then(|| times[times.len() - 1] * 1e6);
-                    println!(
-                        "{name:<18} {method:<9} {:<6} {:>7.0e} {:>10.2e} {:>10.2e} {:>8} {:>9.1} {:>6}",
-                        kinks,
-                        rtol,
-                        ee,
-                        et,
-                        evals,
-                        secs * 1e6,
-                        steps
-                    );
-                    let _ = writeln!(
-                        csv,
-                        "{name},{method},{kinks},{rtol:e},{ee:e},{et:e},{evals},{:.3},{steps}",
-                        secs * 1e6
-                    );
-                    rows.push(Row {
-                        method: method.clone(),
-                        kinks,
-                        rtol,
-                        err,
-                        evals,
-                        time_us: secs * 1e6,
-                        rhs_ns,
-                        in_time,
-                        in_time_e,
-                    });
-                    pe.push((evals as f64, err));
-                    pt.push((secs * 1e6, err));
-                }
-                let label = match (series, kinks) {
-                    (true, _) => format!("{method} (series)"),
-                    (false, true) => format!("{method} + stops at kinks"),
-                    (false, false) => method.clone(),
-                };
-                let color = by_time.len();
-                if !series {
-                    by_evals.push(Series {
-                        label: label.clone(),
-                        points: pe,
-                        style: Style::LineAndMarkers,
-                        color,
-                    });
-                }
-                by_time.push(Series {
-                    label,
-                    points: pt,
+            let measured: Vec<Row> = (4..=13)
+                .filter_map(|k| measure(case, &plain, &m, 10f64.powi(-k), csv))
+                .collect();
+            let label = match (series, kinks) {
+                (true, _) => format!("{method} (series)"),
+                (false, true) => format!("{method} + stops at kinks"),
+                (false, false) => method.clone(),
+            };
+            let color = by_time.len();
+            if !series {
+                by_evals.push(Series {
+                    label: label.clone(),
+                    points: measured.iter().map(|r| (r.evals as f64, r.err)).collect(),
                     style: Style::LineAndMarkers,
                     color,
                 });
             }
+            by_time.push(Series {
+                label,
+                points: measured.iter().map(|r| (r.time_us, r.err)).collect(),
+                style: Style::LineAndMarkers,
+                color,
+            });
+            rows.extend(measured);
         }
-        let error = Axis {
-            label: "max(|error in e|, |error in T_s|) (-)",
-            log: true,
-        };
-        let title = format!("{name}: error vs RHS evaluations");
-        let evals = Axis {
-            label: "RHS evaluations per case (summed over its speeds)",
-            log: true,
-        };
-        std::fs::write(
-            out.join(format!("{name}_evals.svg")),
-            chart(&title, evals, error, &by_evals).unwrap(),
-        )
-        .unwrap();
-        let title = format!("{name}: error vs time");
-        let time = Axis {
-            label: "time per case (us, summed over its speeds)",
-            log: true,
-        };
-        std::fs::write(
-            out.join(format!("{name}_time.svg")),
-            chart(&title, time, error, &by_time).unwrap(),
-        )
-        .unwrap();
-        target.push_str(&rhs_target(name, &rows, &plain));
     }
-    println!(
-        "\n# RHS-evaluation target (>= 2x fewer than plain DOP853 at equal error): the work of \
-         each row with stops and of each series row (its time over one RHS evaluation of the \
-         case's model, at DSS (1) for the cases that are not published fits, timed next to it; \
-         rhs_ns) against plain DOP853's evaluations \
-         at the same error (log-log interpolation between its rows; - outside their range); \
-         in_time: plain DOP853's time at the same error over the row's time; in_time_e: the \
-         same at equal error in e alone (series rows); each row timed side by side with the \
-         plain runs that bracket its errors and the right-hand side"
-    );
-    println!(
-        "{:<18} {:<9} {:>7} {:>10} {:>8} {:>8} {:>6} {:>7} {:>6} {:>9}",
-        "case",
-        "method",
-        "rtol",
-        "error",
-        "work",
-        "plain",
-        "ratio",
-        "rhs_ns",
-        "in_time",
-        "in_time_e"
-    );
-    print!("{target}");
-    std::fs::write(out.join("cor.csv"), csv).unwrap();
+    plots(out, name, &by_evals, &by_time);
+    rhs_target(name, &rows, &plain)
+}
 
-    // The paper's setup in SciPy, on the SHCCM case.
+/// One method on one case at `rtol`: its row (printed, and written to the CSV), timed side by
+/// side with the plain runs that bracket its errors and, for the series, one right-hand side;
+/// `None` where the run fails (reported, not plotted: the stiff case at loose tolerances can
+/// exceed the step limit, depending on where the series hand over).
+fn measure(case: &Case, plain: &[Plain], m: &Method, rtol: f64, csv: &mut String) -> Option<Row> {
+    let (name, run, refs, unit) = case;
+    let (method, kinks, series) = (&m.name, m.kinks, m.series);
+    let s = Settings {
+        method: m.tab,
+        rtol,
+        atol: rtol * 1e-2,
+        stop_at_kinks: kinks,
+        stiffness: m.stiffness,
+        series,
+        ..Settings::default()
+    };
+    let outs = match run(&s) {
+        Ok(outs) => outs,
+        Err(e) => {
+            println!("{name:<18} {method:<9} {kinks:<6} {rtol:>7.0e} failed: {e}");
+            let _ = writeln!(csv, "{name},{method},{kinks},{rtol:e},,,,,");
+            return None;
+        }
+    };
+    let (ee, et) = errors(&outs, refs);
+    let evals: u64 = outs.iter().map(|o| o.stats.rhs_evals).sum();
+    let steps: u64 = outs
+        .iter()
+        .map(|o| o.stats.accepted + o.stats.rejected)
+        .sum();
+    let err = ee.max(et).max(1e-17);
+    // A row with stops is timed side by side with the plain DOP853 runs that bracket its error
+    // and, for the series, with those that bracket its error in e alone and with one right-hand
+    // side of the case's model (the unit of their work for the RHS-evaluation target).
+    let bracketed = bracket(plain, err)
+        .filter(|_| kinks)
+        .map(|(a, b, f)| (a.rtol, b.rtol, f));
+    let bracketed_e = bracket_by(plain, ee.max(1e-17), |p| p.err_e)
+        .filter(|_| series)
+        .map(|(a, b, f)| (a.rtol, b.rtol, f));
+    let mut fs: Vec<Box<dyn FnMut() + '_>> = vec![Box::new(|| {
+        let _ = std::hint::black_box(run(&s));
+    })];
+    for (a, b, _) in bracketed.iter().chain(&bracketed_e) {
+        for rtol in [*a, *b] {
+            let plain = plain_dop853(rtol);
+            fs.push(Box::new(move || {
+                let _ = std::hint::black_box(run(&plain));
+            }));
+        }
+    }
+    if series {
+        fs.push(rhs_batch(unit));
+    }
+    let times = side_by_side(&mut fs);
+    let secs = times[0];
+    let in_time = bracketed.map(|(_, _, f)| between(times[1], times[2], f) / secs);
+    let at = if bracketed.is_some() { 3 } else { 1 };
+    let in_time_e = bracketed_e.map(|(_, _, f)| between(times[at], times[at + 1], f) / secs);
+    let rhs_ns = series.then(|| times[times.len() - 1] * 1e6);
+    println!(
+        "{name:<18} {method:<9} {:<6} {:>7.0e} {:>10.2e} {:>10.2e} {:>8} {:>9.1} {:>6}",
+        kinks,
+        rtol,
+        ee,
+        et,
+        evals,
+        secs * 1e6,
+        steps
+    );
+    let _ = writeln!(
+        csv,
+        "{name},{method},{kinks},{rtol:e},{ee:e},{et:e},{evals},{:.3},{steps}",
+        secs * 1e6
+    );
+    Some(Row {
+        method: method.clone(),
+        kinks,
+        rtol,
+        err,
+        evals,
+        time_us: secs * 1e6,
+        rhs_ns,
+        in_time,
+        in_time_e,
+    })
+}
+
+/// A case's plots: error against RHS evaluations and against time.
+fn plots(out: &std::path::Path, name: &str, by_evals: &[Series], by_time: &[Series]) {
+    let error = Axis {
+        label: "max(|error in e|, |error in T_s|) (-)",
+        log: true,
+    };
+    let title = format!("{name}: error vs RHS evaluations");
+    let evals = Axis {
+        label: "RHS evaluations per case (summed over its speeds)",
+        log: true,
+    };
+    std::fs::write(
+        out.join(format!("{name}_evals.svg")),
+        chart(&title, evals, error, by_evals).unwrap(),
+    )
+    .unwrap();
+    let title = format!("{name}: error vs time");
+    let time = Axis {
+        label: "time per case (us, summed over its speeds)",
+        log: true,
+    };
+    std::fs::write(
+        out.join(format!("{name}_time.svg")),
+        chart(&title, time, error, by_time).unwrap(),
+    )
+    .unwrap();
+}
+
+/// The paper's setup in SciPy, on the SHCCM case (`refs`: its references).
+fn scipy_comparison(refs: &[(Option<f64>, Option<f64>)]) {
     let script = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scipy_cor.py");
     match std::process::Command::new("python3").arg(&script).output() {
         Ok(o) if o.status.success() => {
@@ -541,7 +589,6 @@ fn main() {
                 "{:<6} {:>9} {:>10} {:>10} {:>8} {:>10}",
                 "v0", "max_step", "err_e", "err_Ts", "nfev", "time_us"
             );
-            let refs = &cases[0].2;
             for (line, (e_ref, t_ref)) in String::from_utf8_lossy(&o.stdout)
                 .lines()
                 .zip(refs.iter().flat_map(|r| [r, r]))
@@ -567,5 +614,4 @@ fn main() {
         ),
         Err(_) => println!("\n# SciPy comparison skipped: python3 not found"),
     }
-    println!("\nwrote {}", out.display());
 }
