@@ -530,69 +530,25 @@ fn drop_files(
             row.value.to_string(),
             model,
         ])
-        .map_err(|source| CliError::Csv {
-            path: out.join(&name),
-            source,
-        })?;
+        .map_err(cerr)?;
     }
-    let mut series = Vec::new();
-    let (x, y, title) = match d.kind {
-        bwc_identify::DropKind::Intervals => {
-            let mut heights: Vec<f64> = d.rows.iter().map(|(row, _)| row.h0).collect();
-            heights.sort_by(f64::total_cmp);
-            heights.dedup();
-            for (i, h0) in heights.iter().enumerate() {
-                let rows: Vec<_> = d.rows.iter().filter(|(row, _)| row.h0 == *h0).collect();
-                series.push(Series {
-                    label: format!("measured, h0 = {h0} m"),
-                    points: rows
-                        .iter()
-                        .map(|(row, _)| (row.bounce_n as f64, row.value))
-                        .collect(),
-                    style: Style::Markers,
-                    color: i,
-                });
-                let mut model: Vec<(f64, f64)> = rows
-                    .iter()
-                    .map(|(row, m)| (row.bounce_n as f64, *m))
-                    .collect();
-                model.sort_by(|a, b| a.0.total_cmp(&b.0));
-                model.dedup_by(|a, b| a.0 == b.0);
-                series.push(Series {
-                    label: format!("{} fit, h0 = {h0} m", model_name(r.model)),
-                    points: model,
-                    style: Style::LineAndMarkers,
-                    color: i,
-                });
-            }
+    let (series, (x, y, title)) = match d.kind {
+        bwc_identify::DropKind::Intervals => (
+            interval_series(r, d),
             (
                 "bounce number n",
                 "interval from impact n to n + 1 (s)",
                 "bounce intervals",
-            )
-        }
-        bwc_identify::DropKind::Heights => {
-            series.push(Series {
-                label: "measured".into(),
-                points: d.rows.iter().map(|(row, _)| (row.h0, row.value)).collect(),
-                style: Style::Markers,
-                color: 3,
-            });
-            let mut model: Vec<(f64, f64)> = d.rows.iter().map(|(row, m)| (row.h0, *m)).collect();
-            model.sort_by(|a, b| a.0.total_cmp(&b.0));
-            model.dedup_by(|a, b| a.0 == b.0);
-            series.push(Series {
-                label: format!("{} fit", model_name(r.model)),
-                points: model,
-                style: Style::LineAndMarkers,
-                color: 0,
-            });
+            ),
+        ),
+        bwc_identify::DropKind::Heights => (
+            height_series(r, d),
             (
                 "release height h0 (m)",
                 "rebound height h1 (m)",
                 "rebound heights",
-            )
-        }
+            ),
+        ),
     };
     let svg_name = format!("{stem}_drops.svg");
     let svg = plot::chart(
@@ -602,6 +558,60 @@ fn drop_files(
         &series,
     );
     csv_and_chart(out, (name, w), svg_name, svg)
+}
+
+/// Measured bounce intervals against the bounce number, and the model's, per release height.
+fn interval_series(r: &FitReport, d: &super::DropOutcome) -> Vec<Series> {
+    let mut heights: Vec<f64> = d.rows.iter().map(|(row, _)| row.h0).collect();
+    heights.sort_by(f64::total_cmp);
+    heights.dedup();
+    let mut series = Vec::new();
+    for (i, h0) in heights.iter().enumerate() {
+        let rows: Vec<_> = d.rows.iter().filter(|(row, _)| row.h0 == *h0).collect();
+        series.push(Series {
+            label: format!("measured, h0 = {h0} m"),
+            points: rows
+                .iter()
+                .map(|(row, _)| (row.bounce_n as f64, row.value))
+                .collect(),
+            style: Style::Markers,
+            color: i,
+        });
+        let mut model: Vec<(f64, f64)> = rows
+            .iter()
+            .map(|(row, m)| (row.bounce_n as f64, *m))
+            .collect();
+        model.sort_by(|a, b| a.0.total_cmp(&b.0));
+        model.dedup_by(|a, b| a.0 == b.0);
+        series.push(Series {
+            label: format!("{} fit, h0 = {h0} m", model_name(r.model)),
+            points: model,
+            style: Style::LineAndMarkers,
+            color: i,
+        });
+    }
+    series
+}
+
+/// Measured rebound heights against the release height, and the model's.
+fn height_series(r: &FitReport, d: &super::DropOutcome) -> Vec<Series> {
+    let mut model: Vec<(f64, f64)> = d.rows.iter().map(|(row, m)| (row.h0, *m)).collect();
+    model.sort_by(|a, b| a.0.total_cmp(&b.0));
+    model.dedup_by(|a, b| a.0 == b.0);
+    vec![
+        Series {
+            label: "measured".into(),
+            points: d.rows.iter().map(|(row, _)| (row.h0, row.value)).collect(),
+            style: Style::Markers,
+            color: 3,
+        },
+        Series {
+            label: format!("{} fit", model_name(r.model)),
+            points: model,
+            style: Style::LineAndMarkers,
+            color: 0,
+        },
+    ]
 }
 
 /// A CSV and its chart as output files; a drawing error names the chart's file.
