@@ -103,50 +103,28 @@ impl DropData {
                 ))
             }
         };
-        let h0_col = col("h0").expect("checked");
+        let columns = DropColumns {
+            h0: col("h0").expect("checked"),
+            value: (
+                value_col,
+                if kind == DropKind::Heights {
+                    "h1"
+                } else {
+                    "interval_s"
+                },
+            ),
+            bounce_n: n_col,
+        };
         let mut rows = Vec::new();
         for record in reader.records() {
             let record =
                 record.map_err(|e| err(e.position().map_or(0, |p| p.line()), e.to_string()))?;
             let line = record.position().map_or(0, |p| p.line());
-            let positive = |c: usize, name: &str| -> Result<f64, IdentifyError> {
-                let raw = record.get(c).unwrap_or("");
-                match raw.parse::<f64>() {
-                    Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
-                    _ => Err(err(
-                        line,
-                        format!("column `{name}`: {raw:?} is not admissible: a number > 0"),
-                    )),
-                }
-            };
-            let bounce_n = match n_col {
-                None => 1,
-                Some(c) => {
-                    let raw = record.get(c).unwrap_or("");
-                    match raw.parse::<usize>() {
-                        Ok(n) if n >= 1 => n,
-                        _ => {
-                            return Err(err(
-                                line,
-                                format!("column `bounce_n`: {raw:?} is not admissible: 1, 2, ..."),
-                            ))
-                        }
-                    }
-                }
-            };
-            rows.push(DropRow {
-                h0: positive(h0_col, "h0")?,
-                bounce_n,
-                value: positive(
-                    value_col,
-                    if kind == DropKind::Heights {
-                        "h1"
-                    } else {
-                        "interval_s"
-                    },
-                )?,
-                line,
-            });
+            rows.push(
+                columns
+                    .row(&record, line)
+                    .map_err(|message| err(line, message))?,
+            );
         }
         if rows.is_empty() {
             return Err(err(1, "no rows: nothing to fit".into()));
@@ -155,6 +133,49 @@ impl DropData {
             path: path.to_owned(),
             kind,
             rows,
+        })
+    }
+}
+
+/// The columns of a drop-test file: `h0`, the measured value (`h1` or `interval_s`) and, for
+/// intervals, `bounce_n`.
+struct DropColumns {
+    h0: usize,
+    value: (usize, &'static str),
+    bounce_n: Option<usize>,
+}
+
+impl DropColumns {
+    /// The row of `record` (at `line`); a message for a value that is not admissible.
+    fn row(&self, record: &csv::StringRecord, line: u64) -> Result<DropRow, String> {
+        let positive = |c: usize, name: &str| -> Result<f64, String> {
+            let raw = record.get(c).unwrap_or("");
+            match raw.parse::<f64>() {
+                Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+                _ => Err(format!(
+                    "column `{name}`: {raw:?} is not admissible: a number > 0"
+                )),
+            }
+        };
+        let bounce_n = match self.bounce_n {
+            None => 1,
+            Some(c) => {
+                let raw = record.get(c).unwrap_or("");
+                match raw.parse::<usize>() {
+                    Ok(n) if n >= 1 => n,
+                    _ => {
+                        return Err(format!(
+                            "column `bounce_n`: {raw:?} is not admissible: 1, 2, ..."
+                        ))
+                    }
+                }
+            }
+        };
+        Ok(DropRow {
+            h0: positive(self.h0, "h0")?,
+            bounce_n,
+            value: positive(self.value.0, self.value.1)?,
+            line,
         })
     }
 }
