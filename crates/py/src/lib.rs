@@ -7,6 +7,16 @@
 //! config (the Python side builds it from dicts) and are parsed as the TOML files would be.
 //!
 //! Errors reach Python once, as `bwc.BwcError` (a `ValueError`) with the CLI's message.
+//!
+//! Used from Python (`maturin build` in this folder, then `pip install` the wheel; the
+//! package's doctest runs this):
+//!
+//! ```text
+//! >>> import bwc
+//! >>> out = bwc.cor("shccm", {"B": 0, "Gamma": 0, "kappa": 0.5, "sigma": 0.5, "n": 1, "p": 1.5})
+//! >>> round(float(out["e"][0]), 12)   # Hunt-Crossley closed form: 0.748434931597
+//! 0.748434931597
+//! ```
 #![deny(missing_docs)]
 
 use bwc_cli::config::Config;

@@ -60,6 +60,14 @@ def ndbwshccm_e(B, Gamma, kappa, sigma, n, p):
     return sol.y_events[0][0][2]
 
 
+def test_the_package_docstring_example_runs():
+    """The example in the package's docstring (and in the native crate's docs) is what it says."""
+    import doctest
+
+    result = doctest.testmod(bwc, verbose=False)
+    assert result.attempted >= 2 and result.failed == 0, result
+
+
 def test_cor_meets_the_closed_forms():
     for sigma in (0.05, 0.5, 0.9):
         out = bwc.cor("shccm", {"B": 0, "Gamma": 0, "kappa": 0.3, "sigma": sigma, "n": 1.5, "p": 1.5})
