@@ -66,6 +66,20 @@ impl Draft {
     }
 }
 
+/// Whether `[fit.bounds]` or `[fit.fixed]` give an input scale (`U_b`, `T_b`: the last two of
+/// the quantities by name).
+fn scales_given(r: &RawFit) -> bool {
+    let bounds = r
+        .bounds
+        .as_ref()
+        .map(|b| b.get_ref().by_name()[6..].iter().any(|q| q.is_some()));
+    let fixed = r
+        .fixed
+        .as_ref()
+        .map(|b| b.get_ref().by_name()[6..].iter().any(|q| q.is_some()));
+    bounds.unwrap_or(false) || fixed.unwrap_or(false)
+}
+
 /// Parses `[[fit]]` number `index` (0-based); `dir` is the config's folder.
 pub(super) fn parse_fit(
     ctx: &Ctx,
@@ -92,17 +106,10 @@ pub(super) fn parse_fit(
     };
     // The input scales U_b, T_b matter under an input, for durations, with a known body, and
     // for drop tests where they are given.
-    let scales_given = r
-        .bounds
-        .as_ref()
-        .is_some_and(|b| b.get_ref().by_name()[6..].iter().any(|q| q.is_some()))
-        || r.fixed
-            .as_ref()
-            .is_some_and(|b| b.get_ref().by_name()[6..].iter().any(|q| q.is_some()));
     let uses_input_scales = !bw_models::input::Input::is_zero(&input)
         || weights.j2 > 0.0
         || known.is_some()
-        || (drop && scales_given);
+        || (drop && scales_given(r));
     let setup = drop
         .then(|| drop_setup(ctx, r, &t, uses_input_scales))
         .transpose()?;
@@ -128,6 +135,7 @@ pub(super) fn parse_fit(
         .map(|p| point(ctx, p, "params", &scales))
         .transpose()?;
     let (budget, seed) = optimizer(ctx, &r.optimizer, "[fit.optimizer]", index)?;
+    // The search runs at rtol 1e-8 unless [fit.solver] says otherwise.
     let search = Settings {
         rtol: 1e-8,
         atol: 1e-10,
