@@ -327,29 +327,36 @@ impl Solution {
             return None;
         }
         d = d.min(cap);
-        let at = |d: f64, c: &Lattice| shape.eval(c, &shape.powers(d));
+        let value = |c: &Lattice, w: &Powers| shape.eval(c, w).0;
         // The rate must stay away from zero over the step (a turning point of D).
-        let keeps_rate = |d: f64| at(0.5 * d, &self.rate).0 > 0.0 && at(d, &self.rate).0 > 0.0;
         let mut halvings = 0;
-        while !keeps_rate(d) {
+        let (mut at_d, mut at_half) = (shape.powers(d), shape.powers(0.5 * d));
+        while !(value(&self.rate, &at_half) > 0.0 && value(&self.rate, &at_d) > 0.0) {
             d *= 0.5;
             halvings += 1;
             if halvings > 3 {
                 return None;
             }
+            (at_d, at_half) = (at_half, shape.powers(0.5 * d));
         }
-        let separated_at = |d: f64| at(d, &self.f).0 <= 0.0 && at(d, &self.v).0 >= 0.0;
+        let separated_at = |w: &Powers| value(&self.f, w) <= 0.0 && value(&self.v, w) >= 0.0;
         let start = class(self.f[0][0]);
-        let separated = start > 0 && (separated_at(0.5 * d) || separated_at(d));
+        let (half_separated, end_separated) = if start > 0 {
+            (separated_at(&at_half), separated_at(&at_d))
+        } else {
+            (false, false)
+        };
+        let separated = half_separated || end_separated;
         if separated {
-            let upto = if separated_at(0.5 * d) { 0.5 * d } else { d };
-            d = root(|x| at(x, &self.f), upto, start);
+            let upto = if half_separated { 0.5 * d } else { d };
+            d = root(|x| shape.eval(&self.f, &shape.powers(x)), upto, start);
+            at_d = shape.powers(d);
         }
         let end = Crossing {
             d,
-            dt: at(d, &self.t).0,
-            v: at(d, &self.v).0,
-            dr: at(d, &self.r).0,
+            dt: value(&self.t, &at_d),
+            v: value(&self.v, &at_d),
+            dr: value(&self.r, &at_d),
             separated,
         };
         // Overflowing coefficients (a rate near zero at the root) decline the step.
