@@ -1,7 +1,7 @@
 //! `[[loop_fit]]` tables: contact laws fitted to measured hysteresis loops.
 
 use super::{optimizer, param_of, Pair, RawOptimizer};
-use crate::tables::{model_kind, span, Ctx, Num};
+use crate::tables::{contact_law, model_kind, span, Ctx, Num};
 use crate::CliError;
 use bw_models::ModelKind;
 use bwc_identify::{Budget, IdentifyError, LawSpace, Param, LAW_NAMES};
@@ -255,33 +255,9 @@ fn law_to_evaluate(
     p: &Spanned<RawLaw<Num>>,
     kind: ModelKind,
 ) -> Result<bw_models::Physical, CliError> {
-    let s = p.span();
     let q = p.get_ref();
-    let key = |k: &str| format!("[loop_fit.params].{k}");
-    let law = bw_models::Physical {
-        k: ctx.req(&q.k, &s, &key("k"))?,
-        c: ctx.req(&q.c, &s, &key("c"))?,
-        n: ctx.req(&q.n, &s, &key("n"))?,
-        p: ctx.req(&q.p, &s, &key("p"))?,
-        alpha: ctx.req(&q.alpha, &s, &key("alpha"))?,
-        beta: ctx.req(&q.beta, &s, &key("beta"))?,
-        gamma: ctx.req(&q.gamma, &s, &key("gamma"))?,
-        a: ctx.req(&q.a, &s, &key("A"))?,
-    };
-    bw_models::PhysicalParams::new(kind, law).map_err(|e| {
-        let span_of = |n: &str| match n {
-            "k" => span(&q.k),
-            "c" => span(&q.c),
-            "n" => span(&q.n),
-            "p" => span(&q.p),
-            "alpha" => span(&q.alpha),
-            "beta" => span(&q.beta),
-            "gamma" => span(&q.gamma),
-            "A" => span(&q.a),
-            _ => None,
-        };
-        ctx.model_error(e, "[loop_fit.params]", span_of, &s)
-    })?;
+    let fields = [&q.k, &q.c, &q.n, &q.p, &q.alpha, &q.beta, &q.gamma, &q.a];
+    let (law, _) = contact_law(ctx, "[loop_fit.params]", &p.span(), fields, kind)?;
     Ok(law)
 }
 

@@ -19,15 +19,16 @@ pub(crate) mod describe;
 pub(crate) mod raw;
 mod sequence;
 
-use crate::tables::{model_kind, read_text, signal, solver_settings, span, syntax_error, Ctx};
+use crate::tables::{
+    contact_law, model_kind, read_text, signal, solver_settings, span, syntax_error, Ctx,
+};
 use bodies::bodies;
 pub use sequence::SequenceSpec;
 
 use crate::signal::Signal;
 use crate::CliError;
 use bw_models::{
-    BaseMap, BaseParams, Bodies, ModelKind, Nondim, NondimParams, Physical, PhysicalParams,
-    Settings,
+    BaseMap, BaseParams, Bodies, ModelKind, Nondim, NondimParams, PhysicalParams, Settings,
 };
 use raw::{RawBase, RawNondim, RawPhysical, RawScene, SeqOrMap};
 use std::ops::Range;
@@ -316,30 +317,8 @@ fn physical_system(
 ) -> Result<SystemSpec, CliError> {
     let t = phys.span();
     let r = phys.get_ref();
-    let law = Physical {
-        k: ctx.req(&r.k, &t, "[physical].k")?,
-        c: ctx.req(&r.c, &t, "[physical].c")?,
-        n: ctx.req(&r.n, &t, "[physical].n")?,
-        p: ctx.req(&r.p, &t, "[physical].p")?,
-        alpha: ctx.req(&r.alpha, &t, "[physical].alpha")?,
-        beta: ctx.req(&r.beta, &t, "[physical].beta")?,
-        gamma: ctx.req(&r.gamma, &t, "[physical].gamma")?,
-        a: ctx.req(&r.a, &t, "[physical].A")?,
-    };
-    let span_of = |name: &str| match name {
-        "k" => span(&r.k),
-        "c" => span(&r.c),
-        "n" => span(&r.n),
-        "p" => span(&r.p),
-        "alpha" => span(&r.alpha),
-        "beta" => span(&r.beta),
-        "gamma" => span(&r.gamma),
-        "A" => span(&r.a),
-        "m" => span(&r.m),
-        _ => None,
-    };
-    let params = PhysicalParams::new(kind, law)
-        .map_err(|e| ctx.model_error(e, "[physical]", span_of, &t))?;
+    let fields = [&r.k, &r.c, &r.n, &r.p, &r.alpha, &r.beta, &r.gamma, &r.a];
+    let (_, params) = contact_law(ctx, "[physical]", &t, fields, kind)?;
     let system = match &raw.bodies {
         None => {
             let m = ctx.req(&r.m, &t, "[physical].m")?;

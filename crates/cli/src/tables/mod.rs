@@ -9,7 +9,7 @@ pub(crate) use input::{signal, RawInput};
 pub(crate) use solver::{solver_settings, RawSolver};
 
 use crate::CliError;
-use bw_models::{ModelError, ModelKind};
+use bw_models::{ModelError, ModelKind, Physical, PhysicalParams};
 use std::ops::Range;
 use std::path::Path;
 use toml::Spanned;
@@ -97,6 +97,42 @@ impl Ctx<'_> {
             other => self.invalid(fallback, table.to_string(), other.to_string()),
         }
     }
+}
+
+/// The contact law of `table` (spanning `span`) for the model `kind`, from its keys `k`, `c`,
+/// `n`, `p`, `alpha`, `beta`, `gamma` and `A` (`fields`, in that order), validated: an error
+/// names the key of a missing or inadmissible value.
+pub(crate) fn contact_law(
+    ctx: &Ctx,
+    table: &str,
+    span: &Range<usize>,
+    fields: [&Option<Num>; 8],
+    kind: ModelKind,
+) -> Result<(Physical, PhysicalParams), CliError> {
+    const KEYS: [&str; 8] = ["k", "c", "n", "p", "alpha", "beta", "gamma", "A"];
+    let mut values = [0.0; 8];
+    for ((value, field), key) in values.iter_mut().zip(fields).zip(KEYS) {
+        *value = ctx.req(field, span, &format!("{table}.{key}"))?;
+    }
+    let [k, c, n, p, alpha, beta, gamma, a] = values;
+    let law = Physical {
+        k,
+        c,
+        n,
+        p,
+        alpha,
+        beta,
+        gamma,
+        a,
+    };
+    let span_of = |name: &str| {
+        KEYS.iter()
+            .position(|k| *k == name)
+            .and_then(|i| self::span(fields[i]))
+    };
+    let params =
+        PhysicalParams::new(kind, law).map_err(|e| ctx.model_error(e, table, span_of, span))?;
+    Ok((law, params))
 }
 
 /// The text of an input file.
