@@ -555,26 +555,26 @@ fn plots(out: &std::path::Path, name: &str, by_evals: &[Series], by_time: &[Seri
         label: "max(|error in e|, |error in T_s|) (-)",
         log: true,
     };
-    let title = format!("{name}: error vs RHS evaluations");
-    let evals = Axis {
-        label: "RHS evaluations per case (summed over its speeds)",
-        log: true,
-    };
-    std::fs::write(
-        out.join(format!("{name}_evals.svg")),
-        chart(&title, evals, error, by_evals).unwrap(),
-    )
-    .unwrap();
-    let title = format!("{name}: error vs time");
-    let time = Axis {
-        label: "time per case (us, summed over its speeds)",
-        log: true,
-    };
-    std::fs::write(
-        out.join(format!("{name}_time.svg")),
-        chart(&title, time, error, by_time).unwrap(),
-    )
-    .unwrap();
+    let charts = [
+        (
+            "evals",
+            "RHS evaluations",
+            "RHS evaluations per case (summed over its speeds)",
+            by_evals,
+        ),
+        (
+            "time",
+            "time",
+            "time per case (us, summed over its speeds)",
+            by_time,
+        ),
+    ];
+    for (suffix, what, label, series) in charts {
+        let title = format!("{name}: error vs {what}");
+        let x = Axis { label, log: true };
+        let svg = chart(&title, x, error, series).unwrap();
+        std::fs::write(out.join(format!("{name}_{suffix}.svg")), svg).unwrap();
+    }
 }
 
 /// The paper's setup in SciPy, on the SHCCM case (`refs`: its references).

@@ -341,12 +341,8 @@ impl Solution {
         }
         let separated_at = |w: &Powers| value(&self.f, w) <= 0.0 && value(&self.v, w) >= 0.0;
         let start = class(self.f[0][0]);
-        let (half_separated, end_separated) = if start > 0 {
-            (separated_at(&at_half), separated_at(&at_d))
-        } else {
-            (false, false)
-        };
-        let separated = half_separated || end_separated;
+        let half_separated = start > 0 && separated_at(&at_half);
+        let separated = half_separated || (start > 0 && separated_at(&at_d));
         if separated {
             let upto = if half_separated { 0.5 * d } else { d };
             d = root(|x| shape.eval(&self.f, &shape.powers(x)), upto, start);

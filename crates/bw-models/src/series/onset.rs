@@ -87,9 +87,9 @@ mod tests {
         *it.y()
     }
 
-    /// Over exponents from 1 to 6, hysteresis brackets `c = B + Γ` from 1e-3 to 80, damping and inputs, both
-    /// models: the leading terms are within the tolerance they were sized for of the
-    /// Runge-Kutta path at rtol 1e-14, at tolerances from 1e-6 to 1e-12.
+    /// Over exponents from 1 to 6, hysteresis brackets `c = B + Γ` from 1e-3 to 80, damping
+    /// and inputs, both models: the leading terms are within the tolerance they were sized for
+    /// of the Runge-Kutta path at rtol 1e-14, at tolerances from 1e-6 to 1e-12.
     #[test]
     fn the_leading_terms_meet_the_runge_kutta_path_within_the_tolerance() {
         for (p, n) in [(1.0, 1.0), (1.2, 4.0), (2.6, 2.9), (4.0, 1.1), (6.0, 6.0)] {

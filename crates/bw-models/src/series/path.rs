@@ -16,7 +16,8 @@ use bwc_ode::Stats;
 /// Whether the root at `a.0` of the function `watch[a.1]` comes before the root at `b.0` of
 /// `watch[b.1]`. Roots within a few ulps of each other are a tie: a zero of a base (set exactly
 /// to zero) comes before a root of the force, which can vanish with it and is then flat there
-/// (its run onto the root would stop short); other ties go to the function listed first.
+/// (its run onto the root would stop short); between other functions the smaller root wins,
+/// and of two equal roots that of the function listed first.
 fn earlier(watch: &[Watched; 5], a: (f64, usize), b: (f64, usize)) -> bool {
     let tie = (a.0 - b.0).abs() <= 8.0 * f64::EPSILON * a.0.abs().max(b.0.abs());
     if !tie {
@@ -43,6 +44,14 @@ enum Event {
 
 /// An event function of a step: which, its class at the step's start, whether it is watched.
 type Watched = (Event, i8, bool);
+
+/// Whether a watched function has left its class at the step's start, by its values `at`.
+fn changed(watch: &[Watched; 5], at: &[f64; 5]) -> bool {
+    watch
+        .iter()
+        .zip(at)
+        .any(|(&(_, start, on), v)| on && class(*v) != start)
+}
 
 /// The state of the walk.
 pub(super) struct SeriesPath<'a, M, const N: usize> {
@@ -360,17 +369,11 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             .min(MAX_GROWTH * self.h_log)
             .min(limit);
         let watch = self.watch(force, velocity, tol);
-        let changed = |at: &[f64; 5]| {
-            watch
-                .iter()
-                .zip(at)
-                .any(|(&(_, start, on), v)| on && class(*v) != start)
-        };
         let (mut end, mut at_end) = self.values(h, tol);
-        if changed(&at_end) {
+        if changed(&watch, &at_end) {
             self.anchor = None;
             let (mid, at_mid) = self.values(0.5 * h, tol);
-            if changed(&at_mid) {
+            if changed(&watch, &at_mid) {
                 return Err((force, velocity));
             }
             (h, end, at_end) = (0.5 * h, mid, at_mid);
@@ -456,15 +459,9 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
     /// step). The function whose root ends the search is not searched again: its iteration
     /// would start on that root and return it. Ties are decided by [`earlier`].
     fn earliest_event(&self, h: f64, tol: f64, watch: &[Watched; 5]) -> Ahead<N> {
-        let changed = |at: &[f64; 5]| {
-            watch
-                .iter()
-                .zip(at)
-                .any(|(&(_, start, on), v)| on && class(*v) != start)
-        };
         let (end, at_end) = self.values(h, tol);
         let (_, at_mid) = self.values(0.5 * h, tol);
-        let (mut upto, mut at) = if changed(&at_mid) {
+        let (mut upto, mut at) = if changed(watch, &at_mid) {
             (0.5 * h, at_mid)
         } else {
             (h, at_end)
