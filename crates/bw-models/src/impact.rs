@@ -268,15 +268,28 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
         check("dt", dt, dt > 0.0, "grid spacing dt > 0")?;
     }
     sink(0.0, &model.initial_state());
-    // Where the series hand over, the Runge-Kutta path starts from their state with their work.
-    let (t0, y0, done, series_steps) = match series_phase(model, settings, sampling) {
-        Err(finished) => {
-            if let Some(t) = finished.t_s {
-                sink(t, &finished.state);
+    // The Taylor-series path where the settings and the sampling allow it; where the series
+    // hand over, the Runge-Kutta path starts from their state with their work.
+    let series = sampling == Sampling::None
+        && settings.series
+        && settings.stiffness != Stiffness::Rosenbrock;
+    let run = series
+        .then(|| model.series_impact(crate::series::Private(()), settings))
+        .flatten();
+    let (t0, y0, done, series_steps) = match run {
+        Some(SeriesRun::Done(out)) => {
+            if let Some(t) = out.t_s {
+                sink(t, &out.state);
             }
-            return Ok(finished);
+            return Ok(out);
         }
-        Ok(start) => start,
+        Some(SeriesRun::HandOver {
+            t,
+            state,
+            stats,
+            series_steps,
+        }) => (t, state, stats, series_steps),
+        None => (0.0, model.initial_state(), Stats::default(), 0),
     };
     let mut it = runge_kutta(model, settings, t0, y0)?;
     // The impact at the solver's state: separated at `t_s`, settled, or at the horizon.
@@ -333,33 +346,6 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
         }
     }
     Ok(finish(&it, None, *it.y(), None))
-}
-
-/// The impact by the Taylor-series path where the settings and the sampling allow it: `Err`
-/// with the finished impact, else `Ok` with where the Runge-Kutta path starts (time, state, the
-/// series' statistics and steps; contact and nothing done where the series did not run).
-fn series_phase<M: CollisionModel<N>, const N: usize>(
-    model: &M,
-    settings: &Settings,
-    sampling: Sampling,
-) -> Result<(f64, State<N>, Stats, u64), Impact<N>> {
-    let contact = (0.0, model.initial_state(), Stats::default(), 0);
-    let allowed = sampling == Sampling::None
-        && settings.series
-        && settings.stiffness != Stiffness::Rosenbrock;
-    if !allowed {
-        return Ok(contact);
-    }
-    match model.series_impact(crate::series::Private(()), settings) {
-        Some(SeriesRun::Done(out)) => Err(out),
-        Some(SeriesRun::HandOver {
-            t,
-            state,
-            stats,
-            series_steps,
-        }) => Ok((t, state, stats, series_steps)),
-        None => Ok(contact),
-    }
 }
 
 /// The Runge-Kutta solver of the settings from `(t0, y0)`, in the model's units.
