@@ -1,6 +1,7 @@
 """Python-side benchmarks (BENCHMARKS.md, "Python and Dask"): the overhead of bwc.cor against
 the same sweep in Rust on one thread each, and the Dask speed-up from 1 to 2 workers on a CoR
-sweep of 10^6 impacts and on a batch of fits.
+sweep of 10^6 impacts and on a batch of fits. Every speed is simulated (`[sweep] interpolate =
+false`): these measure the cost of simulations, not of a sweep served by interpolants.
 
     python3 benches/py_bench.py target/release/sweep-time     # from the repository root
 """
@@ -18,12 +19,13 @@ import numpy as np
 import bwc
 import bwc.dask
 
+EVERY_SPEED = {"interpolate": False}
 DSS1 = {"B_b": 2.38, "Gamma_b": -2.38, "kappa": 0.677, "sigma_b": 0.0348, "n": 2.93, "p": 2.62}
 
 
 def overhead(sweep_time):
     v0 = np.linspace(0.1, 6.0, 20000)
-    scene = "model = \"shccm\"\nv0 = %s\n[base]\n%s\n" % (
+    scene = "model = \"shccm\"\nv0 = %s\n[sweep]\ninterpolate = false\n[base]\n%s\n" % (
         json.dumps(v0.tolist()),
         "\n".join("%s = %r" % kv for kv in DSS1.items()),
     )
@@ -34,7 +36,7 @@ def overhead(sweep_time):
         out = subprocess.run([sweep_time, f.name, "1"], check=True, capture_output=True, text=True).stdout
         rust.append(float(out.split("median ")[1].split(" s")[0]))
         clock = time.perf_counter()
-        bwc.cor("shccm", DSS1, v0, threads=1)
+        bwc.cor("shccm", DSS1, v0, sweep=EVERY_SPEED, threads=1)
         python.append(time.perf_counter() - clock)
     os.unlink(f.name)
     r, p = statistics.median(rust), statistics.median(python)
@@ -55,7 +57,7 @@ def dask_speedup():
             with Client(cluster) as client:
                 client.run(lambda: bwc.cor("shccm", DSS1, [1.0]))  # warm the workers
                 clock = time.perf_counter()
-                sweeps = bwc.dask.cor_sweep("shccm", params_list, v0, client)
+                sweeps = bwc.dask.cor_sweep("shccm", params_list, v0, client, sweep=EVERY_SPEED)
                 sweep_s = time.perf_counter() - clock
                 clock = time.perf_counter()
                 bwc.dask.identify_many(configs, client, seeds=seeds)

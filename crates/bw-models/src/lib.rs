@@ -45,6 +45,7 @@ mod scaling;
 mod separation;
 pub mod sequence;
 mod series;
+pub mod sweep;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use impact::{impact, simulate, Cor, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES};

@@ -2,6 +2,7 @@
 
 use crate::scene::{Scene, System, SystemSpec};
 use bw_models::input::{Constant, Input, Scaled};
+use bw_models::sweep::{self, Row, SweepSettings, Values};
 use bw_models::{
     impact, nondimensionalize, simulate as sim, BodyMotion, Bwmcm, Bwshccm, CollisionModel, Cor,
     ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Nondim, NondimParams, PhysicalParams, Sampling,
@@ -9,6 +10,8 @@ use bw_models::{
 };
 use bwc_ode::Stats;
 use rayon::prelude::*;
+use std::collections::HashMap;
+use std::sync::Mutex;
 
 /// One simulated impact.
 #[derive(Debug, Clone, PartialEq)]
@@ -49,6 +52,22 @@ pub struct Run {
     pub trajectory: Vec<Sample>,
     /// The contacts of a `[sequence]` scene with the displacement (m) at each separation.
     pub bounces: Vec<crate::bounces::Bounced>,
+    /// For a run of a sweep served by an interpolant (`[sweep] interpolate`): which one; its
+    /// solver statistics are then zero. `None` for a simulated run.
+    pub interpolation: Option<Interpolation>,
+}
+
+/// The interpolant a run's `e` and `t_s` came from (`bw_models::sweep`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Interpolation {
+    /// Error estimate: absolute in `e`, relative to the piece's largest `|t_s|` in `t_s`.
+    pub estimate: f64,
+    /// Degree of the Chebyshev interpolant in `ln v0`.
+    pub degree: usize,
+    /// The speeds (m/s) its piece spans.
+    pub from: f64,
+    /// See `from`.
+    pub to: f64,
 }
 
 /// How a run ended.
@@ -129,6 +148,7 @@ impl Run {
             series_steps: 0,
             trajectory: Vec::new(),
             bounces: Vec::new(),
+            interpolation: None,
         }
     }
 
@@ -147,13 +167,32 @@ impl Run {
 
 /// Runs every impact of `scene` on the current rayon pool, calling `progress` after each. Each
 /// run stands alone: one that fails is returned with [`Outcome::Failed`] and its error, and the
-/// others are unaffected.
+/// others are unaffected. The speeds of a sweep are served by verified interpolants where that
+/// saves simulations (`[sweep] interpolate`, see [`Run::interpolation`]).
 pub fn run(scene: &Scene, progress: Option<&(dyn Fn() + Sync)>) -> Vec<Run> {
     if let Some(seq) = &scene.sequence {
         return scene
             .systems
             .iter()
             .map(|s| crate::bounces::run(s, seq, &scene.settings))
+            .collect();
+    }
+    let sampling = (scene.output.trajectory || scene.output.loops).then(|| {
+        scene
+            .output
+            .dt
+            .map_or(Sampling::Steps, |dt| Sampling::Grid { dt })
+    });
+    let tick = || {
+        if let Some(p) = progress {
+            p();
+        }
+    };
+    if scene.sweep.interpolate && sampling.is_none() && !scene.speeds.is_empty() {
+        return scene
+            .systems
+            .iter()
+            .flat_map(|spec| interpolated(spec, scene, &tick))
             .collect();
     }
     let speeds: Vec<Option<f64>> = if scene.speeds.is_empty() {
@@ -166,22 +205,104 @@ pub fn run(scene: &Scene, progress: Option<&(dyn Fn() + Sync)>) -> Vec<Run> {
         .iter()
         .flat_map(|s| speeds.iter().map(move |&v| (s, v)))
         .collect();
-    let sampling = (scene.output.trajectory || scene.output.loops).then(|| {
-        scene
-            .output
-            .dt
-            .map_or(Sampling::Steps, |dt| Sampling::Grid { dt })
-    });
     jobs.par_iter()
         .map(|&(spec, v0)| {
-            let run = run_one(spec, v0, &scene.settings, sampling)
-                .unwrap_or_else(|e| failed(spec, v0, &e, &scene.settings));
-            if let Some(p) = progress {
-                p();
-            }
+            let run = simulated(spec, v0, &scene.settings, sampling);
+            tick();
             run
         })
         .collect()
+}
+
+/// The run of `spec` at `v0`, failed or not.
+fn simulated(
+    spec: &SystemSpec,
+    v0: Option<f64>,
+    settings: &Settings,
+    sampling: Option<Sampling>,
+) -> Run {
+    run_one(spec, v0, settings, sampling).unwrap_or_else(|e| failed(spec, v0, &e, settings))
+}
+
+/// The runs of `spec` at the scene's speeds: simulated at the points and checks of
+/// [`sweep::plan`] (kept where they are speeds of the sweep) and wherever it says so,
+/// interpolated elsewhere.
+fn interpolated(spec: &SystemSpec, scene: &Scene, tick: &(dyn Fn() + Sync)) -> Vec<Run> {
+    let settings = &scene.settings;
+    let tolerance = scene.sweep.tolerance;
+    let done: Mutex<HashMap<u64, Run>> = Mutex::new(HashMap::new());
+    let plan = sweep::plan(&scene.speeds, &SweepSettings { tolerance }, |batch| {
+        let runs: Vec<Run> = batch
+            .par_iter()
+            .map(|&v| simulated(spec, Some(v), settings, None))
+            .collect();
+        let values = runs.iter().map(smooth_values).collect();
+        let mut done = done.lock().expect("no panic while held");
+        done.extend(batch.iter().map(|v| v.to_bits()).zip(runs));
+        values
+    });
+    let done = done.into_inner().expect("no panic while held");
+    scene
+        .speeds
+        .par_iter()
+        .zip(&plan.rows)
+        .map(|(&v, row)| {
+            let run = match *row {
+                Row::Interpolated {
+                    values,
+                    estimate,
+                    piece,
+                } => {
+                    let p = &plan.pieces[piece];
+                    let how = Interpolation {
+                        estimate,
+                        degree: p.degree,
+                        from: p.from,
+                        to: p.to,
+                    };
+                    from_interpolant(spec, v, values, how, settings)
+                }
+                Row::Simulate => match done.get(&v.to_bits()) {
+                    Some(r) => r.clone(),
+                    None => simulated(spec, Some(v), settings, None),
+                },
+            };
+            tick();
+            run
+        })
+        .collect()
+}
+
+/// `[e, t_s]` of a separated run, the values a sweep interpolates.
+fn smooth_values(r: &Run) -> Option<Values> {
+    match (r.outcome, r.t_s) {
+        (Outcome::Separated, Some(t_s)) if r.e.is_finite() => Some([r.e, t_s]),
+        _ => None,
+    }
+}
+
+/// The record of `spec` at `v0` with `[e, t_s]` from an interpolant: separated, its scales
+/// computed at `v0`, its solver statistics zero.
+fn from_interpolant(
+    spec: &SystemSpec,
+    v0: f64,
+    [e, t_s]: Values,
+    how: Interpolation,
+    settings: &Settings,
+) -> Run {
+    let scaling = match scaling(spec, Some(v0)) {
+        Ok(s) => s,
+        Err(error) => return failed(spec, Some(v0), &error, settings),
+    };
+    let mut run = Run::new(spec, Some(v0), time_unit(spec));
+    run.e = e;
+    run.t_s = Some(t_s);
+    run.t_d = (run.time_unit == "s").then_some(t_s);
+    run.outcome = Outcome::Separated;
+    run.t_c = scaling.t_c;
+    run.nondimensional = Some(scaling.nondimensional);
+    run.interpolation = Some(how);
+    run
 }
 
 /// The record of a run that failed with `error`.
@@ -352,6 +473,7 @@ fn record(
         series_steps: impact.series_steps,
         trajectory,
         bounces: Vec::new(),
+        interpolation: None,
     }
 }
 

@@ -73,7 +73,8 @@ const OUTCOMES: [&str; 4] = ["separated", "settled", "horizon", "failed"];
 
 /// `bwc.cor`: one impact per speed (or the one nondimensional impact) of the scene given as
 /// JSON text; a dict of numpy arrays `e`, `t_s`, `t_d` (NaN where absent), `separated`,
-/// `rhs_evals` and `outcome` (codes into `"separated"`, `"settled"`, `"horizon"`, `"failed"`).
+/// `rhs_evals`, `interpolated` (whether `e` and `t_s` came from a sweep's interpolant) and
+/// `outcome` (codes into `"separated"`, `"settled"`, `"horizon"`, `"failed"`).
 #[pyfunction]
 #[pyo3(signature = (scene_json, threads=None))]
 fn cor<'py>(
@@ -110,6 +111,8 @@ fn cor<'py>(
     out.set_item("separated", PyArray1::from_vec(py, separated))?;
     let evals: Vec<u64> = runs.iter().map(|r| r.stats.rhs_evals).collect();
     out.set_item("rhs_evals", evals.into_pyarray(py))?;
+    let interpolated: Vec<bool> = runs.iter().map(|r| r.interpolation.is_some()).collect();
+    out.set_item("interpolated", PyArray1::from_vec(py, interpolated))?;
     // Codes into OUTCOMES (the Python side makes the string array without per-run objects).
     let code = |o: Outcome| OUTCOMES.iter().position(|n| *n == o.name()).unwrap_or(3) as u8;
     let outcome: Vec<u8> = runs.iter().map(|r| code(r.outcome)).collect();

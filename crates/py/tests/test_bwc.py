@@ -31,9 +31,9 @@ def cli(tool, *args):
 
 
 def hunt_crossley_e(sigma):
-    """e is the root in (0, 1) of sigma - ln(1 + sigma) = -sigma e - ln(1 - sigma e)."""
+    """e is the root in (0, min(1, 1/sigma)) of sigma - ln(1 + sigma) = -sigma e - ln(1 - sigma e)."""
     g = lambda e: sigma - math.log1p(sigma) + sigma * e + math.log1p(-sigma * e)
-    return brentq(g, 1e-12, 1 - 1e-12, xtol=1e-15)
+    return brentq(g, 1e-12, min(1.0, 1.0 / sigma) * (1 - 1e-12), xtol=1e-15)
 
 
 def ndbwshccm_e(B, Gamma, kappa, sigma, n, p):
@@ -79,6 +79,20 @@ def test_cor_meets_the_closed_forms():
         s_max = ((p + 1) / 2) ** (1 / (p + 1))
         t_s = 2 / (p + 1) * s_max * beta_fn(1 / (p + 1), 0.5)
         assert abs(out["e"][0] - 1) < 1e-10 and abs(out["t_s"][0] - t_s) < 1e-9 * t_s
+
+
+def test_a_long_sweep_is_interpolated_to_the_closed_form():
+    speeds = np.geomspace(0.1, 6.0, 500)
+    hc = {"B_b": 0, "Gamma_b": 0, "kappa": 0.5, "sigma_b": 0.3, "n": 1, "p": 1.5}
+    out = bwc.cor("shccm", hc, speeds)
+    want = np.array([hunt_crossley_e(0.3 * v) for v in speeds])
+    assert out["interpolated"].sum() >= 490
+    assert (out["rhs_evals"][out["interpolated"]] == 0).all()
+    assert np.abs(out["e"] - want).max() < 1e-12
+    every = bwc.cor("shccm", hc, speeds, sweep={"interpolate": False})
+    assert not every["interpolated"].any() and (every["rhs_evals"] > 0).all()
+    assert np.abs(out["e"] - every["e"]).max() < 2e-12
+    assert np.abs(out["t_s"] / every["t_s"] - 1).max() < 2e-12
 
 
 def test_cor_matches_an_independent_scipy_model():

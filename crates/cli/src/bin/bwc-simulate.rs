@@ -124,6 +124,21 @@ fn run(
 /// Says on stderr what is not a plain separation: failures with their reason, horizons with the
 /// setting that moves them, settled contacts with their force balance.
 fn report(scene: &Scene, runs: &[simulate::Run]) {
+    let interpolated: Vec<f64> = runs
+        .iter()
+        .filter_map(|r| r.interpolation.map(|i| i.estimate))
+        .collect();
+    if !interpolated.is_empty() {
+        eprintln!(
+            "bwc-simulate: {} of {} runs took e and t_s from interpolants in ln v0 verified \
+             against simulations (largest error estimate {:.1e}, [sweep].tolerance {:e}); \
+             [sweep] interpolate = false simulates every speed",
+            interpolated.len(),
+            runs.len(),
+            interpolated.iter().fold(0.0, |a: f64, &b| a.max(b)),
+            scene.sweep.tolerance
+        );
+    }
     let t_max = scene.settings.t_max;
     for r in runs {
         let label = match r.label().as_str() {
@@ -205,6 +220,10 @@ fn table(runs: &[simulate::Run]) {
         };
         let ts = r.t_s.map_or("-".to_string(), |t| format!("{t:.9e}"));
         let td = r.t_d.map_or("-".to_string(), |t| format!("{t:.6e}"));
+        let evals = match r.interpolation {
+            Some(_) => "interp.".to_string(),
+            None => r.stats.rhs_evals.to_string(),
+        };
         bwc_cli::out!(
             "{:<width$} {:>10} {:>12} {:>16} {:>14} {:>10}",
             label,
@@ -212,7 +231,7 @@ fn table(runs: &[simulate::Run]) {
             e,
             ts,
             td,
-            r.stats.rhs_evals
+            evals
         );
     }
 }

@@ -29,6 +29,9 @@ pub struct RunSummary {
     pub error: Option<String>,
     /// Located events.
     pub events: u64,
+    /// Where `e` and `t_s` came from an interpolant of the sweep (`"source": "interpolated"`):
+    /// its error estimate and piece; null for a simulated run.
+    pub interpolation: Option<InterpolationSummary>,
     /// Jacobian evaluations (RODAS4 steps).
     pub jacobians: u64,
     /// `"shccm"` or `"mcm"`.
@@ -49,6 +52,8 @@ pub struct RunSummary {
     pub separated: bool,
     /// Steps taken by Taylor series (0 on the Runge-Kutta path; counted in `accepted`).
     pub series_steps: u64,
+    /// `"simulated"`, or `"interpolated"` (then every count is 0: see `interpolation`).
+    pub source: &'static str,
     /// When the run switched to RODAS4 because it had become stiff (unit of `t_s`), or null.
     pub stiff_from: Option<f64>,
     /// Contact duration (s), null where no time scale exists.
@@ -59,6 +64,19 @@ pub struct RunSummary {
     pub time_unit: &'static str,
     /// Impact speed (m/s), null for nondimensional scenes.
     pub v0: Option<f64>,
+}
+
+/// The interpolant a run of a sweep came from (`bw_models::sweep`).
+#[derive(Debug, Serialize)]
+pub struct InterpolationSummary {
+    /// Degree of the Chebyshev interpolant in `ln v0`.
+    pub degree: usize,
+    /// Error estimate: absolute in `e`, relative to the piece's largest `|t_s|` in `t_s`.
+    pub estimate: f64,
+    /// Lowest speed of its piece (m/s).
+    pub from: f64,
+    /// Highest speed of its piece (m/s).
+    pub to: f64,
 }
 
 /// One contact of a sequence. Times in s (`t_contact` from release), speeds in m/s, heights in m.
@@ -164,6 +182,13 @@ impl Summary {
                     accepted: r.stats.accepted,
                     rejected: r.stats.rejected,
                     events: r.stats.events,
+                    interpolation: r.interpolation.map(|i| InterpolationSummary {
+                        degree: i.degree,
+                        estimate: i.estimate,
+                        from: i.from,
+                        to: i.to,
+                    }),
+                    source: source(r),
                     jacobians: r.stats.jacobians,
                     stiff_from: r.stiff_from,
                     series_steps: r.series_steps,
@@ -254,9 +279,10 @@ pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
         "runs": {"v0": "m/s", "e": "1", "t_s": t, "t_d": "s", "T_c": "s", "stiff_from": t,
             "rest": {"t": t, "x": m, "F": n, "u": n}, "nondimensional": "1",
             "rhs_evals": "count", "accepted": "count", "rejected": "count", "events": "count",
-            "jacobians": "count", "series_steps": "count"},
+            "jacobians": "count", "series_steps": "count", "source": "text",
+            "interpolation": {"degree": "count", "estimate": "1", "from": "m/s", "to": "m/s"}},
         "sweep.csv": {"v_0": "m/s", "e": "1", "t_d": "s", "t_s": t, "separated": "true/false",
-            "name": "text", "outcome": "text"},
+            "name": "text", "outcome": "text", "source": "text"},
         "trajectory.csv": {"v_0": "m/s", "name": "text", "t": t, "x": m, "v": ms, "u": n,
             "F": n, "z": m, "r": m, "y": m, "x_m_1": "m", "x_m_2": "m", "x_m": "m",
             "v_m_1": "m/s", "v_m_2": "m/s", "v_m": "m/s", "u_1": "N", "u_2": "N"},
@@ -347,7 +373,7 @@ fn sweep_csv(runs: &[Run], several_systems: bool) -> Result<Vec<u8>, csv::Error>
     if several_systems {
         header.push("name");
     }
-    header.push("outcome");
+    header.extend(["outcome", "source"]);
     w.write_record(&header)?;
     for r in runs {
         let mut rec = vec![
@@ -361,6 +387,7 @@ fn sweep_csv(runs: &[Run], several_systems: bool) -> Result<Vec<u8>, csv::Error>
             rec.push(r.name.clone().unwrap_or_default());
         }
         rec.push(r.outcome.name().to_string());
+        rec.push(source(r).to_string());
         w.write_record(&rec)?;
     }
     Ok(w.into_inner().expect("in-memory writer"))
@@ -465,6 +492,15 @@ fn bounces_csv(runs: &[Run]) -> Result<Vec<u8>, csv::Error> {
         ])?;
     }
     Ok(w.into_inner().expect("in-memory writer"))
+}
+
+/// `"interpolated"` for a run of a sweep served by an interpolant, else `"simulated"`.
+pub fn source(r: &Run) -> &'static str {
+    if r.interpolation.is_some() {
+        "interpolated"
+    } else {
+        "simulated"
+    }
 }
 
 fn opt(v: Option<f64>) -> String {

@@ -17,6 +17,7 @@ impl Scene {
             "solver": settings(&self.settings),
             "output": output(&self.output),
             "sequence": self.sequence.map(|q| sequence(&q)),
+            "sweep": {"interpolate": self.sweep.interpolate, "tolerance": self.sweep.tolerance},
         })
     }
 }

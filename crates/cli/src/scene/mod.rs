@@ -12,6 +12,7 @@
 //! [solver]                   # optional: method, rtol, atol, max_step, t_max, max_steps, stop_at_kinks,
 //!                            #   switch_when_stiff, series
 //! [output]                   # optional: trajectory, dt, loops, sweep, plots
+//! [sweep]                    # optional: interpolate (default true), tolerance (default rtol / 10)
 //! ```
 
 mod bodies;
@@ -50,6 +51,8 @@ pub struct Scene {
     pub output: OutputSpec,
     /// `[sequence]`: repeated impacts under gravity instead of one impact per speed.
     pub sequence: Option<SequenceSpec>,
+    /// `[sweep]`: whether many speeds may be served by interpolants.
+    pub sweep: SweepSpec,
 }
 
 /// One system of a scene.
@@ -115,6 +118,16 @@ pub struct OutputSpec {
     pub plots: bool,
 }
 
+/// `[sweep]`: how the speeds of a sweep are evaluated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SweepSpec {
+    /// Serve the speeds of a sweep from verified Chebyshev interpolants where that saves
+    /// simulations (`bw_models::sweep`); every speed is simulated when `false`.
+    pub interpolate: bool,
+    /// The largest admitted interpolation error: absolute in `e`, relative in `t_s`.
+    pub tolerance: f64,
+}
+
 impl Scene {
     /// Reads and validates a scene file.
     ///
@@ -169,11 +182,13 @@ impl Scene {
             })?;
             vec![physical_system(&ctx, &raw, phys, need_model()?)?]
         };
+        let settings = solver_settings(&ctx, &raw.solver, "[solver]", Settings::default())?;
         Ok(Scene {
             path: path.to_owned(),
             systems,
             speeds,
-            settings: solver_settings(&ctx, &raw.solver, "[solver]", Settings::default())?,
+            sweep: sweep(&ctx, &raw, &settings)?,
+            settings,
             output: output(&ctx, &raw)?,
             sequence,
         })
@@ -517,6 +532,35 @@ fn output(ctx: &Ctx, raw: &RawScene) -> Result<OutputSpec, CliError> {
         o.dt = Some(v);
     }
     Ok(o)
+}
+
+/// `[sweep]`, the tolerance by default a tenth of the solver's `rtol`.
+fn sweep(ctx: &Ctx, raw: &RawScene, settings: &Settings) -> Result<SweepSpec, CliError> {
+    let mut w = SweepSpec {
+        interpolate: true,
+        tolerance: settings.rtol / 10.0,
+    };
+    let Some(table) = &raw.sweep else {
+        return Ok(w);
+    };
+    let r = table.get_ref();
+    if let Some(i) = &r.interpolate {
+        w.interpolate = *i.get_ref();
+    }
+    if let Some(t) = &r.tolerance {
+        let v = ctx.num(t, "[sweep].tolerance")?;
+        if !(v > 0.0 && v < 1.0) {
+            return Err(ctx.invalid(
+                &t.span(),
+                "[sweep].tolerance",
+                format!(
+                    "{v} is not admissible: 0 < tolerance < 1 (absolute in e, relative in t_s)"
+                ),
+            ));
+        }
+        w.tolerance = v;
+    }
+    Ok(w)
 }
 
 #[cfg(test)]

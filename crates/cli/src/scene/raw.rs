@@ -88,6 +88,15 @@ pub struct RawScene {
     pub solver: Option<Spanned<RawSolver>>,
     pub output: Option<Spanned<RawOutput>>,
     pub sequence: Option<Spanned<RawSequence>>,
+    pub sweep: Option<Spanned<RawSweep>>,
+}
+
+/// `[sweep]`: how the speeds of a sweep are evaluated.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSweep {
+    pub interpolate: Option<Spanned<bool>>,
+    pub tolerance: Option<Num>,
 }
 
 /// `[sequence]`: repeated impacts of a body dropped on a fixed surface.

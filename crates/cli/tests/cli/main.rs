@@ -1,11 +1,13 @@
 //! The binaries run on good and bad scenes: `bwc-simulate` ([`simulate`]), `bwc-identify`
-//! ([`identify`]), impact sequences and drop tests ([`sequence`]), and arbitrary inputs
+//! ([`identify`]), impact sequences and drop tests ([`sequence`]), sweeps served by interpolants
+//! ([`sweep`]), and arbitrary inputs
 //! ([`fuzz`]).
 
 mod fuzz;
 mod identify;
 mod sequence;
 mod simulate;
+mod sweep;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

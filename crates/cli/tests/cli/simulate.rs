@@ -407,11 +407,11 @@ fn each_run_stands_alone_and_the_output_says_what_it_is() {
     assert_eq!(v["units"]["runs"]["T_c"], "s");
     let sweep_csv = std::fs::read_to_string(out_dir.join("sweep.csv")).unwrap();
     assert!(
-        sweep_csv.starts_with("v_0,e,t_d,t_s,separated,outcome\n"),
+        sweep_csv.starts_with("v_0,e,t_d,t_s,separated,outcome,source\n"),
         "{sweep_csv}"
     );
     assert!(
-        sweep_csv.contains("1000000000000,,,,false,failed"),
+        sweep_csv.contains("1000000000000,,,,false,failed,simulated"),
         "{sweep_csv}"
     );
     // The earlier run's trajectory is gone; the user's file stays.

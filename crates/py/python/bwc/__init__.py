@@ -58,21 +58,26 @@ def _plain(value):
     return value
 
 
-def cor(model, params, v0=None, *, input=None, solver=None, threads=None):
+def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=None):
     """Coefficient of restitution, separation time and duration at each impact speed.
 
     ``model`` is ``"shccm"`` or ``"mcm"``; ``params`` a dict whose keys say the description
     (nondimensional ``B, Gamma, kappa, sigma, n, p`` and optional ``U``; base ``B_b, Gamma_b,
     kappa, sigma_b, n, p`` with ``U_b, T_b``; physical ``m, k, c, n, p, alpha, beta, gamma, A``
     in SI units); ``v0`` a speed or an array of speeds in m/s (``None`` for a nondimensional
-    description, which starts at ``V = -1``); ``input`` and ``solver`` dicts as the scene's
-    ``[input]`` and ``[solver]`` tables.
+    description, which starts at ``V = -1``); ``input``, ``solver`` and ``sweep`` dicts as the
+    scene's ``[input]``, ``[solver]`` and ``[sweep]`` tables.
 
     Returns a dict of numpy arrays, one entry per speed: ``e`` (0 without separation),
     ``t_s`` (separation time: s, or nondimensional for nondimensional descriptions and base
     ones without ``T_b``; NaN without separation), ``t_d`` (contact duration in s, NaN where
-    there is no time scale), ``separated`` (bool), ``rhs_evals`` (int), ``outcome`` (strings
-    ``"separated"``, ``"settled"``, ``"horizon"``).
+    there is no time scale), ``separated`` (bool), ``rhs_evals`` (int), ``interpolated`` (bool),
+    ``outcome`` (strings ``"separated"``, ``"settled"``, ``"horizon"``).
+
+    Many speeds (from about 140 up) are served by Chebyshev interpolants in ``ln v0`` where
+    those are verified against simulations to ``sweep["tolerance"]`` (default a tenth of the
+    solver's ``rtol``: absolute in ``e``, relative in ``t_s``); ``interpolated`` marks those
+    speeds, whose ``rhs_evals`` are 0. ``sweep={"interpolate": False}`` simulates every speed.
 
     Raises ``BwcError`` (a ``ValueError``) for a bad description or a failed run, with the
     message the command-line tools give.
@@ -86,6 +91,8 @@ def cor(model, params, v0=None, *, input=None, solver=None, threads=None):
         scene["input"] = _plain(dict(input))
     if solver is not None:
         scene["solver"] = _plain(dict(solver))
+    if sweep is not None:
+        scene["sweep"] = _plain(dict(sweep))
     out = _cor(json.dumps(scene), threads)
     out["outcome"] = _OUTCOMES[out["outcome"]]
     return out

@@ -12,20 +12,22 @@ identical to local runs whatever the number of workers. Point ``client`` at any 
 import bwc
 
 
-def _cor_task(model, params, v0, input, solver):
-    return bwc.cor(model, params, v0, input=input, solver=solver, threads=1)
+def _cor_task(model, params, v0, input, solver, sweep):
+    return bwc.cor(model, params, v0, input=input, solver=solver, sweep=sweep, threads=1)
 
 
 def _identify_task(config, seed):
     return bwc.identify(config, seed=seed, threads=1)
 
 
-def cor_sweep(model, params_list, v0, client, *, input=None, solver=None):
+def cor_sweep(model, params_list, v0, client, *, input=None, solver=None, sweep=None):
     """``bwc.cor(model, params, v0)`` for every ``params`` of ``params_list``, one task each on
     ``client``; the list of result dicts in the order of ``params_list``."""
     params_list = list(params_list)
     n = len(params_list)
-    futures = client.map(_cor_task, [model] * n, params_list, [v0] * n, [input] * n, [solver] * n, pure=False)
+    futures = client.map(
+        _cor_task, [model] * n, params_list, [v0] * n, [input] * n, [solver] * n, [sweep] * n, pure=False
+    )
     return client.gather(futures)
 
 

@@ -1,0 +1,142 @@
+//! Sweeps of many speeds served by verified interpolants (`[sweep]`): against a closed form,
+//! against the simulations they replace, across a change of outcome, and bad `[sweep]` tables.
+
+use super::{json, scratch, simulate};
+
+/// A Hunt-Crossley contact (`B_b = Γ_b = 0`) at 400 log-spaced speeds, with `extra` appended.
+fn hunt_crossley(extra: &str) -> String {
+    format!(
+        "model = \"shccm\"\nv0 = {{ from = 0.1, to = 6.0, count = 400, spacing = \"log\" }}\n\
+         [base]\nB_b = 0.0\nGamma_b = 0.0\nkappa = 0.5\nsigma_b = 0.3\nn = 1.0\np = 1.5\n{extra}"
+    )
+}
+
+/// `e` of the Hunt-Crossley limit at `σ = σ_b v0`: the root of
+/// `-σe - ln(1 - σe) = σ - ln(1 + σ)` (energy balance of `V dV/dX = -X^p (1 + σV)`), by
+/// bisection (the left side increases in `e` on `[0, 1/σ)`).
+fn hunt_crossley_e(sigma: f64) -> f64 {
+    let target = sigma - sigma.ln_1p();
+    let (mut lo, mut hi) = (0.0, (1.0f64).min((1.0 - 1e-15) / sigma));
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if -sigma * mid - (-sigma * mid).ln_1p() < target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+fn runs_of(scene: &str, threads: &str) -> serde_json::Value {
+    let dir = scratch(&format!("sweep-{:x}-{threads}", scene.len()));
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, scene).unwrap();
+    json(&simulate(&[
+        "run",
+        path.to_str().unwrap(),
+        "--json",
+        "--threads",
+        threads,
+    ]))
+}
+
+#[test]
+fn a_long_sweep_is_interpolated_to_the_closed_form() {
+    let v = runs_of(&hunt_crossley(""), "2");
+    let runs = v["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 400);
+    assert_eq!(v["scene"]["sweep"]["tolerance"].as_f64(), Some(1e-12));
+    let mut interpolated = 0;
+    for r in runs {
+        let e = r["e"].as_f64().unwrap();
+        let want = hunt_crossley_e(0.3 * r["v0"].as_f64().unwrap());
+        assert!((e - want).abs() < 1e-12, "{r}: closed form {want}");
+        if r["source"] == "interpolated" {
+            interpolated += 1;
+            let i = &r["interpolation"];
+            assert!(i["estimate"].as_f64().unwrap() <= 1e-12, "{r}");
+            assert!(i["degree"].as_u64().unwrap() >= 16, "{r}");
+            assert_eq!(r["rhs_evals"], 0);
+            assert_eq!(r["outcome"], "separated");
+        } else {
+            assert_eq!(r["source"], "simulated");
+            assert!(r["interpolation"].is_null() && r["rhs_evals"].as_u64().unwrap() > 0);
+        }
+    }
+    assert!(interpolated >= 390, "{interpolated} of 400 interpolated");
+}
+
+#[test]
+fn interpolated_rows_are_the_simulations_they_replace_for_any_thread_count() {
+    let dss = "model = \"shccm\"\nv0 = { from = 0.1, to = 6.0, count = 300 }\n[base]\n\
+               B_b = 2.38\nGamma_b = -2.38\nkappa = 0.677\nsigma_b = 0.0348\nn = 2.93\n\
+               p = 2.62\n";
+    let (one, two) = (runs_of(dss, "1"), runs_of(dss, "2"));
+    assert_eq!(one["runs"], two["runs"]);
+    let all = runs_of(&format!("{dss}[sweep]\ninterpolate = false\n"), "2");
+    let (fast, slow) = (
+        one["runs"].as_array().unwrap(),
+        all["runs"].as_array().unwrap(),
+    );
+    assert!(slow.iter().all(|r| r["source"] == "simulated"));
+    let mut interpolated = 0;
+    for (f, s) in fast.iter().zip(slow) {
+        let de = (f["e"].as_f64().unwrap() - s["e"].as_f64().unwrap()).abs();
+        let t = s["t_s"].as_f64().unwrap();
+        let dt = (f["t_s"].as_f64().unwrap() - t).abs() / t;
+        // The tolerance (1e-12) plus the simulations' own errors (about 1e-13).
+        assert!(de < 2e-12 && dt < 2e-12, "{f}\n{s}");
+        assert_eq!(f["nondimensional"], s["nondimensional"]);
+        interpolated += usize::from(f["source"] == "interpolated");
+    }
+    assert!(interpolated > 200, "{interpolated}");
+}
+
+#[test]
+fn speeds_near_a_change_of_outcome_are_simulated() {
+    // Under a constant pull the contact settles below about 1.18 m/s and separates above.
+    let scene = "model = \"shccm\"\n\
+                 v0 = { from = 0.05, to = 3.0, count = 2000, spacing = \"log\" }\n[base]\n\
+                 B_b = 0.966\nGamma_b = -0.966\nkappa = 0.531\nsigma_b = 0.3\nn = 1.57\n\
+                 p = 1.75\nU_b = 1.0\nT_b = 1.0\n[input]\nkind = \"constant\"\nvalue = -0.5\n";
+    let v = runs_of(scene, "2");
+    let runs = v["runs"].as_array().unwrap();
+    let first = runs
+        .iter()
+        .position(|r| r["outcome"] == "separated")
+        .unwrap();
+    assert!(runs[first..].iter().all(|r| r["outcome"] == "separated"));
+    assert!(runs[..first]
+        .iter()
+        .all(|r| r["outcome"] == "settled" && r["source"] == "simulated"));
+    // The rows between the change and the first interpolant are simulated; many after it not
+    // (pieces need 136 speeds to pay for their points).
+    let interpolated = runs
+        .iter()
+        .filter(|r| r["source"] == "interpolated")
+        .count();
+    assert!(5 * interpolated > 2 * (runs.len() - first), "{interpolated}");
+    assert_eq!(runs[first]["source"], "simulated");
+}
+
+#[test]
+fn bad_sweep_tables_are_clear_errors() {
+    let dir = scratch("bad-sweep");
+    for (extra, want) in [
+        (
+            "[sweep]\ntolerance = 0.0\n",
+            "scene.toml:11: `[sweep].tolerance`: 0 is not admissible",
+        ),
+        ("[sweep]\ntolerance = 2.0\n", "0 < tolerance < 1"),
+        ("[sweep]\ninterpolate = 1\n", "interpolate"),
+        ("[sweep]\nfast = true\n", "unknown field `fast`"),
+    ] {
+        let path = dir.join("scene.toml");
+        std::fs::write(&path, hunt_crossley(extra)).unwrap();
+        let out = simulate(&["run", path.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{extra}: {err}");
+        assert!(err.contains(want), "{extra}: {err}");
+    }
+}
