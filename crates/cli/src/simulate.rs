@@ -188,30 +188,40 @@ pub fn run(scene: &Scene, progress: Option<&(dyn Fn() + Sync)>) -> Vec<Run> {
             p();
         }
     };
-    if scene.sweep.interpolate && sampling.is_none() && !scene.speeds.is_empty() {
-        return scene
-            .systems
-            .iter()
-            .flat_map(|spec| interpolated(spec, scene, &tick))
-            .collect();
-    }
     let speeds: Vec<Option<f64>> = if scene.speeds.is_empty() {
         vec![None]
     } else {
         scene.speeds.iter().copied().map(Some).collect()
     };
-    let jobs: Vec<(&SystemSpec, Option<f64>)> = scene
+    let interpolate = scene.sweep.interpolate && sampling.is_none() && !scene.speeds.is_empty();
+    scene
         .systems
         .iter()
-        .flat_map(|s| speeds.iter().map(move |&v| (s, v)))
-        .collect();
-    jobs.par_iter()
-        .map(|&(spec, v0)| {
-            let run = simulated(spec, v0, &scene.settings, sampling);
-            tick();
-            run
+        .flat_map(|spec| {
+            if interpolate && smooth_in_speed(spec) {
+                return interpolated(spec, scene, &tick);
+            }
+            speeds
+                .par_iter()
+                .map(|&v0| {
+                    let run = simulated(spec, v0, &scene.settings, sampling);
+                    tick();
+                    run
+                })
+                .collect()
         })
         .collect()
+}
+
+/// Whether a system's runs are smooth in the impact speed wherever the outcome holds: a
+/// `[base]` or `[physical]` system under a constant input. A time-varying input can make
+/// narrow windows of speeds end differently (a grazing contact, an input's peak), which
+/// points between them could miss, so its speeds are always simulated.
+fn smooth_in_speed(spec: &SystemSpec) -> bool {
+    match &spec.system {
+        System::Base { input, .. } | System::Physical { input, .. } => input.is_constant(),
+        System::Nondimensional { .. } | System::Bodies { .. } => false,
+    }
 }
 
 /// The run of `spec` at `v0`, failed or not.

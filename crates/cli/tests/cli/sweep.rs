@@ -116,8 +116,23 @@ fn speeds_near_a_change_of_outcome_are_simulated() {
         .iter()
         .filter(|r| r["source"] == "interpolated")
         .count();
-    assert!(5 * interpolated > 2 * (runs.len() - first), "{interpolated}");
+    assert!(
+        5 * interpolated > 2 * (runs.len() - first),
+        "{interpolated}"
+    );
     assert_eq!(runs[first]["source"], "simulated");
+}
+
+#[test]
+fn speeds_under_a_time_varying_input_are_all_simulated() {
+    let scene = hunt_crossley(
+        "U_b = 1.0\nT_b = 1.0\n[input]\nkind = \"arctan\"\nm = 1.0\nD = 0.3\nomega = 2.0\n",
+    );
+    let v = runs_of(&scene, "2");
+    let runs = v["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 400);
+    assert!(runs.iter().all(|r| r["source"] == "simulated"));
+    assert_eq!(v["scene"]["sweep"]["interpolate"], true);
 }
 
 #[test]
