@@ -251,6 +251,14 @@ fn unused_keys(
         };
         return Err(ctx.invalid(&v.span(), "v0", format!("not used here: {why}")));
     }
+    if let Some(w) = raw.sweep.as_ref().filter(|_| !uses_speeds || sequence) {
+        return Err(ctx.invalid(
+            &w.span(),
+            "[sweep]",
+            "not used here: it applies to a list of impact speeds v0 ([base] and [physical] \
+             scenes without [sequence])",
+        ));
+    }
     let own_inputs = raw.nondimensional.is_some() || raw.bodies.is_some();
     if let Some(i) = raw.input.as_ref().filter(|_| own_inputs) {
         let why = if raw.bodies.is_some() {

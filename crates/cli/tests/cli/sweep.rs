@@ -154,4 +154,13 @@ fn bad_sweep_tables_are_clear_errors() {
         assert_eq!(out.status.code(), Some(1), "{extra}: {err}");
         assert!(err.contains(want), "{extra}: {err}");
     }
+    // Where there is no list of speeds, [sweep] has nothing to do.
+    let nd = "model = \"shccm\"\n[nondimensional]\nB = 0.0\nGamma = 0.0\nkappa = 0.5\n\
+              sigma = 0.3\nn = 1.0\np = 1.5\n[sweep]\ninterpolate = false\n";
+    let path = dir.join("nd.toml");
+    std::fs::write(&path, nd).unwrap();
+    let out = simulate(&["run", path.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains("nd.toml:9: `[sweep]`: not used here"), "{err}");
 }
