@@ -88,11 +88,11 @@ def test_a_long_sweep_is_interpolated_to_the_closed_form():
     want = np.array([hunt_crossley_e(0.3 * v) for v in speeds])
     assert out["interpolated"].sum() >= 490
     assert (out["rhs_evals"][out["interpolated"]] == 0).all()
-    assert np.abs(out["e"] - want).max() < 1e-12
+    assert np.abs(out["e"] - want).max() < 1e-11
     every = bwc.cor("shccm", hc, speeds, sweep={"interpolate": False})
     assert not every["interpolated"].any() and (every["rhs_evals"] > 0).all()
-    assert np.abs(out["e"] - every["e"]).max() < 2e-12
-    assert np.abs(out["t_s"] / every["t_s"] - 1).max() < 2e-12
+    assert np.abs(out["e"] - every["e"]).max() < 1e-11
+    assert np.abs(out["t_s"] / every["t_s"] - 1).max() < 2e-11
 
 
 def test_cor_matches_an_independent_scipy_model():

@@ -12,7 +12,7 @@
 //! [solver]                   # optional: method, rtol, atol, max_step, t_max, max_steps, stop_at_kinks,
 //!                            #   switch_when_stiff, series
 //! [output]                   # optional: trajectory, dt, loops, sweep, plots
-//! [sweep]                    # optional: interpolate (default true), tolerance (default rtol / 10)
+//! [sweep]                    # optional: interpolate (default true), tolerance (default rtol)
 //! ```
 
 mod bodies;
@@ -542,11 +542,12 @@ fn output(ctx: &Ctx, raw: &RawScene) -> Result<OutputSpec, CliError> {
     Ok(o)
 }
 
-/// `[sweep]`, the tolerance by default a tenth of the solver's `rtol`.
+/// `[sweep]`, the tolerance by default the solver's `rtol` (the simulations' own relative
+/// accuracy in `t_s`; a tighter one meets their noise and serves fewer speeds).
 fn sweep(ctx: &Ctx, raw: &RawScene, settings: &Settings) -> Result<SweepSpec, CliError> {
     let mut w = SweepSpec {
         interpolate: true,
-        tolerance: settings.rtol / 10.0,
+        tolerance: settings.rtol,
     };
     let Some(table) = &raw.sweep else {
         return Ok(w);

@@ -46,16 +46,16 @@ fn a_long_sweep_is_interpolated_to_the_closed_form() {
     let v = runs_of(&hunt_crossley(""), "2");
     let runs = v["runs"].as_array().unwrap();
     assert_eq!(runs.len(), 400);
-    assert_eq!(v["scene"]["sweep"]["tolerance"].as_f64(), Some(1e-12));
+    assert_eq!(v["scene"]["sweep"]["tolerance"].as_f64(), Some(1e-11));
     let mut interpolated = 0;
     for r in runs {
         let e = r["e"].as_f64().unwrap();
         let want = hunt_crossley_e(0.3 * r["v0"].as_f64().unwrap());
-        assert!((e - want).abs() < 1e-12, "{r}: closed form {want}");
+        assert!((e - want).abs() < 1e-11, "{r}: closed form {want}");
         if r["source"] == "interpolated" {
             interpolated += 1;
             let i = &r["interpolation"];
-            assert!(i["estimate"].as_f64().unwrap() <= 1e-12, "{r}");
+            assert!(i["estimate"].as_f64().unwrap() <= 1e-11, "{r}");
             assert!(i["degree"].as_u64().unwrap() >= 16, "{r}");
             assert_eq!(r["rhs_evals"], 0);
             assert_eq!(r["outcome"], "separated");
@@ -85,8 +85,9 @@ fn interpolated_rows_are_the_simulations_they_replace_for_any_thread_count() {
         let de = (f["e"].as_f64().unwrap() - s["e"].as_f64().unwrap()).abs();
         let t = s["t_s"].as_f64().unwrap();
         let dt = (f["t_s"].as_f64().unwrap() - t).abs() / t;
-        // The tolerance (1e-12) plus the simulations' own errors (about 1e-13).
-        assert!(de < 2e-12 && dt < 2e-12, "{f}\n{s}");
+        // The tolerance (1e-11) plus the simulations' own errors (about 1e-13 in e, 1e-11 in
+        // t_s).
+        assert!(de < 1e-11 && dt < 2e-11, "{f}\n{s}");
         assert_eq!(f["nondimensional"], s["nondimensional"]);
         interpolated += usize::from(f["source"] == "interpolated");
     }

@@ -74,9 +74,10 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     there is no time scale), ``separated`` (bool), ``rhs_evals`` (int), ``interpolated`` (bool),
     ``outcome`` (strings ``"separated"``, ``"settled"``, ``"horizon"``).
 
-    Many speeds (from about 140 up, under a constant input) are served by Chebyshev interpolants in ``ln v0`` where
-    those are verified against simulations to ``sweep["tolerance"]`` (default a tenth of the
-    solver's ``rtol``: absolute in ``e``, relative in ``t_s``); ``interpolated`` marks those
+    Many speeds (from about 140 up, under a constant input) are served by Chebyshev
+    interpolants in ``ln v0`` where those are verified against simulations to
+    ``sweep["tolerance"]`` (default the solver's ``rtol``: absolute in ``e``, relative in
+    ``t_s``); ``interpolated`` marks those
     speeds, whose ``rhs_evals`` are 0. ``sweep={"interpolate": False}`` simulates every speed.
 
     Raises ``BwcError`` (a ``ValueError``) for a bad description or a failed run, with the
