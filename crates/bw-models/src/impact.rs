@@ -276,7 +276,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
     let run = series
         .then(|| model.series_impact(crate::series::Private(()), settings))
         .flatten();
-    let (t0, y0, done, series_steps) = match run {
+    let start = match run {
         Some(SeriesRun::Done(out)) => {
             if let Some(t) = out.t_s {
                 sink(t, &out.state);
@@ -288,14 +288,45 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
             state,
             stats,
             series_steps,
-        }) => (t, state, stats, series_steps),
-        None => (0.0, model.initial_state(), Stats::default(), 0),
+        }) => Start {
+            t,
+            y: state,
+            done: stats,
+            series_steps,
+        },
+        None => Start {
+            t: 0.0,
+            y: model.initial_state(),
+            done: Stats::default(),
+            series_steps: 0,
+        },
     };
-    let mut it = runge_kutta(model, settings, t0, y0)?;
+    by_runge_kutta(model, settings, sampling, start, sink)
+}
+
+/// Where the Runge-Kutta path of an impact starts: time, state, and the series' work before.
+struct Start<const N: usize> {
+    t: f64,
+    y: State<N>,
+    done: Stats,
+    series_steps: u64,
+}
+
+/// The impact from `start` on by the Runge-Kutta path, locating the separation (and the kinks
+/// where the settings stop at them), sampling into `sink`, until separated, settled or at the
+/// horizon.
+fn by_runge_kutta<M: CollisionModel<N>, const N: usize>(
+    model: &M,
+    settings: &Settings,
+    sampling: Sampling,
+    start: Start<N>,
+    mut sink: impl FnMut(f64, &State<N>),
+) -> Result<Impact<N>, ModelError> {
+    let mut it = runge_kutta(model, settings, start.t, start.y)?;
     // The impact at the solver's state: separated at `t_s`, settled, or at the horizon.
     let finish = |it: &Solver<Rhs<'_, M>, N>, t_s: Option<f64>, state: State<N>, settled_at| {
         let mut stats = it.stats();
-        stats += done;
+        stats += start.done;
         // v(t_s) >= 0 by the definition of t_s; the state of the step retaken to end at t_s may
         // carry a rounding-level negative value, clamped here so that e >= 0.
         let e = t_s.map_or(0.0, |_| {
@@ -308,7 +339,7 @@ pub fn simulate<M: CollisionModel<N>, const N: usize>(
             stats,
             settled_at,
             stiff_from: it.switched_at(),
-            series_steps,
+            series_steps: start.series_steps,
         }
     };
     let mut locator = Locator::new(

@@ -145,20 +145,7 @@ pub fn uncertainty<I: Input + Sync>(
     let dof = m - rank;
     let rss: f64 = r.iter().map(|x| x * x).sum();
     let sigma = (rss / dof as f64).sqrt();
-    let mut covariance = vec![vec![0.0; s.len()]; s.len()];
-    for (c, &si) in values.iter().enumerate() {
-        let determined = si > RANK_TOLERANCE * largest;
-        let variance = if determined {
-            sigma * sigma / (si * si)
-        } else {
-            BOX_VARIANCE
-        };
-        for (a, &i) in free.iter().enumerate() {
-            for (b, &j) in free.iter().enumerate() {
-                covariance[i][j] += vectors[a][c] * vectors[b][c] * variance;
-            }
-        }
-    }
+    let covariance = covariance(&Svd { values, vectors }, &free, s.len(), sigma);
     let quantile = StudentsT::new(0.0, 1.0, dof as f64)
         .map_err(|e| IdentifyError::Objectives {
             reason: format!("Student-t with {dof} degrees of freedom: {e}"),
@@ -179,6 +166,28 @@ pub fn uncertainty<I: Input + Sync>(
     };
     u.parameter_intervals(objective, &names, at_bound);
     Ok(u)
+}
+
+/// The covariance (`n × n`, zero off the `free` quantities) from the singular values and
+/// vectors of the weighted residuals' Jacobian over the free quantities: `σ² / s²` along a
+/// determined direction, [`BOX_VARIANCE`] along one the data do not determine.
+fn covariance(svd: &Svd, free: &[usize], n: usize, sigma: f64) -> Vec<Vec<f64>> {
+    let largest = svd.values.iter().copied().fold(0.0, f64::max);
+    let mut covariance = vec![vec![0.0; n]; n];
+    for (c, &si) in svd.values.iter().enumerate() {
+        let determined = si > RANK_TOLERANCE * largest;
+        let variance = if determined {
+            sigma * sigma / (si * si)
+        } else {
+            BOX_VARIANCE
+        };
+        for (a, &i) in free.iter().enumerate() {
+            for (b, &j) in free.iter().enumerate() {
+                covariance[i][j] += svd.vectors[a][c] * svd.vectors[b][c] * variance;
+            }
+        }
+    }
+    covariance
 }
 
 /// Singular values (`k`, zero beyond the `m` rows) and right singular vectors (`vectors[a][c]`:

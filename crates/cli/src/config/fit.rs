@@ -7,7 +7,9 @@ use crate::signal::Signal;
 use crate::tables::{model_kind, signal, solver_settings, span, Ctx, Num};
 use crate::CliError;
 use bw_models::{BaseParams, ModelKind, Settings};
-use bwc_identify::{Dataset, IdentifyError, KnownMassStiffness, Param, Space, Weights, NAMES};
+use bwc_identify::{
+    Budget, Dataset, IdentifyError, KnownMassStiffness, Param, Space, Weights, NAMES,
+};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
@@ -119,35 +121,8 @@ pub(super) fn parse_fit(
         known,
         uses_input_scales,
     };
-    let start = r
-        .start
-        .as_ref()
-        .map(|p| {
-            let bp = point(ctx, p, "start", &scales)?;
-            space
-                .encode(&bp)
-                .map_err(|e| ctx.invalid(&p.span(), "[fit.start]", e.to_string()))
-        })
-        .transpose()?;
-    let params = r
-        .params
-        .as_ref()
-        .map(|p| point(ctx, p, "params", &scales))
-        .transpose()?;
-    let (budget, seed) = optimizer(ctx, &r.optimizer, "[fit.optimizer]", index)?;
-    // The search runs at rtol 1e-8 unless [fit.solver] says otherwise.
-    let search = Settings {
-        rtol: 1e-8,
-        atol: 1e-10,
-        ..Settings::default()
-    };
-    let settings = solver_settings(ctx, &r.solver, "[fit.solver]", search)?;
-    let pareto = r
-        .pareto
-        .as_ref()
-        .map(|p| super::count(ctx, &p.get_ref().count, "[fit.pareto].count", 2, 1_000, 11))
-        .transpose()?
-        .map(|n| n as usize);
+    let (start, params) = start_and_params(ctx, r, &space, &scales)?;
+    let (budget, seed, settings, pareto) = search(ctx, r, index)?;
     Ok(Draft {
         fit: FitConfig {
             name,
@@ -170,6 +145,54 @@ pub(super) fn parse_fit(
         objective_span: r.objectives.as_ref().map_or(t.clone(), |o| o.span()),
         pareto_span: r.pareto.as_ref().map_or(t.clone(), |p| p.span()),
     })
+}
+
+/// `[fit.start]` (encoded in the search space) and `[fit.params]`.
+fn start_and_params(
+    ctx: &Ctx,
+    r: &RawFit,
+    space: &Space,
+    scales: &Scales,
+) -> Result<(Option<Vec<f64>>, Option<BaseParams>), CliError> {
+    let start = r
+        .start
+        .as_ref()
+        .map(|p| {
+            let bp = point(ctx, p, "start", scales)?;
+            space
+                .encode(&bp)
+                .map_err(|e| ctx.invalid(&p.span(), "[fit.start]", e.to_string()))
+        })
+        .transpose()?;
+    let params = r
+        .params
+        .as_ref()
+        .map(|p| point(ctx, p, "params", scales))
+        .transpose()?;
+    Ok((start, params))
+}
+
+/// How the fit searches: `[fit.optimizer]` (budget and seed), `[fit.solver]` (rtol 1e-8 and
+/// atol 1e-10 unless it says otherwise) and `[fit.pareto].count`.
+fn search(
+    ctx: &Ctx,
+    r: &RawFit,
+    index: usize,
+) -> Result<(Budget, u64, Settings, Option<usize>), CliError> {
+    let (budget, seed) = optimizer(ctx, &r.optimizer, "[fit.optimizer]", index)?;
+    let search = Settings {
+        rtol: 1e-8,
+        atol: 1e-10,
+        ..Settings::default()
+    };
+    let settings = solver_settings(ctx, &r.solver, "[fit.solver]", search)?;
+    let pareto = r
+        .pareto
+        .as_ref()
+        .map(|p| super::count(ctx, &p.get_ref().count, "[fit.pareto].count", 2, 1_000, 11))
+        .transpose()?
+        .map(|n| n as usize);
+    Ok((budget, seed, settings, pareto))
 }
 
 /// `name`, `model` and `data` (the path, relative to the config's folder).

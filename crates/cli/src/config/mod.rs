@@ -364,18 +364,7 @@ fn optimizer(
         max_starts as i64,
         d.agree.min(max_starts),
     )?;
-    let tolerance = match ctx.opt(&r.tolerance, &key("tolerance"))? {
-        None => d.tolerance,
-        Some(t) if (0.0..=1.0).contains(&t) => t,
-        Some(t) => {
-            let span = r.tolerance.as_ref().map(|x| x.span()).unwrap_or_default();
-            return Err(ctx.invalid(
-                &span,
-                key("tolerance"),
-                format!("{t} is not admissible: 0 <= tolerance <= 1 (relative)"),
-            ));
-        }
-    };
+    let tolerance = agreement(ctx, &r.tolerance, &key("tolerance"), d.tolerance)?;
     let budget = Budget {
         particles: n(&r.particles, "particles", 2, 10_000, d.particles)?,
         iterations: n(
@@ -401,6 +390,22 @@ fn optimizer(
         budget,
         count(ctx, &r.seed, &key("seed"), 0, i64::MAX, index as i64)? as u64,
     ))
+}
+
+/// `[fit.optimizer].tolerance`: how close (relative) the costs of starts that agree are.
+fn agreement(ctx: &Ctx, v: &Option<Num>, key: &str, default: f64) -> Result<f64, CliError> {
+    match ctx.opt(v, key)? {
+        None => Ok(default),
+        Some(t) if (0.0..=1.0).contains(&t) => Ok(t),
+        Some(t) => {
+            let span = v.as_ref().map(|x| x.span()).unwrap_or_default();
+            Err(ctx.invalid(
+                &span,
+                key,
+                format!("{t} is not admissible: 0 <= tolerance <= 1 (relative)"),
+            ))
+        }
+    }
 }
 
 /// A searchable quantity from `[<table>.bounds].key = [lo, hi]` or `[<table>.fixed].key`
