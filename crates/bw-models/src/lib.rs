@@ -18,7 +18,9 @@
 //!   non-smooth points ([`Settings::series`]; a private part of the crate), everything else by DOP853 with stops
 //!   at the kinks, switching to RODAS4 with the model's Jacobian ([`CollisionModel::jacobian`])
 //!   when the run turns stiff ([`Stiffness`]), and stopping early once a contact under a
-//!   constant input has settled ([`Impact::settled_at`]).
+//!   constant input has settled ([`Impact::settled_at`]);
+//! * sweeps of many impact speeds served by verified Chebyshev interpolants in `ln v0`
+//!   ([`sweep`]).
 //!
 //! Conventions: `x < 0` is compression, `F > 0` pushes the bodies apart, `v(0) = -v0`.
 //!
