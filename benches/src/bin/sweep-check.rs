@@ -1,12 +1,12 @@
 //! Whether the sweeps' interpolants keep their tolerance (`bw_models::sweep`, BENCHMARKS.md,
 //! "Sweeps from verified interpolants"): random base parameter sets of both models over the
-//! fits' search box, each swept over 400 log-spaced speeds from 0.1 to 10 m/s with the default
+//! fits' search box, each swept over 400 (or COUNT) log-spaced speeds from 0.1 to 10 m/s with the default
 //! settings, once served by interpolants and once simulating every speed, against a reference
 //! simulating every speed at rtol 1e-13. Differences in the tolerance's terms (absolute in `e`,
 //! relative to the sweep's largest `t_s` in `t_s`): an interpolated row against the simulation
 //! of its speed, and both against the reference.
 //!
-//! `target/release/sweep-check [CASES] [SEED]` (defaults 200, 1)
+//! `target/release/sweep-check [CASES] [SEED] [COUNT]` (defaults 200, 1, 400)
 
 use bwc_cli::scene::Scene;
 use bwc_cli::simulate::{self, Run};
@@ -18,8 +18,9 @@ fn log_uniform(rng: &mut impl Rng, lo: f64, hi: f64) -> f64 {
     lo * (hi / lo).powf(rng.random::<f64>())
 }
 
-/// Case `i` with `extra` tables: one base parameter set, drawn as the fits search them.
-fn scene(seed: u64, i: u64, extra: &str) -> Scene {
+/// Case `i` with `extra` tables: one base parameter set, drawn as the fits search them, at
+/// `count` speeds.
+fn scene(seed: u64, i: u64, count: usize, extra: &str) -> Scene {
     let mut rng = rand::rngs::StdRng::seed_from_u64(seed ^ i.wrapping_mul(0x9E37_79B9_7F4A_7C15));
     let model = if rng.random::<bool>() { "shccm" } else { "mcm" };
     let b = log_uniform(&mut rng, 0.01, 10.0);
@@ -29,7 +30,7 @@ fn scene(seed: u64, i: u64, extra: &str) -> Scene {
         rng.random_range(-1.0..=1.0)
     };
     let text = format!(
-        "model = \"{model}\"\nv0 = {{ from = 0.1, to = 10.0, count = 400, spacing = \"log\" }}\n\
+        "model = \"{model}\"\nv0 = {{ from = 0.1, to = 10.0, count = {count}, spacing = \"log\" }}\n\
          {extra}[base]\nB_b = {b}\nGamma_b = {}\nkappa = {}\nsigma_b = {}\nn = {}\np = {}\n",
         g * b,
         rng.random_range(0.05..0.95),
@@ -62,13 +63,14 @@ fn worst(runs: &[Run], reference: &[Run], rows: &[bool]) -> f64 {
 /// One case: the interpolated rows, and as multiples of the tolerance their largest difference
 /// from the simulations of their speeds, their largest error against the reference, and the
 /// simulations' largest error there.
-fn case(seed: u64, i: u64) -> (usize, [f64; 3]) {
-    let fast = scene(seed, i, "");
+fn case(seed: u64, i: u64, count: usize) -> (usize, [f64; 3]) {
+    let fast = scene(seed, i, count, "");
     let tolerance = fast.sweep.tolerance;
-    let every = scene(seed, i, "[sweep]\ninterpolate = false\n");
+    let every = scene(seed, i, count, "[sweep]\ninterpolate = false\n");
     let reference = scene(
         seed,
         i,
+        count,
         "[sweep]\ninterpolate = false\n[solver]\nrtol = 1e-13\natol = 1e-15\n",
     );
     let (a, b, r) = (
@@ -90,14 +92,17 @@ fn main() {
     let mut args = std::env::args().skip(1);
     let cases: u64 = args.next().and_then(|a| a.parse().ok()).unwrap_or(200);
     let seed: u64 = args.next().and_then(|a| a.parse().ok()).unwrap_or(1);
-    let results: Vec<(usize, [f64; 3])> =
-        (0..cases).into_par_iter().map(|i| case(seed, i)).collect();
+    let count: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(400);
+    let results: Vec<(usize, [f64; 3])> = (0..cases)
+        .into_par_iter()
+        .map(|i| case(seed, i, count))
+        .collect();
     let rows: usize = results.iter().map(|r| r.0).sum();
     let none = results.iter().filter(|r| r.0 == 0).count();
     let max = |k: usize| results.iter().map(|r| r.1[k]).fold(0.0, f64::max);
     let over = results.iter().filter(|r| r.1[0] > 1.0).count();
     bwc_cli::out!(
-        "{cases} sweeps of 400 speeds: {rows} rows interpolated ({none} sweeps with none)\n\
+        "{cases} sweeps of {count} speeds: {rows} rows interpolated ({none} sweeps with none)\n\
          largest difference of an interpolated row from its speed's simulation: {:.3} \
          tolerances ({over} sweeps above 1)\n\
          largest error against rtol 1e-13: interpolated rows {:.3}, the simulations at the same \
