@@ -513,7 +513,8 @@ mod tests {
 
     /// The JSON text written straight from the summaries is the text of the tree, byte for
     /// byte: a sequence with its bounces, a settled and a separated run under an input (`rest`
-    /// filled and null), and a failed run (`error`, null results).
+    /// filled and null), a failed run (`error`, null results), and a sweep served by an
+    /// interpolant (`interpolation` filled).
     #[test]
     fn provenance_json_is_the_tree_as_text() {
         let scenes = [
@@ -525,12 +526,16 @@ mod tests {
              [input]\nkind = \"constant\"\nvalue = -0.5\n",
             "model = \"shccm\"\nv0 = [1.0]\n[base]\nB_b = 2.38\nGamma_b = -2.38\nkappa = 0.677\n\
              sigma_b = 0.0348\nn = 2.93\np = 2.62\n[solver]\nmax_steps = 2\nseries = false\n",
+            "model = \"shccm\"\nv0 = { from = 0.5, to = 5.0, count = 200 }\n[base]\nB_b = 0.0\n\
+             Gamma_b = 0.0\nkappa = 0.5\nsigma_b = 0.3\nn = 1.0\np = 1.5\n",
         ];
         let mut outcomes = Vec::new();
+        let mut interpolated = 0;
         for text in scenes {
             let scene = Scene::parse(Path::new("test.toml"), text).unwrap();
             let runs = crate::simulate::run(&scene, None);
             outcomes.extend(runs.iter().map(|r| (r.outcome.name(), r.bounces.len())));
+            interpolated += runs.iter().filter(|r| r.interpolation.is_some()).count();
             let summary = Summary::new(&runs, scene.sequence.is_some());
             assert_eq!(
                 summary.provenance_json(&scene, &runs),
@@ -541,6 +546,7 @@ mod tests {
         for want in ["separated", "settled", "failed"] {
             assert!(outcomes.iter().any(|(o, _)| *o == want), "{outcomes:?}");
         }
+        assert!(interpolated > 150, "{interpolated}");
         assert!(outcomes[0].1 >= 2, "{outcomes:?}");
     }
 }
