@@ -52,6 +52,10 @@ pub type Values = [f64; 2];
 /// Degrees tried on a piece, in turn.
 const DEGREES: [usize; 3] = [16, 32, 64];
 
+/// The fewest speeds for which [`plan`] tries an interpolant (a piece must pay for its points):
+/// with fewer, every speed is to be simulated and `evaluate` is not called.
+pub const MIN_SPEEDS: usize = pays(DEGREES[1]);
+
 /// Settings of a sweep's interpolation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SweepSettings {
@@ -190,7 +194,7 @@ struct Request {
 
 /// The speeds a piece must hold to be fitted up to `degree`: four times its points and check,
 /// so that interpolation saves at least three quarters of the simulations where it converges.
-fn pays(degree: usize) -> usize {
+const fn pays(degree: usize) -> usize {
     4 * (degree + 2)
 }
 

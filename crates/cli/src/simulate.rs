@@ -193,24 +193,35 @@ pub fn run(scene: &Scene, progress: Option<&(dyn Fn() + Sync)>) -> Vec<Run> {
     } else {
         scene.speeds.iter().copied().map(Some).collect()
     };
-    let interpolate = scene.sweep.interpolate && sampling.is_none() && !scene.speeds.is_empty();
-    scene
-        .systems
-        .iter()
-        .flat_map(|spec| {
-            if interpolate && smooth_in_speed(spec) {
-                return interpolated(spec, scene, &tick);
-            }
-            speeds
-                .par_iter()
-                .map(|&v0| {
-                    let run = simulated(spec, v0, &scene.settings, sampling);
-                    tick();
-                    run
-                })
-                .collect()
+    let interpolate =
+        scene.sweep.interpolate && sampling.is_none() && scene.speeds.len() >= sweep::MIN_SPEEDS;
+    let served: Vec<bool> = (scene.systems.iter())
+        .map(|spec| interpolate && smooth_in_speed(spec))
+        .collect();
+    // Every simulated run of every other system in one parallel pass (a scene of many systems
+    // with a speed each keeps its parallelism).
+    let jobs: Vec<(&SystemSpec, Option<f64>)> = (scene.systems.iter().zip(&served))
+        .filter(|(_, &served)| !served)
+        .flat_map(|(s, _)| speeds.iter().map(move |&v| (s, v)))
+        .collect();
+    let mut simulated_runs = jobs
+        .par_iter()
+        .map(|&(spec, v0)| {
+            let run = simulated(spec, v0, &scene.settings, sampling);
+            tick();
+            run
         })
-        .collect()
+        .collect::<Vec<Run>>()
+        .into_iter();
+    let mut runs = Vec::with_capacity(scene.systems.len() * speeds.len());
+    for (spec, &served) in scene.systems.iter().zip(&served) {
+        if served {
+            runs.extend(interpolated(spec, scene, &tick));
+        } else {
+            runs.extend(simulated_runs.by_ref().take(speeds.len()));
+        }
+    }
+    runs
 }
 
 /// Whether a system's runs are smooth in the impact speed wherever the outcome holds: a
