@@ -12,6 +12,7 @@ def cor(
     *,
     input: Optional[Mapping[str, Any]] = None,
     solver: Optional[Mapping[str, Any]] = None,
+    sweep: Optional[Mapping[str, Any]] = None,
     threads: Optional[int] = None,
 ) -> dict: ...
 def simulate(scene: Union[str, os.PathLike, Mapping[str, Any]], *, threads: Optional[int] = None) -> dict: ...
