@@ -4,15 +4,15 @@ and DSA (1), both models, default settings, one thread, the whole `bwc-simulate 
 process, the two settings timed in turns; medians, and the largest differences in `e` and
 (relative) in `t_s` between the two outputs.
 
-With `precision` it measures a sweep's work against its error instead: 2,000 speeds from 0.5
-to 5 m/s of DSS (1), NDBWSHCCM, at rtol 1e-5 ... 1e-12 by the defaults (series path, served by
+With `precision` it measures a sweep's work against its error instead: COUNT (2,000) speeds
+from 0.5 to 5 m/s of each case, at rtol 1e-5 ... 1e-12 by the defaults (series path, served by
 interpolants to rtol / 10) against plain DOP853 simulating every speed (`series = false`,
 `stop_at_kinks = false`, atol = rtol / 100), whole process, in turns; errors in `e` against
 the series path at rtol 1e-13 simulating every speed.
 
     cargo build --release -p bwc-cli
     python3 benches/sweep_bench.py target/release/bwc-simulate [ROUNDS]   # from the repository root
-    python3 benches/sweep_bench.py target/release/bwc-simulate precision [ROUNDS]
+    python3 benches/sweep_bench.py target/release/bwc-simulate precision [ROUNDS] [COUNT]
 """
 
 import json
@@ -85,9 +85,13 @@ def written(text):
         return f.name
 
 
-def precision(exe, rounds):
-    model, base = CASES["NDBWSHCCM DSS (1)"]
-    v0 = np.linspace(0.5, 5.0, 2000).tolist()
+def precision(exe, rounds, count):
+    for name, (model, base) in CASES.items():
+        print(f"\n{name}, {count} speeds from 0.5 to 5 m/s\n")
+        precision_case(exe, rounds, model, base, np.linspace(0.5, 5.0, count).tolist())
+
+
+def precision_case(exe, rounds, model, base, v0):
     ref_path = written(scene(model, base, False, v0, "[solver]\nrtol = 1e-13\natol = 1e-15"))
     ref = np.array([r["e"] for r in timed(exe, ref_path)[1]])
     os.unlink(ref_path)
@@ -124,6 +128,7 @@ def precision(exe, rounds):
 if __name__ == "__main__":
     exe = sys.argv[1] if len(sys.argv) > 1 else "target/release/bwc-simulate"
     if len(sys.argv) > 2 and sys.argv[2] == "precision":
-        precision(exe, int(sys.argv[3]) if len(sys.argv) > 3 else 3)
+        precision(exe, int(sys.argv[3]) if len(sys.argv) > 3 else 3,
+                  int(sys.argv[4]) if len(sys.argv) > 4 else 2000)
     else:
         main(exe, int(sys.argv[2]) if len(sys.argv) > 2 else 7)
