@@ -1,6 +1,7 @@
 //! Whether the sweeps' interpolants keep their tolerance (`bw_models::sweep`, BENCHMARKS.md,
 //! "Sweeps from verified interpolants"): random base parameter sets of both models over the
-//! fits' search box, each swept over 400 (or COUNT) log-spaced speeds from 0.1 to 10 m/s with the default
+//! fits' search box (every other one under a random constant input, -1 to 0.3 N with
+//! `U_b = T_b = 1`), each swept over 400 (or COUNT) log-spaced speeds from 0.1 to 10 m/s with the default
 //! settings, once served by interpolants and once simulating every speed, against a reference
 //! simulating every speed at rtol 1e-13. Differences in the tolerance's terms (absolute in `e`,
 //! relative to the sweep's largest `t_s` in `t_s`): an interpolated row against the simulation
@@ -29,7 +30,7 @@ fn scene(seed: u64, i: u64, count: usize, extra: &str) -> Scene {
     } else {
         rng.random_range(-1.0..=1.0)
     };
-    let text = format!(
+    let mut text = format!(
         "model = \"{model}\"\nv0 = {{ from = 0.1, to = 10.0, count = {count}, spacing = \"log\" }}\n\
          {extra}[base]\nB_b = {b}\nGamma_b = {}\nkappa = {}\nsigma_b = {}\nn = {}\np = {}\n",
         g * b,
@@ -38,6 +39,12 @@ fn scene(seed: u64, i: u64, count: usize, extra: &str) -> Scene {
         rng.random_range(1.0..3.0),
         rng.random_range(1.0..3.0),
     );
+    // Every other case under a constant input (N): a push (negative) can make slow impacts
+    // settle instead of separating, a change of outcome within the sweep.
+    if i % 2 == 1 {
+        let u = rng.random_range(-1.0..0.3);
+        text += &format!("U_b = 1.0\nT_b = 1.0\n[input]\nkind = \"constant\"\nvalue = {u}\n");
+    }
     Scene::parse(Path::new("sweep-check.toml"), &text).expect("admissible parameters")
 }
 
@@ -62,8 +69,9 @@ fn worst(runs: &[Run], reference: &[Run], rows: &[bool]) -> f64 {
 
 /// One case: the interpolated rows, and as multiples of the tolerance their largest difference
 /// from the simulations of their speeds, their largest error against the reference, and the
-/// simulations' largest error there.
-fn case(seed: u64, i: u64, count: usize) -> (usize, [f64; 3]) {
+/// simulations' largest error there; and whether the reference's outcome changes within the
+/// sweep.
+fn case(seed: u64, i: u64, count: usize) -> (usize, [f64; 3], bool) {
     let fast = scene(seed, i, count, "");
     let tolerance = fast.sweep.tolerance;
     let every = scene(seed, i, count, "[sweep]\ninterpolate = false\n");
@@ -85,7 +93,8 @@ fn case(seed: u64, i: u64, count: usize) -> (usize, [f64; 3]) {
         worst(&a, &r, &rows),
         worst(&b, &r, &rows),
     ];
-    (count, errors.map(|e| e / tolerance))
+    let changes = r.windows(2).any(|w| w[0].outcome != w[1].outcome);
+    (count, errors.map(|e| e / tolerance), changes)
 }
 
 fn main() {
@@ -93,16 +102,18 @@ fn main() {
     let cases: u64 = args.next().and_then(|a| a.parse().ok()).unwrap_or(200);
     let seed: u64 = args.next().and_then(|a| a.parse().ok()).unwrap_or(1);
     let count: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(400);
-    let results: Vec<(usize, [f64; 3])> = (0..cases)
+    let results: Vec<(usize, [f64; 3], bool)> = (0..cases)
         .into_par_iter()
         .map(|i| case(seed, i, count))
         .collect();
     let rows: usize = results.iter().map(|r| r.0).sum();
+    let changes = results.iter().filter(|r| r.2).count();
     let none = results.iter().filter(|r| r.0 == 0).count();
     let max = |k: usize| results.iter().map(|r| r.1[k]).fold(0.0, f64::max);
     let over = results.iter().filter(|r| r.1[0] > 1.0).count();
     bwc_cli::out!(
-        "{cases} sweeps of {count} speeds: {rows} rows interpolated ({none} sweeps with none)\n\
+        "{cases} sweeps of {count} speeds ({changes} with a change of outcome): {rows} rows \
+         interpolated ({none} sweeps with none)\n\
          largest difference of an interpolated row from its speed's simulation: {:.3} \
          tolerances ({over} sweeps above 1)\n\
          largest error against rtol 1e-13: interpolated rows {:.3}, the simulations at the same \
