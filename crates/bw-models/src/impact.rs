@@ -30,8 +30,9 @@ pub struct Settings {
     pub stop_at_kinks: bool,
     /// What to do about stiffness (a nearly rigid dashpot in the MCM, large `B` and `n`).
     pub stiffness: Stiffness,
-    /// Integrate CoR evaluations ([`impact`]: no samples) of the nondimensional models under a
-    /// constant input by Taylor series between the non-smooth points, with
+    /// Integrate CoR evaluations ([`impact`]: no samples) under a constant input by Taylor
+    /// series between the non-smooth points (the SI models [`crate::Bwshccm`] and
+    /// [`crate::Bwmcm`] through their nondimensional form, Table 1), with
     /// `method` for the steps next to the points where a base vanishes and onto the separation;
     /// runs that path declines (stiff, time-varying input, ill-conditioned roots) take the
     /// Runge-Kutta path. Not with [`Stiffness::Rosenbrock`]. On by default: faster at equal error

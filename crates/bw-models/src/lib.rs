@@ -13,10 +13,10 @@
 //!   `P(P*, u, v0)` ([`BaseParams`], [`base_params`], [`BaseMap`]);
 //! * inputs ([`input`]) and the two-body system of Section 3 ([`Bodies`]);
 //! * one impact ([`impact`], [`simulate`]): separation `t_s = inf{t > 0 : F <= 0 <= v}`,
-//!   `e = v(t_s)/v0` (0 without separation) and `t_d = t_s`; by default CoR evaluations of
-//!   the nondimensional models under a constant input by Taylor series of order 16 between the
-//!   non-smooth points ([`Settings::series`]; a private part of the crate), everything else by DOP853 with stops
-//!   at the kinks, switching to RODAS4 with the model's Jacobian ([`CollisionModel::jacobian`])
+//!   `e = v(t_s)/v0` (0 without separation) and `t_d = t_s`; by default CoR evaluations under
+//!   a constant input (of the SI models through their nondimensional form) by Taylor series of
+//!   order 16 between the non-smooth points ([`Settings::series`]; a private part of the
+//!   crate), everything else by DOP853 with stops at the kinks, switching to RODAS4 with the model's Jacobian ([`CollisionModel::jacobian`])
 //!   when the run turns stiff ([`Stiffness`]), and stopping early once a contact under a
 //!   constant input has settled ([`Impact::settled_at`]);
 //! * sweeps of many impact speeds served by verified Chebyshev interpolants in `ln v0`

@@ -2,7 +2,7 @@
 //! (eq:EBWMCM), their nondimensional forms (eq:EBWSHCCM_nd, eq:EBWMCM_nd), and the earlier
 //! NDBWMCM form (eq:BWMCM_nd) for the equivalence the paper states.
 
-use crate::input::Input;
+use crate::input::{Constant, Input};
 use crate::laws::{hysteresis, Bwmcl, Bwshccl};
 use crate::params::{check, ModelKind, NondimParams, PhysicalParams};
 use crate::power::{Pow, Powers};
@@ -470,6 +470,7 @@ pub struct Bwshccm<I> {
     m: f64,
     v0: f64,
     scales: crate::Scales,
+    nd: NondimParams,
     input: I,
 }
 
@@ -482,12 +483,13 @@ impl<I: Input> Bwshccm<I> {
     /// or `v0`.
     pub fn new(params: &PhysicalParams, m: f64, v0: f64, input: I) -> Result<Self, ModelError> {
         check_mass_speed(m, v0)?;
-        let (_, scales) = crate::scaling::nondimensionalize(params, m, v0)?;
+        let (nd, scales) = crate::scaling::nondimensionalize(params, m, v0)?;
         Ok(Self {
             law: Bwshccl::new(params)?,
             m,
             v0,
             scales,
+            nd,
             input,
         })
     }
@@ -532,6 +534,17 @@ impl<I: Input> CollisionModel<3> for Bwshccm<I> {
     fn kinks(&self, _t: f64, y: &State<3>) -> [f64; 2] {
         [y[2] / self.v0, y[1] / self.scales.z_c]
     }
+    fn series_impact(
+        &self,
+        key: crate::series::Private,
+        settings: &Settings,
+    ) -> Option<SeriesRun<3>> {
+        let u = nondimensional_input(&self.input, &self.scales)?;
+        let run = Ndbwshccm::new(&self.nd, u)
+            .ok()?
+            .series_impact(key, settings)?;
+        Some(in_si(run, self.state_scale(), self.scales.t_c))
+    }
 }
 
 /// BWMCM in the Lipschitz form (eq:EBWMCM) in SI units, states `(r, y, z, v)`: the BWMCL
@@ -545,6 +558,7 @@ pub struct Bwmcm<I> {
     m: f64,
     v0: f64,
     scales: crate::Scales,
+    nd: NondimParams,
     input: I,
 }
 
@@ -557,12 +571,13 @@ impl<I: Input> Bwmcm<I> {
     /// `m` or `v0`.
     pub fn new(params: &PhysicalParams, m: f64, v0: f64, input: I) -> Result<Self, ModelError> {
         check_mass_speed(m, v0)?;
-        let (_, scales) = crate::scaling::nondimensionalize(params, m, v0)?;
+        let (nd, scales) = crate::scaling::nondimensionalize(params, m, v0)?;
         Ok(Self {
             law: Bwmcl::new(params)?,
             m,
             v0,
             scales,
+            nd,
             input,
         })
     }
@@ -607,6 +622,50 @@ impl<I: Input> CollisionModel<4> for Bwmcm<I> {
     fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
         let (d, _) = self.law.eval(&State::<3>::new(y[0], y[1], y[2]), y[3]);
         [d[1] / self.v0, y[2] / self.scales.z_c]
+    }
+    fn series_impact(
+        &self,
+        key: crate::series::Private,
+        settings: &Settings,
+    ) -> Option<SeriesRun<4>> {
+        let u = nondimensional_input(&self.input, &self.scales)?;
+        let run = Ndbwmcm::new(&self.nd, u)
+            .ok()?
+            .series_impact(key, settings)?;
+        Some(in_si(run, self.state_scale(), self.scales.t_c))
+    }
+}
+
+/// A constant input `u` (N) as the nondimensional models' `U = u T_c² / (m X_c)` (Table 1);
+/// `None` for an input that varies (the series path takes constant inputs only).
+fn nondimensional_input<I: Input>(input: &I, scales: &crate::Scales) -> Option<Constant> {
+    input
+        .is_constant()
+        .then(|| Constant(input.at(0.0) * scales.u_factor))
+}
+
+/// A series run of the nondimensional model in the SI model's units: times times `T_c`, each
+/// state component times its scale (Table 1; `e = V(T_s) = v(t_s) / v0` is the same).
+fn in_si<const N: usize>(run: SeriesRun<N>, scale: State<N>, t_c: f64) -> SeriesRun<N> {
+    match run {
+        SeriesRun::Done(out) => SeriesRun::Done(crate::Impact {
+            t_s: out.t_s.map(|t| t * t_c),
+            state: out.state.component_mul(&scale),
+            settled_at: out.settled_at.map(|t| t * t_c),
+            stiff_from: out.stiff_from.map(|t| t * t_c),
+            ..out
+        }),
+        SeriesRun::HandOver {
+            t,
+            state,
+            stats,
+            series_steps,
+        } => SeriesRun::HandOver {
+            t: t * t_c,
+            state: state.component_mul(&scale),
+            stats,
+            series_steps,
+        },
     }
 }
 

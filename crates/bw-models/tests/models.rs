@@ -201,6 +201,75 @@ fn si_and_nondimensional_agree_on_cross_parameters() {
     }
 }
 
+/// `e`, `t_s` and the series steps of a separated impact.
+fn brief<const N: usize>(out: Result<Impact<N>, ModelError>) -> (f64, f64, u64) {
+    let out = out.unwrap();
+    (out.e, out.t_s.expect("separated"), out.series_steps)
+}
+
+/// A CoR of an SI model under a constant input is the series run of its nondimensional model
+/// (Table 1): the same `e` bit for bit and `t_s = T_c T_s`; it agrees with the Runge-Kutta path
+/// at tight tolerances; under an input that varies, the Runge-Kutta path runs as before.
+#[test]
+fn si_cor_evaluations_take_the_series_path_of_their_nondimensional_model() {
+    let s = Settings::default();
+    let rk = Settings {
+        rtol: 1e-13,
+        atol: 1e-15,
+        series: false,
+        ..Settings::default()
+    };
+    for kind in [ModelKind::Shccm, ModelKind::Mcm] {
+        let params = cross(kind);
+        for (v0, u) in CROSS_SPEEDS.iter().zip([0.0, -20.0, 5.0, -50.0]) {
+            let (ndp, sc) = nondimensionalize(&params, BASEBALL_MASS, *v0).unwrap();
+            let input = Constant(u);
+            let nd_input = Constant(u * sc.u_factor);
+            let (si, nd, reference) = match kind {
+                ModelKind::Shccm => {
+                    let m = Bwshccm::new(&params, BASEBALL_MASS, *v0, input).unwrap();
+                    let n = Ndbwshccm::new(&ndp, nd_input).unwrap();
+                    (
+                        brief(impact(&m, &s)),
+                        brief(impact(&n, &s)),
+                        brief(impact(&m, &rk)),
+                    )
+                }
+                ModelKind::Mcm => {
+                    let m = Bwmcm::new(&params, BASEBALL_MASS, *v0, input).unwrap();
+                    let n = Ndbwmcm::new(&ndp, nd_input).unwrap();
+                    (
+                        brief(impact(&m, &s)),
+                        brief(impact(&n, &s)),
+                        brief(impact(&m, &rk)),
+                    )
+                }
+            };
+            assert!(si.2 > 0, "{kind:?} {v0}: no series steps");
+            assert_eq!(si.0, nd.0, "{kind:?} {v0}");
+            assert_eq!(si.1, nd.1 * sc.t_c, "{kind:?} {v0}");
+            assert!(
+                (si.0 - reference.0).abs() < 1e-10,
+                "{kind:?} {v0}: {si:?} vs {reference:?}"
+            );
+            assert!(
+                (si.1 - reference.1).abs() < 1e-10 * reference.1,
+                "{kind:?} {v0}"
+            );
+        }
+    }
+    let varying = Arctan {
+        m: BASEBALL_MASS,
+        d: 10.0,
+        omega: 1e4,
+    };
+    let params = cross(ModelKind::Shccm);
+    let m = Bwshccm::new(&params, BASEBALL_MASS, 3.0, varying).unwrap();
+    let out = impact(&m, &s).unwrap();
+    assert_eq!(out.series_steps, 0);
+    assert!(out.separated());
+}
+
 /// The Cross loops in fixtures/ were produced with the BWSHCCM at the published parameters:
 /// the force at the loop's maximum compression and the compression itself must match.
 #[test]

@@ -354,9 +354,13 @@ fn each_run_stands_alone_and_the_output_says_what_it_is() {
     std::fs::write(out_dir.join("trajectory.csv"), "stale").unwrap();
     std::fs::write(out_dir.join("notes.txt"), "mine").unwrap();
     let scene = dir.join("s.toml");
-    // Undamped, 1.5 m/s separates; 1e12 m/s needs far more than 2000 steps.
+    // Undamped, 1.5 m/s separates; 1e12 m/s needs far more than 2000 Runge-Kutta steps.
     let sweep = "model = \"shccm\"\nv0 = [1.5, 1e12]\n[physical]\nm = 0.145\nk = 117080063.0\nc = 0.0\nn = 1.5\np = 1.5\nalpha = 0.5\nbeta = 1.0e4\ngamma = -5.0e3\nA = 1.0\n";
-    std::fs::write(&scene, format!("{sweep}[solver]\nmax_steps = 2000\n")).unwrap();
+    std::fs::write(
+        &scene,
+        format!("{sweep}[solver]\nmax_steps = 2000\nseries = false\n"),
+    )
+    .unwrap();
     let out = simulate(&[
         "run",
         scene.to_str().unwrap(),
