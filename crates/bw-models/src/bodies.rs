@@ -182,6 +182,12 @@ impl<I1: Input, I2: Input> Input for RelativeInput<'_, I1, I2> {
     fn is_zero(&self) -> bool {
         self.u1.is_zero() && self.u2.is_zero()
     }
+    fn is_constant(&self) -> bool {
+        self.u1.is_constant() && self.u2.is_constant()
+    }
+    fn constant_after(&self) -> Option<f64> {
+        Some(self.u1.constant_after()?.max(self.u2.constant_after()?))
+    }
 }
 
 /// Right-hand side of eq:com: `ẋ_m = v_m`, `v̇_m = (u1 + u2) / (m1 + m2)` (0 for a fixed body 2).

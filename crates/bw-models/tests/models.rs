@@ -270,6 +270,44 @@ fn si_cor_evaluations_take_the_series_path_of_their_nondimensional_model() {
     assert!(out.separated());
 }
 
+/// Two bodies under constant forces: the relative input is constant (from the later of the
+/// two inputs' constant times), so their CoR takes the series path and agrees with the
+/// Runge-Kutta path; a ramp on either body makes it vary.
+#[test]
+fn two_bodies_under_constant_forces_take_the_series_path() {
+    let (m1, m2) = (0.4, 0.2);
+    let bodies = Bodies::new(m1, m2, -0.5, 1.5, 0.05, 0.05, Constant(-3.0), Constant(2.0)).unwrap();
+    let u = bodies.relative_input();
+    assert!(
+        input::Input::is_constant(&u)
+            && input::Input::constant_after(&u) == Some(f64::NEG_INFINITY)
+    );
+    let ramp = Arctan {
+        m: m2,
+        d: 250.0,
+        omega: 1e3,
+    };
+    let ramped = Bodies::new(m1, m2, -0.5, 1.5, 0.05, 0.05, Constant(-3.0), ramp).unwrap();
+    assert!(!input::Input::is_constant(&ramped.relative_input()));
+    let rk = Settings {
+        rtol: 1e-13,
+        atol: 1e-15,
+        series: false,
+        ..Settings::default()
+    };
+    let params = cross(ModelKind::Shccm);
+    let m = Bwshccm::new(&params, bodies.effective_mass(), bodies.impact_speed(), u).unwrap();
+    let (fast, reference) = (
+        brief(impact(&m, &Settings::default())),
+        brief(impact(&m, &rk)),
+    );
+    assert!(fast.2 > 0, "no series steps");
+    assert!(
+        (fast.0 - reference.0).abs() < 1e-10,
+        "{fast:?} vs {reference:?}"
+    );
+}
+
 /// The Cross loops in fixtures/ were produced with the BWSHCCM at the published parameters:
 /// the force at the loop's maximum compression and the compression itself must match.
 #[test]
