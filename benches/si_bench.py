@@ -6,13 +6,12 @@ rtol 1e-13.
     python3 benches/si_bench.py OLD/bwc-simulate NEW/bwc-simulate [ROUNDS]
 """
 
-import json
 import os
 import statistics
-import subprocess
 import sys
-import tempfile
-import time
+
+from sweep_bench import timed as run  # one whole-process run: (seconds, runs)
+from sweep_bench import written  # a scene's text in a temporary file
 
 LAWS = {
     "BWSHCCM": ("shccm", "m = 0.145\nk = 117080063.0\nc = 5854003.0\nn = 1.1\np = 1.7\nalpha = 0.1\n"
@@ -25,16 +24,7 @@ LAWS = {
 def scene(model, law, solver=""):
     text = (f'model = "{model}"\nv0 = {{ from = 0.5, to = 10.0, count = 1000 }}\n'
             f"[sweep]\ninterpolate = false\n{solver}[physical]\n{law}")
-    with tempfile.NamedTemporaryFile("w", suffix=".toml", delete=False) as f:
-        f.write(text)
-        return f.name
-
-
-def run(exe, path):
-    clock = time.perf_counter()
-    out = subprocess.run([exe, "run", path, "--json", "--threads", "1"], check=True,
-                         capture_output=True, text=True).stdout
-    return time.perf_counter() - clock, json.loads(out)["runs"]
+    return written(text)
 
 
 def errors(runs, ref):

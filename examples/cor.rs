@@ -8,21 +8,9 @@ use bw_models::input::Zero;
 use bw_models::{impact, Bwshccm, ModelKind, Ndbwshccm, Nondim, NondimParams, Physical};
 use bw_models::{PhysicalParams, Settings};
 
-/// The Hunt-Crossley limit: `e` is the root in (0, 1) of `σ - ln(1+σ) = -σe - ln(1-σe)`
-/// (first integral of `s'' = -s^p (1 + σ s')`), found here by bisection.
-fn hunt_crossley_e(sigma: f64) -> f64 {
-    let g = |e: f64| sigma - sigma.ln_1p() + sigma * e + (-sigma * e).ln_1p();
-    let (mut lo, mut hi) = (1e-12, 1.0 - 1e-12);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if g(mid) > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
+#[path = "support/hunt_crossley.rs"]
+mod hunt_crossley;
+use hunt_crossley::hunt_crossley_e;
 
 fn run() -> Result<(), Box<dyn std::error::Error>> {
     let nd = Nondim {

@@ -9,21 +9,9 @@ use bw_models::input::Zero;
 use bw_models::sweep::{plan, Row, SweepSettings};
 use bw_models::{impact_at, BaseMap, BaseParams, ModelKind, Settings};
 
-/// The Hunt-Crossley limit: `e` is the root in `(0, min(1, 1/σ))` of
-/// `σ - ln(1+σ) = -σe - ln(1-σe)`, found by bisection.
-fn hunt_crossley_e(sigma: f64) -> f64 {
-    let g = |e: f64| sigma - sigma.ln_1p() + sigma * e + (-sigma * e).ln_1p();
-    let (mut lo, mut hi) = (1e-12, (1.0f64).min(1.0 / sigma) * (1.0 - 1e-12));
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if g(mid) > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
+#[path = "support/hunt_crossley.rs"]
+mod hunt_crossley;
+use hunt_crossley::hunt_crossley_e;
 
 fn run() -> Result<(), Box<dyn std::error::Error>> {
     let base = BaseParams {

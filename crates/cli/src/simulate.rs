@@ -11,7 +11,6 @@ use bw_models::{
 use bwc_ode::Stats;
 use rayon::prelude::*;
 use std::collections::HashMap;
-use std::sync::Mutex;
 
 /// One simulated impact.
 #[derive(Debug, Clone, PartialEq)]
@@ -251,18 +250,17 @@ fn simulated(
 fn interpolated(spec: &SystemSpec, scene: &Scene, tick: &(dyn Fn() + Sync)) -> Vec<Run> {
     let settings = &scene.settings;
     let tolerance = scene.sweep.tolerance;
-    let done: Mutex<HashMap<u64, Run>> = Mutex::new(HashMap::new());
+    // Every simulation the plan asked for, by speed: those at speeds of the sweep are its rows.
+    let mut done: HashMap<u64, Run> = HashMap::new();
     let plan = sweep::plan(&scene.speeds, &SweepSettings { tolerance }, |batch| {
         let runs: Vec<Run> = batch
             .par_iter()
             .map(|&v| simulated(spec, Some(v), settings, None))
             .collect();
         let values = runs.iter().map(smooth_values).collect();
-        let mut done = done.lock().expect("no panic while held");
         done.extend(batch.iter().map(|v| v.to_bits()).zip(runs));
         values
     });
-    let done = done.into_inner().expect("no panic while held");
     scene
         .speeds
         .par_iter()

@@ -147,19 +147,6 @@ fn bad_sequences_are_clear_errors() {
 fn drop_tests_are_fitted_from_their_intervals() {
     // Intervals of a Hunt-Crossley contact (B_b = Γ_b = 0, σ = σ_b v): e(σ) is the root of
     // σ - ln(1+σ) = -σe - ln(1-σe); instantaneous contacts, so interval_n = 2 v_(n+1) / g.
-    let hunt_crossley_e = |sigma: f64| {
-        let g = |e: f64| sigma - sigma.ln_1p() + sigma * e + (-sigma * e).ln_1p();
-        let (mut lo, mut hi) = (1e-12, 1.0 - 1e-12);
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if g(mid) > 0.0 {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        0.5 * (lo + hi)
-    };
     let (g, sigma_b) = (9.81f64, 0.05);
     let mut csv = String::from("# synthetic\nh0,bounce_n,interval_s\n");
     for h0 in [0.3, 0.6] {

@@ -1,7 +1,7 @@
 //! Sweeps of many speeds served by verified interpolants (`[sweep]`): against a closed form,
 //! against the simulations they replace, across a change of outcome, and bad `[sweep]` tables.
 
-use super::{json, scratch, simulate};
+use super::{hunt_crossley_e, json, scratch, simulate};
 
 /// A Hunt-Crossley contact (`B_b = Γ_b = 0`) at 400 log-spaced speeds, with `extra` appended.
 fn hunt_crossley(extra: &str) -> String {
@@ -9,23 +9,6 @@ fn hunt_crossley(extra: &str) -> String {
         "model = \"shccm\"\nv0 = {{ from = 0.1, to = 6.0, count = 400, spacing = \"log\" }}\n\
          [base]\nB_b = 0.0\nGamma_b = 0.0\nkappa = 0.5\nsigma_b = 0.3\nn = 1.0\np = 1.5\n{extra}"
     )
-}
-
-/// `e` of the Hunt-Crossley limit at `σ = σ_b v0`: the root of
-/// `-σe - ln(1 - σe) = σ - ln(1 + σ)` (energy balance of `V dV/dX = -X^p (1 + σV)`), by
-/// bisection (the left side increases in `e` on `[0, 1/σ)`).
-fn hunt_crossley_e(sigma: f64) -> f64 {
-    let target = sigma - sigma.ln_1p();
-    let (mut lo, mut hi) = (0.0, (1.0f64).min((1.0 - 1e-15) / sigma));
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if -sigma * mid - (-sigma * mid).ln_1p() < target {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
 }
 
 fn runs_of(scene: &str, threads: &str) -> serde_json::Value {
