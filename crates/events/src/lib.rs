@@ -17,7 +17,12 @@
 //!
 //! Crossings are bracketed with an Illinois root finder and a bisection safeguard down to
 //! adjacent floating-point numbers, so zeros of high multiplicity (a force vanishing like
-//! `(t_s - t)^p`) are located to the last bit of the interpolant. A function that merely
+//! `(t_s - t)^p`) are located to the last bit of the interpolant. The step is then retaken to
+//! end at the event. Where the retaken state differs from the interpolant's by more than the
+//! error tolerance, the crossing is located again on the retaken (shorter) step's
+//! interpolant: a long step's interpolant can misplace the root of a flat function by far
+//! more than the step's own error. Where the retaken state has not entered the set yet, the
+//! event is then put off (once) to the next step. A function that merely
 //! *leaves* zero (as the contact force does at `t = 0`) is not a crossing: no event fires at the
 //! initial instant. A boundary function that leaves its class and comes back inside one step
 //! (equal classes at both ends) is caught by a cubic model of it from its values and rates at

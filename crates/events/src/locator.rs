@@ -51,6 +51,13 @@ pub enum Outcome<const N: usize> {
     },
 }
 
+/// Most rounds of [`Locator::retake_to_event`].
+const POLISH_ROUNDS: usize = 4;
+
+/// A root found again on a retaken step is retaken to only where it moved by more than this
+/// many units in the last place of the time: a retake costs a step.
+const MOVE_ULPS: f64 = 8.0;
+
 /// Drives an integrator through terminal conditions and switching points.
 #[derive(Debug, Clone)]
 pub struct Locator<C, S> {
@@ -69,6 +76,11 @@ pub struct Locator<C, S> {
     /// Whether the terminal condition can fire: false after an event until the condition has
     /// ceased to hold, so that continuing past an event does not report it again.
     armed: bool,
+    /// Whether an event was put off since the last one fired ([`Locator::retake_to_event`]):
+    /// once only, so that a condition that holds or not by rounding (a creeping contact, `F`
+    /// and `v` both near zero for a long time) is reported where it first holds on the
+    /// interpolant, not carried to the horizon.
+    deferred: bool,
 }
 
 /// Boundary and switching values at the end of a step, valid while the integrator has not
@@ -95,6 +107,7 @@ impl<C, S> Locator<C, S> {
             resume_h: 0.0,
             last: None,
             armed: true,
+            deferred: false,
         }
     }
 
@@ -372,15 +385,18 @@ impl<C, S> Locator<C, S> {
                     let y = dense.eval(t);
                     let g = self.condition.values(t, &y);
                     if self.condition.holds(&start.g, &g) {
-                        it.record_event();
                         // Retake the step to end exactly at the event: the state there then
                         // comes from a full step (the method's order) rather than from the
                         // interpolant of a step that may straddle a non-smooth point (a force
                         // like |x|^p with non-integer p vanishes exactly at separation).
                         if t < t1 {
-                            it.retake_to(t)?;
-                            return Ok(self.fired(Step::Event { t, y: *it.y() }));
+                            let Some((t, y)) = self.retake_to_event(it, c, start, (t, &y))? else {
+                                return Ok(Step::Continued);
+                            };
+                            it.record_event();
+                            return Ok(self.fired(Step::Event { t, y }));
                         }
+                        it.record_event();
                         return Ok(self.fired(Step::Event { t, y }));
                     }
                     // A boundary crossed without entering the set. Unless a switching point
@@ -408,6 +424,69 @@ impl<C, S> Locator<C, S> {
             let whole = te == t1 && ta == t0;
             return self.stop_at_switch(it, c, (start, end), whole, (bracket, index), boundary);
         }
+    }
+
+    /// Retakes the step to end at the event `t` found on its interpolant (state `y` there).
+    /// Where the retaken state differs from `y` by more than the error tolerance, the
+    /// interpolant was worse than the step and its root may be off: the crossing is looked for
+    /// again on the interpolant of the retaken (shorter) step and retaken to where it moved (by
+    /// more than [`MOVE_ULPS`], at most [`POLISH_ROUNDS`] rounds). The event and the state
+    /// there, or `None` where the condition does not hold at a retaken state: the root lies
+    /// ahead (or the interpolant's crossing was a touch the step does not make), and the
+    /// integration goes on from there with an ordinary step, whose interpolant finds it near
+    /// its start. An event is put off once only: the next one is reported where its
+    /// interpolant puts it.
+    ///
+    /// Why: where a fast mode rests at its equilibrium (a saturated Bouc-Wen element, `h λ`
+    /// beyond the method's stability interval) the extra stages of the interpolant amplify its
+    /// rounding, so a long step's interpolant can place the root of a flat boundary function
+    /// far off (2.3e-10 at rtol 1e-13 on a stress case, STABILITY.md), and the state moves with
+    /// that error times its rate.
+    fn retake_to_event<T: Stepper<N>, const N: usize>(
+        &mut self,
+        it: &mut T,
+        c: Counts,
+        start: &Ends<N>,
+        (mut t, y): (f64, &State<N>),
+    ) -> Result<Option<(f64, State<N>)>, Error>
+    where
+        C: Condition<N>,
+        S: Switches<N>,
+    {
+        let boundaries = Counts { ns: 0, ..c };
+        let none = [0.0; MAX_FUNCTIONS];
+        it.retake_to(t)?;
+        if it.tolerances(&(it.y() - y)) <= 1.0 {
+            // The interpolant was as good as the step there: so is its root.
+            return Ok(Some((t, *it.y())));
+        }
+        for _ in 0..POLISH_ROUNDS {
+            let g = self.condition.values(t, it.y());
+            if !self.condition.holds(&start.g, &g) {
+                if self.deferred {
+                    break;
+                }
+                self.deferred = true;
+                return Ok(None);
+            }
+            let dense = it.dense();
+            let ta = dense.t0();
+            let ga = self.condition.values(ta, &dense.eval(ta));
+            let earlier = self
+                .crossings(&dense, boundaries, start, (ta, &ga, &none), (t, &g, &none))
+                .0
+                .map(|(b, _)| b.hi)
+                .filter(|&tb| {
+                    t - tb > MOVE_ULPS * f64::EPSILON * t.abs()
+                        && self
+                            .condition
+                            .holds(&start.g, &self.condition.values(tb, &dense.eval(tb)))
+                });
+            let Some(tb) = earlier else { break };
+            it.retake_to(tb)?;
+            t = tb;
+        }
+        Ok(Some((t, *it.y())))
     }
 
     /// The step's earliest switching point, `switch` (function `index`), found when scanning the
@@ -519,6 +598,7 @@ impl<C, S> Locator<C, S> {
     /// Disarms the condition after reporting `event` (see [`Locator::after_event`]).
     fn fired<const N: usize>(&mut self, event: Step<N>) -> Step<N> {
         self.armed = false;
+        self.deferred = false;
         event
     }
 

@@ -245,6 +245,13 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
         self.h
     }
 
+    /// How many error tolerances a difference `dy` from the current state spans: the largest
+    /// `|dy_i| / (atol_i + rtol_i |y_i|)`.
+    pub fn tolerances(&self, dy: &State<N>) -> f64 {
+        let sk = self.atol + self.rtol.component_mul(&self.y.abs());
+        dy.abs().component_div(&sk).max()
+    }
+
     /// Proposes the size of the next step; clipped to the largest step.
     pub fn propose_step_size(&mut self, h: f64) {
         if h.is_finite() && h > 0.0 {

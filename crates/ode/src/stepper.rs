@@ -21,6 +21,12 @@ pub trait Stepper<const N: usize> {
     fn next_step_size(&self) -> f64;
     /// Proposes the size of the next step.
     fn propose_step_size(&mut self, h: f64);
+    /// How many error tolerances a difference `dy` from the current state spans (the largest
+    /// `|dy_i| / (atol_i + rtol_i |y_i|)`; infinite where the tolerances are not known).
+    fn tolerances(&self, dy: &State<N>) -> f64 {
+        let _ = dy;
+        f64::INFINITY
+    }
     /// One accepted step ending at `t_end` at the latest, rejected trials aimed by `aim`.
     ///
     /// # Errors
@@ -79,6 +85,9 @@ macro_rules! delegate_stepper {
             }
             fn propose_step_size(&mut self, h: f64) {
                 $ty::propose_step_size(self, h)
+            }
+            fn tolerances(&self, dy: &State<N>) -> f64 {
+                $ty::tolerances(self, dy)
             }
             fn step_aiming(
                 &mut self,
@@ -242,6 +251,9 @@ impl<F: Jacobian<N> + Clone, const N: usize> Stepper<N> for Solver<F, N> {
     }
     fn propose_step_size(&mut self, h: f64) {
         both!(&mut self.inner, it => it.propose_step_size(h))
+    }
+    fn tolerances(&self, dy: &State<N>) -> f64 {
+        both!(&self.inner, it => it.tolerances(dy))
     }
     fn step_aiming(
         &mut self,

@@ -512,3 +512,19 @@ fn steps_backwards_in_time_are_refused_with_the_way_round() {
     bwc_ode::Stepper::integrate_to(&mut it, 2.0).unwrap();
     assert!((it.y()[0] - (-1.0f64).exp()).abs() < 1e-8);
 }
+
+/// `tolerances` counts a difference in error tolerances `atol + rtol |y|` at the current state,
+/// component by component, as the step-size control does.
+#[test]
+fn a_difference_is_measured_in_tolerances() {
+    let f = |_t: f64, y: &State<2>| State::<2>::new(y[1], -y[0]);
+    let options = Options::new(1e-6, 1e-8);
+    let it = Integrator::new(f, &DOP853, 0.0, State::<2>::new(2.0, 0.0), options).unwrap();
+    // 2e-6 is 2e-6 / (1e-8 + 2e-6) tolerances of the first component, 3e-8 three of the second.
+    let dy = State::<2>::new(2e-6, 3e-8);
+    assert!((it.tolerances(&dy) - 3.0).abs() < 1e-12);
+    let dy = State::<2>::new(-4.02e-6, 0.0);
+    assert!((it.tolerances(&dy) - 2.0).abs() < 1e-12);
+    // The same through the trait event location uses.
+    assert!((bwc_ode::Stepper::tolerances(&it, &dy) - 2.0).abs() < 1e-12);
+}

@@ -3,7 +3,7 @@
 //! instant with `F <= 0 <= V`.
 
 use super::nd;
-use bw_models::input::Constant;
+use bw_models::input::{self, Constant};
 use bw_models::*;
 
 fn both() -> [Settings; 2] {
@@ -131,4 +131,54 @@ fn a_separation_where_the_force_is_tiny_is_found_at_its_root() {
     }
     assert!((rk.e - series.e).abs() < 1e-9, "{} vs {}", rk.e, series.e);
     assert!((rk.t_s.unwrap() - series.t_s.unwrap()).abs() < 1e-9);
+}
+
+/// Stress case 15440 (seed 1): an NDBWMCM whose Bouc-Wen element rests saturated while a
+/// sinusoidal pull `U` drives the contact. At the separation the force is a difference of two
+/// terms of 1.7e-9 and falls at 2.8e-7 per unit time, and `V` rises at `U = 7.8`. A step of
+/// 0.024 over the saturated element (`h λ` about 12) has an interpolant whose root of the force
+/// is 2.3e-10 late at rtol 1e-13, and 1e-9 early at 1e-8: `e` was off by 1.8e-9 and 1.0e-8.
+/// Where the retaken state shows the interpolant off by more than the tolerance, the root is
+/// located again on the shorter step (or, where the retaken state has not separated yet, on
+/// the next step): within 1e-11 at these tolerances, against a reference whose steps are short
+/// enough (at most 1e-3) for their interpolants to be exact. (At rtol 1e-9 the interpolant is
+/// within the tolerance and `e` is off by 3.7e-11, as before.)
+#[test]
+fn a_flat_separation_under_a_pull_is_located_on_the_retaken_step() {
+    let base = BaseParams {
+        b_b: 120.17124534690431,
+        gamma_b: 22.667507618296153,
+        kappa: 0.0002309241467076506,
+        sigma_b: 92.23223271975556,
+        n: 1.0,
+        p: 3.4988449741323335,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    let (v0, b, w) = (6.0159557611712415, 7.836683768652238, 7.944967873505246);
+    let map = BaseMap::new(ModelKind::Mcm, base).unwrap();
+    let factor = map.at(v0).unwrap().1.factor;
+    let pull = input::FromFn(move |t: f64| b * (w * t).sin() / factor);
+    let at = |rtol: f64, max_step: f64| {
+        let s = Settings {
+            rtol,
+            atol: rtol / 100.0,
+            max_step,
+            t_max: 100.0,
+            ..Settings::default()
+        };
+        impact_at(&map, pull, v0, &s).unwrap()
+    };
+    let reference = at(1e-14, 1e-3);
+    for rtol in [1e-8, 1e-10, 1e-11, 1e-13] {
+        let run = at(rtol, f64::INFINITY);
+        let (de, dt) = (
+            (run.e - reference.e).abs(),
+            (run.t_s.unwrap() - reference.t_s.unwrap()).abs(),
+        );
+        assert!(
+            de < 1e-11 && dt < 1e-11,
+            "rtol {rtol:e}: e off by {de:e}, T_s by {dt:e}"
+        );
+    }
 }
