@@ -6,8 +6,11 @@
 //! step, each boundary function gets a cubic Hermite model from its values and rates at the
 //! ends (rates by a forward difference along the solution, one extra evaluation of the
 //! condition per step, reused by the next step); where the model's extremum inside the step
-//! has left the class both ends share, the step's dense output is sampled to confirm it and
-//! the crossing is bracketed between the start and the first sample past it.
+//! has left the class both ends share, or comes within [`NEAR`] of the boundary (the model's
+//! own error can hide a shallow excursion), the step's dense output is sampled to confirm it:
+//! at [`SAMPLES`] points and at the function's extremum near the model's, found on the dense
+//! output by golden-section search. The crossing is bracketed between the start and the first
+//! sample past it.
 
 use crate::{class, Condition, Values};
 use bwc_ode::State;
@@ -17,6 +20,43 @@ const DIFFERENCE: f64 = 1e-8;
 
 /// Samples of the dense output (per unit step) that confirm a suspected interior crossing.
 pub(crate) const SAMPLES: usize = 8;
+
+/// A model extremum within this fraction of the larger end value of the boundary is suspected
+/// too: the cubic's error (about `h^4 g'''' / 384`) can be larger than a shallow excursion.
+const NEAR: f64 = 0.1;
+
+/// Golden-section steps that locate a suspected extremum on the dense output, from a bracket
+/// of `2 / SAMPLES` of the step: to 4e-4 of the step.
+const GOLDEN_STEPS: usize = 14;
+
+/// The `θ` of the extremum of `g` (a minimum where `sign > 0`, a maximum where `sign < 0`)
+/// within `1 / SAMPLES` of `theta`, by golden-section search on `g(θ)`.
+pub(crate) fn extremum(theta: f64, sign: f64, mut g: impl FnMut(f64) -> f64) -> f64 {
+    const INV_PHI: f64 = 0.618_033_988_749_894_8;
+    let half = 1.0 / SAMPLES as f64;
+    let (mut a, mut b) = ((theta - half).max(0.0), (theta + half).min(1.0));
+    let mut x1 = b - INV_PHI * (b - a);
+    let mut x2 = a + INV_PHI * (b - a);
+    let (mut f1, mut f2) = (sign * g(x1), sign * g(x2));
+    for _ in 0..GOLDEN_STEPS {
+        if f1 < f2 {
+            b = x2;
+            (x2, f2) = (x1, f1);
+            x1 = b - INV_PHI * (b - a);
+            f1 = sign * g(x1);
+        } else {
+            a = x1;
+            (x1, f1) = (x2, f2);
+            x2 = a + INV_PHI * (b - a);
+            f2 = sign * g(x2);
+        }
+    }
+    if f1 < f2 {
+        x1
+    } else {
+        x2
+    }
+}
 
 /// Rates `dg/dt` of the first `n` boundary functions along the solution through `(t, y)` with
 /// derivative `f`, by a forward difference over `DIFFERENCE * h`; `g` are their values there.
@@ -38,7 +78,7 @@ pub(crate) fn rates<C: Condition<N>, const N: usize>(
 
 /// The cubic `p(θ)` on `[0, 1]` with `p(0) = g0`, `p'(0) = d0`, `p(1) = g1`, `p'(1) = d1` (rates
 /// times the step size): the `θ` in `(0, 1)` of an extremum whose sign class differs from the
-/// class `g0` and `g1` share, if any.
+/// class `g0` and `g1` share, or that comes within [`NEAR`] of the boundary, if any.
 pub(crate) fn suspect(g0: f64, d0: f64, g1: f64, d1: f64) -> Option<f64> {
     let c0 = class(g0);
     if c0 == 0 || class(g1) != c0 || !(d0.is_finite() && d1.is_finite()) {
@@ -65,9 +105,10 @@ pub(crate) fn suspect(g0: f64, d0: f64, g1: f64, d1: f64) -> Option<f64> {
             }
         }
     }
+    let near = NEAR * g0.abs().max(g1.abs());
     roots
         .into_iter()
-        .filter(|s| *s > 0.0 && *s < 1.0 && class(p(*s)) != c0)
+        .filter(|s| *s > 0.0 && *s < 1.0 && (class(p(*s)) != c0 || p(*s).abs() <= near))
         .min_by(f64::total_cmp)
 }
 
@@ -82,12 +123,28 @@ mod tests {
         let dg = |s: f64| 2.0 * s - 0.9;
         let s = suspect(g(0.0), dg(0.0), g(1.0), dg(1.0)).expect("suspected");
         assert!((s - 0.45).abs() < 1e-12, "{s}");
-        // Lifted above zero: nothing to suspect.
+        // Lifted above zero, well clear of it: nothing to suspect.
         let lifted = |s: f64| g(s) + 0.05;
         assert_eq!(suspect(lifted(0.0), dg(0.0), lifted(1.0), dg(1.0)), None);
+        // Lifted just above zero (0.0075 at the bottom, 4 % of the ends' 0.19): suspected, as
+        // the model's own error could hide a dip below.
+        let shallow = |s: f64| g(s) + 0.02;
+        let s = suspect(shallow(0.0), dg(0.0), shallow(1.0), dg(1.0)).expect("near");
+        assert!((s - 0.45).abs() < 1e-12, "{s}");
         // Ends in different classes are an ordinary crossing, not an interior one.
         assert_eq!(suspect(1.0, -3.0, -1.0, -1.0), None);
         // A function leaving zero is not a crossing.
         assert_eq!(suspect(0.0, -1.0, 0.0, 1.0), None);
+    }
+
+    #[test]
+    fn the_extremum_near_a_guess_is_found() {
+        // A narrow dip at 0.4637 (width 0.005), guessed at 0.45.
+        let g = |s: f64| 1.0 - (-((s - 0.4637) / 0.005).powi(2)).exp();
+        let s = extremum(0.45, 1.0, g);
+        assert!((s - 0.4637).abs() < 5e-4, "{s}");
+        // A maximum, at the edge of the step.
+        let s = extremum(0.95, -1.0, |s: f64| s * s);
+        assert!(s > 0.999, "{s}");
     }
 }

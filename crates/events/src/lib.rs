@@ -27,8 +27,9 @@
 //! initial instant. A boundary function that leaves its class and comes back inside one step
 //! (equal classes at both ends) is caught by a cubic model of it from its values and rates at
 //! the ends, confirmed on the dense output (one extra evaluation of the condition per step;
-//! see the `interior` module), and a condition that holds at a switching point where a step
-//! stopped is reported there.
+//! see the `interior` module; a model extremum that only comes near the boundary is checked
+//! at the dense output's own extremum, so that a shallow excursion the model misses is seen),
+//! and a condition that holds at a switching point where a step stopped is reported there.
 //!
 //! ```
 //! use bwc_events::{Crossing, Direction, Locator, NoSwitches, Outcome};

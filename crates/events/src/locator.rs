@@ -283,14 +283,21 @@ impl<C, S> Locator<C, S> {
         let suspected = (0..c.nc)
             .filter_map(|i| {
                 interior::suspect(start.g[i], h * rate_start[i], end.g[i], h * rate_end[i])
+                    .map(|theta| (theta, i))
             })
-            .min_by(f64::total_cmp);
-        if let Some(theta) = suspected {
+            .min_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((theta, i)) = suspected {
             let dense = it.dense();
-            let mut thetas = [theta; interior::SAMPLES];
-            for (j, th) in thetas.iter_mut().enumerate().skip(1) {
-                *th = j as f64 / interior::SAMPLES as f64;
+            let sign = f64::from(class(start.g[i]));
+            let on_dense = |th: f64| {
+                let t = t0 + th * h;
+                self.condition.values(t, &dense.eval(t))[i]
+            };
+            let mut thetas = [theta; interior::SAMPLES + 1];
+            for (j, th) in thetas.iter_mut().enumerate().skip(2) {
+                *th = (j - 1) as f64 / interior::SAMPLES as f64;
             }
+            thetas[1] = interior::extremum(theta, sign, on_dense);
             thetas.sort_by(f64::total_cmp);
             for th in thetas {
                 let t = t0 + th * h;
