@@ -24,9 +24,9 @@ fn main() {
     };
     let short = sweep_with(seed, count, &short);
     let mut kinds: BTreeMap<String, usize> = BTreeMap::new();
+    let e = |o: &bwc_benches::stress::Outcome| o.result.map_or(f64::NAN, |r| r.0);
     bwc_cli::out!("case\tdefault\te\tshort_steps\te_short\tinput");
     for (i, (a, b)) in default.iter().zip(&short).enumerate() {
-        let e = |o: &bwc_benches::stress::Outcome| o.result.map_or(f64::NAN, |r| r.0);
         let (ea, eb) = (e(a), e(b));
         let close = (ea - eb).abs() <= 1e-6 || (ea.is_nan() && eb.is_nan());
         if a.class.name() == b.class.name() && close {

@@ -84,3 +84,15 @@ pub(crate) fn inside_last_step(t_stop: f64, t0: f64, t1: f64) -> Result<(), Erro
         Err(Error::OutsideStep { t: t_stop, t0, t1 })
     }
 }
+
+/// How many error tolerances `atol_i + rtol_i |y_i|` a difference `dy` from the state `y`
+/// spans: the largest ratio over the components.
+pub(crate) fn in_tolerances<const N: usize>(
+    atol: &State<N>,
+    rtol: &State<N>,
+    y: &State<N>,
+    dy: &State<N>,
+) -> f64 {
+    let sk = atol + rtol.component_mul(&y.abs());
+    dy.abs().component_div(&sk).max()
+}

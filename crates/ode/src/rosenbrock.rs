@@ -248,8 +248,7 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
     /// How many error tolerances a difference `dy` from the current state spans: the largest
     /// `|dy_i| / (atol_i + rtol_i |y_i|)`.
     pub fn tolerances(&self, dy: &State<N>) -> f64 {
-        let sk = self.atol + self.rtol.component_mul(&self.y.abs());
-        dy.abs().component_div(&sk).max()
+        crate::control::in_tolerances(&self.atol, &self.rtol, &self.y, dy)
     }
 
     /// Proposes the size of the next step; clipped to the largest step.
