@@ -6,8 +6,8 @@ process, the two settings timed in turns; medians, and the largest differences i
 
 With `precision` it measures a sweep's work against its error instead: COUNT (2,000) speeds
 from 0.5 to 5 m/s of each case, at rtol 1e-5 ... 1e-12 by the defaults (series path, served by
-interpolants to rtol / 10) against plain DOP853 simulating every speed (`series = false`,
-`stop_at_kinks = false`, atol = rtol / 100), whole process, in turns; errors in `e` against
+interpolants to rtol) against plain DOP853 simulating every speed (`series = false`,
+`stop_at_kinks = false`, atol = rtol / 100), all single runs (`e_tol = 0`), whole process, in turns; errors in `e` against
 the series path at rtol 1e-13 simulating every speed.
 
     cargo build --release -p bwc-cli
@@ -92,15 +92,15 @@ def precision(exe, rounds, count):
 
 
 def precision_case(exe, rounds, model, base, v0):
-    ref_path = written(scene(model, base, False, v0, "[solver]\nrtol = 1e-13\natol = 1e-15"))
+    ref_path = written(scene(model, base, False, v0, "[solver]\nrtol = 1e-13\natol = 1e-15\ne_tol = 0"))
     ref = np.array([r["e"] for r in timed(exe, ref_path)[1]])
     os.unlink(ref_path)
     rows = []
     for k in range(5, 13):
         rtol = 10.0 ** -k
-        plain = written(scene(model, base, False, v0, "[solver]\nrtol = %r\natol = %r\nseries = false\n"
+        plain = written(scene(model, base, False, v0, "[solver]\nrtol = %r\natol = %r\ne_tol = 0\nseries = false\n"
                               "stop_at_kinks = false\nmethod = \"dop853\"" % (rtol, rtol / 100)))
-        default = written(scene(model, base, True, v0, "[solver]\nrtol = %r\natol = %r" % (rtol, rtol / 100)))
+        default = written(scene(model, base, True, v0, "[solver]\nrtol = %r\natol = %r\ne_tol = 0" % (rtol, rtol / 100)))
         times, errors = ([], []), [0.0, 0.0]
         for _ in range(rounds):  # in turns
             for i, path in enumerate((plain, default)):

@@ -43,6 +43,7 @@ fn at(rtol: f64) -> Settings {
     Settings {
         rtol,
         atol: rtol / 100.0,
+        e_tol: None,
         ..Settings::default()
     }
 }

@@ -74,6 +74,8 @@ pub struct Outcome {
     pub series: bool,
     /// Coefficient of restitution and separation time of a run that ended without a failure.
     pub result: Option<(f64, Option<f64>)>,
+    /// The run's estimate of its error in `e` (`Settings::e_tol`), if it made one.
+    pub e_error: Option<f64>,
 }
 
 fn log_uniform(rng: &mut impl Rng, lo: f64, hi: f64) -> f64 {
@@ -141,8 +143,8 @@ pub fn sample(seed: u64, i: u64) -> Case {
     }
 }
 
-/// The sweep's settings: the defaults with horizon 100 (nondimensional) and at most 200,000
-/// steps.
+/// The sweep's settings: the defaults (CoRs checked to `e_tol` = 1e-10) with horizon 100
+/// (nondimensional) and at most 200,000 steps.
 pub fn settings() -> Settings {
     Settings {
         t_max: 100.0,
@@ -164,6 +166,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
     let unforced = a == 0.0 && b == 0.0;
     let (mut switched, mut series) = (false, false);
     let mut result = None;
+    let mut e_error = None;
     let (class, evals) = match BaseMap::new(case.kind, case.base)
         .and_then(|map| {
             // Nondimensional input of magnitude |U| <= 10 at every speed: scale u by 1 / U_factor.
@@ -183,6 +186,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
             switched = out.stiff_from.is_some();
             series = out.series_steps > 0;
             result = Some((out.e, out.t_s));
+            e_error = out.e_error;
         }) {
         Ok(out) if out.separated() && out.e.is_finite() && out.e >= 0.0 => {
             if unforced && out.e > 1.0 + 1e-9 {
@@ -217,6 +221,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
         switched,
         series,
         result,
+        e_error,
     }
 }
 

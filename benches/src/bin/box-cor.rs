@@ -64,12 +64,14 @@ fn main() {
     let settings = Settings {
         rtol,
         atol: rtol / 100.0,
+        e_tol: None,
         ..Settings::default()
     };
     let reference = Settings {
         rtol: 1e-13,
         atol: 1e-15,
         series: false,
+        e_tol: None,
         ..Settings::default()
     };
     let mut rng = rand::rngs::StdRng::seed_from_u64(12345);

@@ -20,6 +20,7 @@ fn main() {
     let short = Settings {
         max_step,
         series: false,
+        e_tol: None,
         ..settings()
     };
     let short = sweep_with(seed, count, &short);

@@ -120,6 +120,7 @@ fn plain_dop853(rtol: f64) -> Settings {
         stop_at_kinks: false,
         stiffness: Stiffness::Ignore,
         series: false,
+        e_tol: None,
         ..Settings::default()
     }
 }
@@ -274,6 +275,7 @@ fn published(name: &'static str, map: BaseMap) -> Case {
         rtol: 1e-14,
         atol: 1e-16,
         series: false,
+        e_tol: None,
         ..Settings::default()
     };
     let run = move |s: &Settings| {
@@ -344,6 +346,7 @@ fn stiff() -> Case {
         atol: 1e-15,
         stiffness,
         series: false,
+        e_tol: None,
         ..Settings::default()
     };
     let stiff_ref = stiff_run(&tight_with(Stiffness::Rosenbrock)).expect("reference")[0];
@@ -475,6 +478,7 @@ fn measure(case: &Case, plain: &[Plain], m: &Method, rtol: f64, csv: &mut String
         stop_at_kinks: kinks,
         stiffness: m.stiffness,
         series,
+        e_tol: None,
         ..Settings::default()
     };
     let outs = match run(&s) {

@@ -5,6 +5,8 @@
 
 #[path = "support/alloc_counter.rs"]
 mod alloc_counter;
+#[path = "support/global.rs"]
+mod global;
 #[path = "support/lyapunov.rs"]
 mod lyapunov;
 #[path = "support/separation.rs"]
@@ -40,6 +42,7 @@ fn tight() -> Settings {
     Settings {
         rtol: 1e-14,
         atol: 1e-16,
+        e_tol: None,
         ..Settings::default()
     }
 }
@@ -217,6 +220,7 @@ fn si_cor_evaluations_take_the_series_path_of_their_nondimensional_model() {
         rtol: 1e-13,
         atol: 1e-15,
         series: false,
+        e_tol: None,
         ..Settings::default()
     };
     for kind in [ModelKind::Shccm, ModelKind::Mcm] {
@@ -293,6 +297,7 @@ fn two_bodies_under_constant_forces_take_the_series_path() {
         rtol: 1e-13,
         atol: 1e-15,
         series: false,
+        e_tol: None,
         ..Settings::default()
     };
     let params = cross(ModelKind::Shccm);
@@ -623,6 +628,7 @@ fn no_separation_is_reported_with_zero_cor() {
         &m,
         &Settings {
             t_max: 50.0,
+            e_tol: None,
             ..Settings::default()
         },
     )
@@ -638,10 +644,12 @@ fn bad_settings_and_parameters_are_errors() {
     for s in [
         Settings {
             rtol: 0.0,
+            e_tol: None,
             ..Settings::default()
         },
         Settings {
             t_max: f64::INFINITY,
+            e_tol: None,
             ..Settings::default()
         },
     ] {
@@ -693,6 +701,7 @@ fn cor_evaluation_does_not_allocate() {
     // The Runge-Kutta path first; the Taylor-series path (the default) below.
     let s = Settings {
         series: false,
+        e_tol: None,
         ..Settings::default()
     };
     let shccm = Ndbwshccm::new(
@@ -731,6 +740,7 @@ fn cor_evaluation_does_not_allocate() {
     // Nor does RODAS4 (the Jacobian and M^-1 live on the stack).
     let rodas = Settings {
         stiffness: Stiffness::Rosenbrock,
+        e_tol: None,
         ..Settings::default()
     };
     let ((d, e), allocations) = alloc_counter::count(|| {
@@ -779,6 +789,7 @@ mod paper_settings {
             &Settings {
                 rtol: 1e-14,
                 atol: 1e-16,
+                e_tol: None,
                 ..Settings::default()
             },
         )
@@ -850,6 +861,7 @@ fn error_is_proportional_to_the_tolerance() {
                 rtol,
                 atol: rtol * 1e-2,
                 series,
+                e_tol: None,
                 ..Settings::default()
             };
             match params.kind() {

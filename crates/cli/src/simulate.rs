@@ -47,6 +47,12 @@ pub struct Run {
     pub stiff_from: Option<f64>,
     /// Steps taken by Taylor series (`bw_models::Settings::series`).
     pub series_steps: u64,
+    /// The relative tolerance of the reported run; `None` where nothing was simulated.
+    pub rtol: Option<f64>,
+    /// A checked CoR's estimate of its error in `e` (`bw_models::Settings::e_tol`).
+    pub e_error: Option<f64>,
+    /// As `e_error`, for `t_s` (in the unit of `t_s`).
+    pub t_s_error: Option<f64>,
     /// Sampled trajectory (only when an output asks for it).
     pub trajectory: Vec<Sample>,
     /// The contacts of a `[sequence]` scene with the displacement (m) at each separation.
@@ -145,6 +151,9 @@ impl Run {
             stats: Stats::default(),
             stiff_from: None,
             series_steps: 0,
+            rtol: None,
+            e_error: None,
+            t_s_error: None,
             trajectory: Vec::new(),
             bounces: Vec::new(),
             interpolation: None,
@@ -490,6 +499,9 @@ fn record(
         stats: impact.stats,
         stiff_from: impact.stiff_from.map(|t| t * scale),
         series_steps: impact.series_steps,
+        rtol: Some(impact.rtol),
+        e_error: impact.e_error,
+        t_s_error: impact.t_s_error.map(|t| t * scale),
         trajectory,
         bounces: Vec::new(),
         interpolation: None,

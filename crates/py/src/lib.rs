@@ -73,6 +73,7 @@ const OUTCOMES: [&str; 4] = ["separated", "settled", "horizon", "failed"];
 
 /// `bwc.cor`: one impact per speed (or the one nondimensional impact) of the scene given as
 /// JSON text; a dict of numpy arrays `e`, `t_s`, `t_d` (NaN where absent), `separated`,
+/// `e_error` (a checked CoR's estimate of its error in `e`, `[solver] e_tol`; NaN where none),
 /// `rhs_evals`, `interpolated` (whether `e` and `t_s` came from a sweep's interpolant) and
 /// `outcome` (codes into `"separated"`, `"settled"`, `"horizon"`, `"failed"`).
 #[pyfunction]
@@ -109,6 +110,10 @@ fn cor<'py>(
         .map(|r| r.outcome == Outcome::Separated)
         .collect();
     out.set_item("separated", PyArray1::from_vec(py, separated))?;
+    out.set_item(
+        "e_error",
+        column(&|r| r.e_error.unwrap_or(f64::NAN)).into_pyarray(py),
+    )?;
     let evals: Vec<u64> = runs.iter().map(|r| r.stats.rhs_evals).collect();
     out.set_item("rhs_evals", evals.into_pyarray(py))?;
     let interpolated: Vec<bool> = runs.iter().map(|r| r.interpolation.is_some()).collect();

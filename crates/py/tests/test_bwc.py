@@ -81,6 +81,21 @@ def test_cor_meets_the_closed_forms():
         assert abs(out["e"][0] - 1) < 1e-10 and abs(out["t_s"][0] - t_s) < 1e-9 * t_s
 
 
+def test_each_cor_carries_its_error_estimate():
+    """By default a CoR is checked to solver["e_tol"] = 1e-10 and says by how much it may be off;
+    a loose rtol is tightened until the check holds; e_tol = 0 is one run at rtol."""
+    hc = {"B": 0, "Gamma": 0, "kappa": 0.3, "sigma": 0.5, "n": 1.5, "p": 1.5}
+    want = hunt_crossley_e(0.5)
+    checked = bwc.cor("shccm", hc)
+    assert 0 <= checked["e_error"][0] <= 3e-11 and abs(checked["e"][0] - want) < 1e-11
+    loose = {"rtol": 1e-5, "series": False}
+    tightened = bwc.cor("shccm", hc, solver=loose)
+    assert tightened["e_error"][0] <= 3e-11 and abs(tightened["e"][0] - want) < 1e-10
+    single = bwc.cor("shccm", hc, solver={**loose, "e_tol": 0})
+    assert np.isnan(single["e_error"][0]) and abs(single["e"][0] - want) > 1e-9
+    assert single["rhs_evals"][0] < tightened["rhs_evals"][0]
+
+
 def test_a_long_sweep_is_interpolated_to_the_closed_form():
     speeds = np.geomspace(0.1, 6.0, 500)
     hc = {"B_b": 0, "Gamma_b": 0, "kappa": 0.5, "sigma_b": 0.3, "n": 1, "p": 1.5}

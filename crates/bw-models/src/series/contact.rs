@@ -121,6 +121,7 @@ mod tests {
         Settings {
             rtol,
             atol: rtol / 100.0,
+            e_tol: None,
             ..Settings::default()
         }
     }

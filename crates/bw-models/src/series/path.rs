@@ -167,6 +167,9 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
 
     /// The separation where the step starts, or a limit that hands the impact over; else the
     /// force and the velocity there.
+    // The large error is the finished impact, returned once per run; boxing it would allocate
+    // in a CoR evaluation, which allocates nothing.
+    #[allow(clippy::result_large_err)]
     fn ended(&mut self) -> Result<(f64, f64), SeriesRun<N>> {
         let (model, settings) = (self.model, self.settings);
         let force = self
@@ -185,6 +188,9 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
                 stiff_from: None,
                 series_steps: self.series_steps,
                 stats: self.stats,
+                rtol: settings.rtol,
+                e_error: None,
+                t_s_error: None,
             }));
         }
         let limit = self.series_steps >= MAX_SERIES_STEPS
@@ -288,6 +294,9 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
                 stiff_from: None,
                 series_steps: self.series_steps,
                 stats: self.stats,
+                rtol: settings.rtol,
+                e_error: None,
+                t_s_error: None,
             }));
         }
         self.series_steps += 1;

@@ -193,6 +193,7 @@ fn worst_ratio<M: CollisionModel<N>, const N: usize>(
         atol: 1e-12,
         t_max: 30.0,
         max_steps: 200_000,
+        e_tol: None,
         ..Settings::default()
     };
     let (mut worst, mut samples) = (0.0f64, 0);

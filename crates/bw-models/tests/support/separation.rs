@@ -10,6 +10,7 @@ fn both() -> [Settings; 2] {
     let rk = Settings {
         t_max: 100.0,
         series: false,
+        e_tol: None,
         ..Settings::default()
     };
     [rk, Settings { series: true, ..rk }]
@@ -165,6 +166,7 @@ fn a_flat_separation_under_a_pull_is_located_on_the_retaken_step() {
             atol: rtol / 100.0,
             max_step,
             t_max: 100.0,
+            e_tol: None,
             ..Settings::default()
         };
         impact_at(&map, pull, v0, &s).unwrap()

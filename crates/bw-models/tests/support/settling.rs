@@ -62,6 +62,7 @@ fn inputs_constant_from_some_time_settle_too() {
     };
     let settings = Settings {
         t_max: 300.0,
+        e_tol: None,
         ..Settings::default()
     };
     let out = impact(&Ndbwshccm::new(&params(), arctan).unwrap(), &settings).unwrap();

@@ -146,7 +146,7 @@ fn report(scene: &Scene, runs: &[simulate::Run]) {
             l => format!("run {l}"),
         };
         match r.outcome {
-            Outcome::Separated => {}
+            Outcome::Separated => unmet_e_tol(scene, &label, r),
             Outcome::Failed => eprintln!(
                 "bwc-simulate: {label} failed: {}",
                 r.error.as_deref().unwrap_or("unknown error")
@@ -187,6 +187,22 @@ fn report(scene: &Scene, runs: &[simulate::Run]) {
                 }
             }
         }
+    }
+}
+
+/// Warns where a checked CoR's own error estimate stayed above `[solver].e_tol`.
+fn unmet_e_tol(scene: &Scene, label: &str, r: &simulate::Run) {
+    let (Some(e_tol), Some(estimate), Some(rtol)) = (scene.settings.e_tol, r.e_error, r.rtol)
+    else {
+        return;
+    };
+    if estimate > e_tol {
+        eprintln!(
+            "bwc-simulate: warning: {label}: e differs by {estimate:.1e} from the same impact at \
+             100 times its rtol ({rtol:e}), more than [solver].e_tol = {e_tol:e}, and no tighter \
+             run was possible (rtol 1e-14 is the tightest, or the tighter run failed): take e \
+             as known to about {estimate:.0e}"
+        );
     }
 }
 

@@ -183,6 +183,7 @@ fn search(
     let search = Settings {
         rtol: 1e-8,
         atol: 1e-10,
+        e_tol: None,
         ..Settings::default()
     };
     let settings = solver_settings(ctx, &r.solver, "[fit.solver]", search)?;

@@ -7,7 +7,7 @@ use super::fail;
 use crate::config::FitConfig;
 use crate::CliError;
 use bw_models::input::Input;
-use bw_models::{BaseParams, Settings};
+use bw_models::BaseParams;
 use bwc_identify::{coverage, fit, study, CoverageTask, Objective, Replicate};
 use serde_json::{json, Value};
 use std::path::Path;
@@ -67,7 +67,7 @@ pub fn run_coverage(
         Some(n) => n,
         None => {
             let map = f.space.map(&truth).map_err(&err)?;
-            let p = bwc_identify::predict(&map, &f.input, &f.data, &Settings::default())
+            let p = bwc_identify::predict(&map, &f.input, &f.data, &super::reporting())
                 .map_err(|e| err(e.into()))?;
             let r: Vec<f64> = f
                 .data

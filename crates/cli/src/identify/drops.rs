@@ -4,7 +4,6 @@
 use super::{fail, search_warnings, FitReport};
 use crate::config::{DropFit, FitConfig};
 use crate::CliError;
-use bw_models::Settings;
 use bwc_identify::{at_bound, minimize, Costs, DropKind, DropObjective, DropRow};
 use std::path::Path;
 use std::time::Instant;
@@ -33,8 +32,7 @@ impl DropOutcome {
 /// The outcome at a point of the unit cube, at the default solver settings.
 fn outcome(f: &FitConfig, d: &DropFit, s: &[f64], config: &Path) -> Result<DropOutcome, CliError> {
     let err = fail(config, &f.name);
-    let exact =
-        DropObjective::new(&f.space, &d.data, d.setup, Settings::default()).map_err(&err)?;
+    let exact = DropObjective::new(&f.space, &d.data, d.setup, super::reporting()).map_err(&err)?;
     let predicted = exact.predict(s).map_err(&err)?;
     Ok(DropOutcome {
         kind: d.data.kind,

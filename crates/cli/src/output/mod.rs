@@ -25,6 +25,9 @@ pub struct RunSummary {
     pub bounces: Option<Vec<BounceSummary>>,
     /// Coefficient of restitution.
     pub e: f64,
+    /// The estimate of the error in `e` of a CoR checked against a run at another tolerance
+    /// (`[solver] e_tol`); null for a single run, a trajectory or an interpolated row.
+    pub e_error: Option<f64>,
     /// For a failed run, what went wrong and which setting would help; null otherwise.
     pub error: Option<String>,
     /// Located events.
@@ -46,8 +49,11 @@ pub struct RunSummary {
     pub rejected: u64,
     /// For a settled contact, where it came to rest (`F + u = 0`); null otherwise.
     pub rest: Option<RestSummary>,
-    /// RHS evaluations.
+    /// RHS evaluations (of every run behind a checked CoR).
     pub rhs_evals: u64,
+    /// The relative tolerance of the reported run (`[solver] rtol`, or tighter where `e_tol`
+    /// asked for it); null for an interpolated row or a failed run.
+    pub rtol: Option<f64>,
     /// Whether the bodies separated.
     pub separated: bool,
     /// Steps taken by Taylor series (0 on the Runge-Kutta path; counted in `accepted`).
@@ -60,6 +66,8 @@ pub struct RunSummary {
     pub t_d: Option<f64>,
     /// Separation time (nondimensional for nondimensional scenes, s otherwise), null without separation.
     pub t_s: Option<f64>,
+    /// As `e_error`, for `t_s` (its unit), where both runs separated.
+    pub t_s_error: Option<f64>,
     /// Unit of `t_s`.
     pub time_unit: &'static str,
     /// Impact speed (m/s), null for nondimensional scenes.
@@ -179,6 +187,9 @@ impl Summary {
                     t_d: r.t_d,
                     separated: r.outcome == Outcome::Separated,
                     rhs_evals: r.stats.rhs_evals,
+                    rtol: r.rtol,
+                    e_error: r.e_error,
+                    t_s_error: r.t_s_error,
                     accepted: r.stats.accepted,
                     rejected: r.stats.rejected,
                     events: r.stats.events,
@@ -280,6 +291,7 @@ pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
             "rest": {"t": t, "x": m, "F": n, "u": n}, "nondimensional": "1",
             "rhs_evals": "count", "accepted": "count", "rejected": "count", "events": "count",
             "jacobians": "count", "series_steps": "count", "source": "text",
+            "rtol": "1", "e_error": "1", "t_s_error": t,
             "interpolation": {"degree": "count", "estimate": "1", "from": "m/s", "to": "m/s"}},
         "sweep.csv": {"v_0": "m/s", "e": "1", "t_d": "s", "t_s": t, "separated": "true/false",
             "name": "text", "outcome": "text", "source": "text"},

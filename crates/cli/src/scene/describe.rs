@@ -110,6 +110,7 @@ pub(crate) fn settings(s: &Settings) -> Value {
         "stop_at_kinks": s.stop_at_kinks,
         "switch_when_stiff": s.stiffness == Stiffness::Switch,
         "series": s.series,
+        "e_tol": s.e_tol,
     })
 }
 

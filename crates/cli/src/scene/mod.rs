@@ -10,9 +10,9 @@
 //! [input]                    # optional: constant | gravity | arctan | table | sum
 //! kind = "gravity"
 //! [solver]                   # optional: method, rtol, atol, max_step, t_max, max_steps, stop_at_kinks,
-//!                            #   switch_when_stiff, series
+//!                            #   switch_when_stiff, series, e_tol (0: off)
 //! [output]                   # optional: trajectory, dt, loops, sweep, plots
-//! [sweep]                    # optional: interpolate (default true), tolerance (default rtol)
+//! [sweep]                    # optional: interpolate (default true), tolerance (default e_tol / 10)
 //! ```
 
 mod bodies;
@@ -542,12 +542,13 @@ fn output(ctx: &Ctx, raw: &RawScene) -> Result<OutputSpec, CliError> {
     Ok(o)
 }
 
-/// `[sweep]`, the tolerance by default the solver's `rtol` (the simulations' own relative
-/// accuracy in `t_s`; a tighter one meets their noise and serves fewer speeds).
+/// `[sweep]`, the tolerance by default a tenth of the solver's `e_tol` (1e-11), or its `rtol`
+/// without one: about the simulations' own accuracy in `t_s`; a tighter one meets their noise
+/// and serves fewer speeds.
 fn sweep(ctx: &Ctx, raw: &RawScene, settings: &Settings) -> Result<SweepSpec, CliError> {
     let mut w = SweepSpec {
         interpolate: true,
-        tolerance: settings.rtol,
+        tolerance: settings.e_tol.map_or(settings.rtol, |t| t / 10.0),
     };
     let Some(table) = &raw.sweep else {
         return Ok(w);

@@ -20,10 +20,12 @@ pub struct RawSolver {
     pub stop_at_kinks: Option<Spanned<bool>>,
     pub switch_when_stiff: Option<Spanned<bool>>,
     pub series: Option<Spanned<bool>>,
+    pub e_tol: Option<Num>,
 }
 
 /// Parses a `[solver]`-like table (`method`, `rtol`, `atol`, `max_step`, `t_max`, `max_steps`,
-/// `stop_at_kinks`, `switch_when_stiff`, `series`) over `defaults`.
+/// `stop_at_kinks`, `switch_when_stiff`, `series`, `e_tol`: 0 for one run at `rtol`) over
+/// `defaults`.
 pub(crate) fn solver_settings(
     ctx: &Ctx,
     table: &Option<Spanned<RawSolver>>,
@@ -89,12 +91,16 @@ pub(crate) fn solver_settings(
     if let Some(v) = &r.series {
         s.series = *v.get_ref();
     }
+    if let Some(v) = ctx.opt(&r.e_tol, &key("e_tol"))? {
+        s.e_tol = (v != 0.0).then_some(v);
+    }
     s.validate().map_err(|e| {
         let span_of = |n: &str| match n {
             "rtol" => span(&r.rtol),
             "atol" => span(&r.atol),
             "max_step" => span(&r.max_step),
             "t_max" => span(&r.t_max),
+            "e_tol" => span(&r.e_tol),
             _ => None,
         };
         ctx.model_error(e, name, span_of, &sv.span())

@@ -139,6 +139,55 @@ fn series_key_and_series_steps() {
     }
 }
 
+/// `[solver] e_tol`: by default a CoR is checked against a run at 100 times its rtol and
+/// reports the difference (`e_error`); a loose `rtol` is tightened until the check meets
+/// `e_tol`; `e_tol = 0` is one run at `rtol`. The Hunt-Crossley limit's closed form
+/// (`σ - ln(1 + σ) = -σ e - ln(1 - σ e)`, σ = 0.5) is the reference.
+#[test]
+fn e_tol_checks_each_cor() {
+    let dir = scratch("e-tol");
+    let hc = "model = \"shccm\"\n[nondimensional]\nB = 0\nGamma = 0\nkappa = 0.5\nsigma = 0.5\nn = 1\np = 1.5\n";
+    let e_exact = 0.748434931597434;
+    let scene = dir.join("hc.toml");
+    let run_of = |extra: &str| {
+        std::fs::write(&scene, format!("{hc}[solver]\nseries = false\n{extra}")).unwrap();
+        json(&simulate(&["run", scene.to_str().unwrap(), "--json"]))["runs"][0].clone()
+    };
+    let checked = run_of("");
+    assert!(checked["e_error"].as_f64().unwrap() <= 3e-11, "{checked}");
+    assert_eq!(checked["rtol"].as_f64(), Some(1e-12));
+    let single = run_of("e_tol = 0\n");
+    assert!(single["e_error"].is_null(), "{single}");
+    assert!(single["rhs_evals"].as_u64() < checked["rhs_evals"].as_u64());
+    let loose = run_of("rtol = 1e-5\n");
+    assert!(loose["rtol"].as_f64().unwrap() < 1e-5, "{loose}");
+    assert!(loose["e_error"].as_f64().unwrap() <= 3e-11, "{loose}");
+    assert!(
+        (loose["e"].as_f64().unwrap() - e_exact).abs() <= 1e-10,
+        "{loose}"
+    );
+    let loose_single = run_of("rtol = 1e-5\ne_tol = 0\n");
+    assert!(
+        (loose_single["e"].as_f64().unwrap() - e_exact).abs() > 1e-9,
+        "{loose_single}"
+    );
+    // A target below rounding is not met, and the run says so.
+    std::fs::write(
+        &scene,
+        format!("{hc}[solver]\nseries = false\ne_tol = 1e-18\n"),
+    )
+    .unwrap();
+    let out = simulate(&["run", scene.to_str().unwrap(), "--json"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("warning")
+            && err.contains("[solver].e_tol = 1e-18")
+            && err.contains("rtol 1e-14"),
+        "{err}"
+    );
+    assert_eq!(json(&out)["runs"][0]["rtol"].as_f64(), Some(1e-14));
+}
+
 /// `method = "rosenbrock"` runs RODAS4 (Jacobian evaluations reported, the Hunt-Crossley answer
 /// kept); a nearly rigid dashpot in the MCM makes the default explicit method switch, reported
 /// as `stiff_from`; `switch_when_stiff = false` keeps the explicit method.
@@ -250,6 +299,12 @@ fn bad_scenes_are_clear_errors() {
         &format!("{GOOD_PHYSICAL}[solver]\nrtol = 0.0\n"),
         Some(14),
         &["[solver].rtol"],
+    );
+    rejects(
+        "e-tol",
+        &format!("{GOOD_PHYSICAL}[solver]\ne_tol = -1e-10\n"),
+        Some(14),
+        &["[solver].e_tol", "-0.0000000001", "> 0"],
     );
     rejects("not-toml", "model = \n", Some(1), &[]);
     rejects("empty", "", None, &["no system description"]);
@@ -405,7 +460,15 @@ fn each_run_stands_alone_and_the_output_says_what_it_is() {
     assert_eq!(v["version"], env!("CARGO_PKG_VERSION"));
     assert_eq!(v["command"][1], "run");
     assert_eq!(v["scene"]["solver"]["max_steps"], 2000);
-    assert_eq!(v["scene"]["solver"]["rtol"].as_f64(), Some(1e-11));
+    assert_eq!(v["scene"]["solver"]["rtol"].as_f64(), Some(1e-12));
+    assert_eq!(v["scene"]["solver"]["e_tol"].as_f64(), Some(1e-10));
+    // A CoR at the defaults is checked against a run at rtol 1e-10 and says by how much.
+    let estimate = runs[0]["e_error"].as_f64().unwrap();
+    assert!(estimate <= 3e-11, "{estimate}");
+    assert!(runs[0]["t_s_error"].as_f64().is_some());
+    assert!(runs[0]["rtol"].as_f64().unwrap() <= 1e-12);
+    assert!(runs[1]["e_error"].is_null() && runs[1]["rtol"].is_null());
+    assert_eq!(v["units"]["runs"]["t_s_error"], "s");
     assert_eq!(v["scene"]["systems"][0]["physical"]["k"].as_f64(), Some(k));
     assert_eq!(v["units"]["sweep.csv"]["t_s"], "s");
     assert_eq!(v["units"]["runs"]["T_c"], "s");

@@ -71,13 +71,16 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     Returns a dict of numpy arrays, one entry per speed: ``e`` (0 without separation),
     ``t_s`` (separation time: s, or nondimensional for nondimensional descriptions and base
     ones without ``T_b``; NaN without separation), ``t_d`` (contact duration in s, NaN where
-    there is no time scale), ``separated`` (bool), ``rhs_evals`` (int), ``interpolated`` (bool),
-    ``outcome`` (strings ``"separated"``, ``"settled"``, ``"horizon"``).
+    there is no time scale), ``separated`` (bool), ``e_error`` (the estimate of the error in
+    ``e``: by default each CoR is checked against a run at 100 times its tolerance, to
+    ``solver["e_tol"]`` = 1e-10; NaN for interpolated speeds and with ``e_tol = 0``),
+    ``rhs_evals`` (int, of every run behind a CoR), ``interpolated`` (bool), ``outcome``
+    (strings ``"separated"``, ``"settled"``, ``"horizon"``).
 
     Many speeds (from about 140 up, under a constant input) are served by Chebyshev
     interpolants in ``ln v0`` where those are verified against simulations to
-    ``sweep["tolerance"]`` (default the solver's ``rtol``: absolute in ``e``, relative in
-    ``t_s``); ``interpolated`` marks those
+    ``sweep["tolerance"]`` (default a tenth of ``solver["e_tol"]``, 1e-11: absolute in ``e``,
+    relative in ``t_s``); ``interpolated`` marks those
     speeds, whose ``rhs_evals`` are 0. ``sweep={"interpolate": False}`` simulates every speed.
 
     Raises ``BwcError`` (a ``ValueError``) for a bad description or a failed run, with the
