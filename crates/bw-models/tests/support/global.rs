@@ -35,7 +35,7 @@ fn a_loose_rtol_is_tightened_until_the_check_meets_e_tol() {
         assert!((single.e - e_exact).abs() > 1e-9, "σ {sigma}: {}", single.e);
         let checked = impact(&model, &runge_kutta(1e-5, Some(1e-10))).unwrap();
         let estimate = checked.e_error.expect("a checked run has an estimate");
-        assert!(estimate <= 0.3e-10, "σ {sigma}: estimate {estimate:e}");
+        assert!(estimate <= 1e-11, "σ {sigma}: estimate {estimate:e}");
         assert!(
             checked.rtol < 1e-5,
             "σ {sigma}: stayed at rtol {}",
@@ -80,7 +80,7 @@ fn the_defaults_check_every_cor_to_1e_10() {
             };
             let out = impact(&hunt_crossley(sigma), &s).unwrap();
             let estimate = out.e_error.expect("the defaults check");
-            assert!(estimate <= 3e-11, "σ {sigma} series {series}: {estimate:e}");
+            assert!(estimate <= 1e-11, "σ {sigma} series {series}: {estimate:e}");
             assert!((out.e - e_exact).abs() <= 1e-11, "σ {sigma}: e {}", out.e);
         }
     }
