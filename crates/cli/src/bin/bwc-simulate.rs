@@ -220,10 +220,11 @@ fn table(runs: &[simulate::Run]) {
         _ => "(s or T)",
     };
     bwc_cli::out!(
-        "{:<width$} {:>10} {:>12} {:>16} {:>14} {:>10}",
+        "{:<width$} {:>10} {:>12} {:>9} {:>16} {:>14} {:>10}",
         "run",
         "outcome",
         "e (-)",
+        "e_error",
         format!("t_s {t_unit}"),
         "t_d (s)",
         "rhs_evals"
@@ -234,6 +235,11 @@ fn table(runs: &[simulate::Run]) {
         } else {
             "-".into()
         };
+        // A checked CoR's estimate; an interpolated row's is its interpolant's.
+        let estimate = r
+            .e_error
+            .or(r.interpolation.map(|i| i.estimate))
+            .map_or("-".to_string(), |d| format!("{d:.1e}"));
         let ts = r.t_s.map_or("-".to_string(), |t| format!("{t:.9e}"));
         let td = r.t_d.map_or("-".to_string(), |t| format!("{t:.6e}"));
         let evals = match r.interpolation {
@@ -241,10 +247,11 @@ fn table(runs: &[simulate::Run]) {
             None => r.stats.rhs_evals.to_string(),
         };
         bwc_cli::out!(
-            "{:<width$} {:>10} {:>12} {:>16} {:>14} {:>10}",
+            "{:<width$} {:>10} {:>12} {:>9} {:>16} {:>14} {:>10}",
             label,
             r.outcome.name(),
             e,
+            estimate,
             ts,
             td,
             evals

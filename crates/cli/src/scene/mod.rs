@@ -542,13 +542,20 @@ fn output(ctx: &Ctx, raw: &RawScene) -> Result<OutputSpec, CliError> {
     Ok(o)
 }
 
+/// A tenth of `t` to 12 significant digits, so that it reads as written (`1e-11`, not the
+/// `1.0000000000000001e-11` of `1e-10 / 10`) in the summary and on stderr.
+fn tenth(t: f64) -> f64 {
+    let x = t / 10.0;
+    format!("{x:.11e}").parse().unwrap_or(x)
+}
+
 /// `[sweep]`, the tolerance by default a tenth of the solver's `e_tol` (1e-11), or its `rtol`
 /// without one: about the simulations' own accuracy in `t_s`; a tighter one meets their noise
 /// and serves fewer speeds.
 fn sweep(ctx: &Ctx, raw: &RawScene, settings: &Settings) -> Result<SweepSpec, CliError> {
     let mut w = SweepSpec {
         interpolate: true,
-        tolerance: settings.e_tol.map_or(settings.rtol, |t| t / 10.0),
+        tolerance: settings.e_tol.map_or(settings.rtol, tenth),
     };
     let Some(table) = &raw.sweep else {
         return Ok(w);

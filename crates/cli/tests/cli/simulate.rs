@@ -156,7 +156,10 @@ fn e_tol_checks_each_cor() {
     let checked = run_of("");
     assert!(checked["e_error"].as_f64().unwrap() <= 1e-11, "{checked}");
     assert!(checked["rtol"].as_f64().unwrap() <= 1e-12, "{checked}");
-    assert!((checked["e"].as_f64().unwrap() - e_exact).abs() <= 1e-11, "{checked}");
+    assert!(
+        (checked["e"].as_f64().unwrap() - e_exact).abs() <= 1e-11,
+        "{checked}"
+    );
     let single = run_of("e_tol = 0\n");
     assert!(single["e_error"].is_null(), "{single}");
     assert!(single["rhs_evals"].as_u64() < checked["rhs_evals"].as_u64());
@@ -171,6 +174,15 @@ fn e_tol_checks_each_cor() {
     assert!(
         (loose_single["e"].as_f64().unwrap() - e_exact).abs() > 1e-9,
         "{loose_single}"
+    );
+    // The table shows the estimate next to e.
+    std::fs::write(&scene, format!("{hc}[solver]\nseries = false\n")).unwrap();
+    let table = simulate(&["run", scene.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&table.stdout);
+    let estimate = format!("{:.1e}", checked["e_error"].as_f64().unwrap());
+    assert!(
+        text.contains("e_error") && text.contains(&estimate),
+        "{text}"
     );
     // A target below rounding is not met, and the run says so.
     std::fs::write(
