@@ -151,7 +151,11 @@ impl Settings {
         }
         if let Some(e_tol) = self.e_tol {
             if !(e_tol.is_finite() && e_tol > 0.0) {
-                return bad("e_tol", e_tol, "finite and > 0 (or none)");
+                return bad(
+                    "e_tol",
+                    e_tol,
+                    "finite and > 0 (none, or 0 in a scene, for one run at rtol)",
+                );
             }
         }
         Ok(())
