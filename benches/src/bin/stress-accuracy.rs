@@ -7,13 +7,13 @@
 //! error cannot pass for the truth.
 //!
 //! `cargo run --release -p bwc-benches --bin stress-accuracy -- [COUNT] [SEED] [RTOL | default |
-//! e_tol=TOL ...] [fine=RTOL] [check=RTOL] [list]` (default 30000, 1, `default` and rtol 1e-11 1e-12
-//! 1e-13, references at rtol 1e-14; at rtol 1e-15 all three methods move some long contacts by
-//! up to 4e-10 from where they agree at 1e-10 to 1e-14, STABILITY.md). An RTOL is one run at that tolerance (`e_tol` off, atol =
-//! rtol / 100); `default` is the sweep's settings, the defaults, whose CoRs are checked to
-//! `e_tol` = 1e-10: for it the table also counts the runs whose own estimate exceeds `e_tol`
-//! (`flagged`) and the misses among the rest (`silent`); `e_tol=TOL` is the defaults with that
-//! target (the misses still counted above 1e-10). `list` prints each miss.
+//! e_tol=TOL ...] [fine=RTOL] [check=RTOL] [list]` (default 30000, 1, `default` and rtol 1e-11
+//! 1e-12 1e-13, references at rtol 1e-14; at 1e-15 runs that turn stiff move by up to 4e-10
+//! with RODAS4, STABILITY.md). An RTOL is one run at that tolerance (`e_tol` off, atol = rtol /
+//! 100); `default` is the sweep's settings, the defaults, whose CoRs are checked to `e_tol` =
+//! 1e-10: for it the table also counts the runs whose own estimate exceeds `e_tol` (`flagged`)
+//! and the misses among the rest (`silent`); `e_tol=TOL` is the defaults with that target (the
+//! misses still counted above 1e-10). `list` prints each miss.
 
 use bw_models::Settings;
 use bwc_benches::stress::{settings, sweep_with, Outcome};
@@ -63,22 +63,12 @@ fn main() {
         runs = vec![("default".to_string(), settings())];
         runs.extend([1e-11, 1e-12, 1e-13].map(|r| (format!("{r:e}"), at(r, true))));
     }
-    let fine = sweep_with(
-        seed,
-        count,
-        &Settings {
-            method: &VERN9,
-            ..at(fine_rtol, false)
-        },
-    );
-    let check = sweep_with(
-        seed,
-        count,
-        &Settings {
-            method: &VERN7,
-            ..at(check_rtol, false)
-        },
-    );
+    let on_runge_kutta = |method, rtol| Settings {
+        method,
+        ..at(rtol, false)
+    };
+    let fine = sweep_with(seed, count, &on_runge_kutta(&VERN9, fine_rtol));
+    let check = sweep_with(seed, count, &on_runge_kutta(&VERN7, check_rtol));
     bwc_cli::out!(
         "# {count} cases, seed {seed}: misses above {MISS:e} against Vern9 at rtol {fine_rtol:e} \
          (checked against Vern7 at {check_rtol:e})"

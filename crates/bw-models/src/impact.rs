@@ -307,10 +307,10 @@ pub fn impact<M: CollisionModel<N>, const N: usize>(
     model: &M,
     settings: &Settings,
 ) -> Result<Impact<N>, ModelError> {
-    settings.validate()?;
     let Some(e_tol) = settings.e_tol else {
         return simulate(model, settings, Sampling::None, |_, _| {});
     };
+    settings.validate()?;
     let at = |rtol: f64| Settings {
         rtol,
         atol: settings.atol * (rtol / settings.rtol),
@@ -320,31 +320,32 @@ pub fn impact<M: CollisionModel<N>, const N: usize>(
     let run = |rtol: f64| simulate(model, &at(rtol), Sampling::None, |_, _| {});
     let check = run(TIGHTEN * settings.rtol).ok();
     let mut out = run(settings.rtol)?;
-    let mut work = check.map_or_else(Stats::default, |c| c.stats);
-    estimate(&mut out, check.as_ref(), &mut work);
+    let mut work = out.stats;
+    if let Some(c) = &check {
+        work += c.stats;
+        estimate(&mut out, c);
+    }
     let mut rtol = settings.rtol;
     while !out.e_error.is_some_and(|d| d <= ACCEPT * e_tol) && rtol / TIGHTEN >= FLOOR_RTOL {
         rtol /= TIGHTEN;
         let Ok(mut next) = run(rtol) else { break };
-        estimate(&mut next, Some(&out), &mut work);
+        work += next.stats;
+        estimate(&mut next, &out);
         out = next;
     }
     out.stats = work;
     Ok(out)
 }
 
-/// Sets `out`'s error estimates from the run `before` it (at a looser tolerance; `None` where
-/// that failed) and adds its statistics to `work`. Runs that differ in outcome differ by `e`
-/// itself; a failed check leaves no estimate.
-fn estimate<const N: usize>(out: &mut Impact<N>, before: Option<&Impact<N>>, work: &mut Stats) {
-    *work += out.stats;
-    let Some(b) = before else { return };
-    out.e_error = Some(if out.separated() == b.separated() {
-        (out.e - b.e).abs()
+/// Sets `out`'s error estimates from the run `before` it, at a looser tolerance. Runs that
+/// differ in outcome differ by `e` itself.
+fn estimate<const N: usize>(out: &mut Impact<N>, before: &Impact<N>) {
+    out.e_error = Some(if out.separated() == before.separated() {
+        (out.e - before.e).abs()
     } else {
-        out.e.max(b.e)
+        out.e.max(before.e)
     });
-    out.t_s_error = b.t_s.zip(out.t_s).map(|(a, c)| (a - c).abs());
+    out.t_s_error = before.t_s.zip(out.t_s).map(|(a, c)| (a - c).abs());
 }
 
 /// Integrates one impact from contact to separation, passing sampled states `(t, y)` to `sink`

@@ -220,11 +220,11 @@ fn table(runs: &[simulate::Run]) {
         _ => "(s or T)",
     };
     bwc_cli::out!(
-        "{:<width$} {:>10} {:>12} {:>9} {:>16} {:>14} {:>10}",
+        "{:<width$} {:>10} {:>12} {:>11} {:>16} {:>14} {:>10}",
         "run",
         "outcome",
         "e (-)",
-        "e_error",
+        "e_error (-)",
         format!("t_s {t_unit}"),
         "t_d (s)",
         "rhs_evals"
@@ -247,7 +247,7 @@ fn table(runs: &[simulate::Run]) {
             None => r.stats.rhs_evals.to_string(),
         };
         bwc_cli::out!(
-            "{:<width$} {:>10} {:>12} {:>9} {:>16} {:>14} {:>10}",
+            "{:<width$} {:>10} {:>12} {:>11} {:>16} {:>14} {:>10}",
             label,
             r.outcome.name(),
             e,
