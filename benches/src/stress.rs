@@ -2,7 +2,7 @@
 //! admissible sets, each run classified (issue 7, STABILITY.md).
 
 use bw_models::input::{Constant, FromFn, Input};
-use bw_models::{impact_at, BaseMap, BaseParams, ModelError, ModelKind, Settings};
+use bw_models::{impact_at, BaseMap, BaseParams, Check, ModelError, ModelKind, Settings};
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -76,6 +76,8 @@ pub struct Outcome {
     pub result: Option<(f64, Option<f64>)>,
     /// The run's estimate of its error in `e` (`Settings::e_tol`), if it made one.
     pub e_error: Option<f64>,
+    /// What the run's check against `Settings::e_tol` found, for a run that ended.
+    pub check: Option<Check>,
 }
 
 fn log_uniform(rng: &mut impl Rng, lo: f64, hi: f64) -> f64 {
@@ -167,6 +169,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
     let (mut switched, mut series) = (false, false);
     let mut result = None;
     let mut e_error = None;
+    let mut check = None;
     let (class, evals) = match BaseMap::new(case.kind, case.base)
         .and_then(|map| {
             // Nondimensional input of magnitude |U| <= 10 at every speed: scale u by 1 / U_factor.
@@ -187,6 +190,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
             series = out.series_steps > 0;
             result = Some((out.e, out.t_s));
             e_error = out.e_error;
+            check = Some(out.check);
         }) {
         Ok(out) if out.separated() && out.e.is_finite() && out.e >= 0.0 => {
             if unforced && out.e > 1.0 + 1e-9 {
@@ -222,6 +226,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
         series,
         result,
         e_error,
+        check,
     }
 }
 

@@ -11,11 +11,12 @@
 //! 1e-12 1e-13, references at rtol 1e-14; at 1e-15 runs that turn stiff move by up to 4e-10
 //! with RODAS4, STABILITY.md). An RTOL is one run at that tolerance (`e_tol` off, atol = rtol /
 //! 100); `default` is the sweep's settings, the defaults, whose CoRs are checked to `e_tol` =
-//! 1e-10: for it the table also counts the runs whose own estimate exceeds `e_tol` (`flagged`)
-//! and the misses among the rest (`silent`); `e_tol=TOL` is the defaults with that target (the
+//! 1e-10: for it the table also counts the runs whose own estimate exceeds `e_tol`, or that
+//! have none (`flagged`), the misses among the rest (`silent`) and the runs no other tolerance
+//! could check (`unverified`, among the flagged); `e_tol=TOL` is the defaults with that target (the
 //! misses still counted above 1e-10). `list` prints each miss.
 
-use bw_models::Settings;
+use bw_models::{Check, Settings};
 use bwc_benches::stress::{settings, sweep_with, Outcome};
 use bwc_ode::{VERN7, VERN9};
 use std::time::Instant;
@@ -73,7 +74,9 @@ fn main() {
         "# {count} cases, seed {seed}: misses above {MISS:e} against Vern9 at rtol {fine_rtol:e} \
          (checked against Vern7 at {check_rtol:e})"
     );
-    bwc_cli::out!("settings\tseparated\toff\toff_series\tlargest\tflagged\tsilent\twall_s");
+    bwc_cli::out!(
+        "settings\tseparated\toff\toff_series\tlargest\tflagged\tsilent\tunverified\twall_s"
+    );
     for (name, s) in runs {
         let clock = Instant::now();
         let runs = sweep_with(seed, count, &s);
@@ -89,6 +92,7 @@ fn main() {
                 .e_tol
                 .is_some_and(|tol| !run.e_error.is_some_and(|d| d <= tol));
             t.flagged += usize::from(flagged);
+            t.unverified += usize::from(run.check == Some(Check::Unverified));
             let miss = (e - ef).abs();
             if miss > MISS && (ec - ef).abs() < 0.1 * miss {
                 t.off += 1;
@@ -110,12 +114,16 @@ fn main() {
                 }
             }
         }
-        let (flagged, silent) = match s.e_tol {
-            Some(_) => (t.flagged.to_string(), t.silent.to_string()),
-            None => ("-".to_string(), "-".to_string()),
+        let (flagged, silent, unverified) = match s.e_tol {
+            Some(_) => (
+                t.flagged.to_string(),
+                t.silent.to_string(),
+                t.unverified.to_string(),
+            ),
+            None => ("-".to_string(), "-".to_string(), "-".to_string()),
         };
         bwc_cli::out!(
-            "{name}\t{}\t{}\t{}\t{:.1e}\t{flagged}\t{silent}\t{wall:.1}",
+            "{name}\t{}\t{}\t{}\t{:.1e}\t{flagged}\t{silent}\t{unverified}\t{wall:.1}",
             t.separated,
             t.off,
             t.off_series,
@@ -144,4 +152,5 @@ struct Tally {
     largest: f64,
     flagged: usize,
     silent: usize,
+    unverified: usize,
 }

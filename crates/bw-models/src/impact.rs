@@ -195,6 +195,35 @@ pub struct Impact<const N: usize> {
     pub e_error: Option<f64>,
     /// As `e_error`, for `t_s` (model time units), where both runs separated.
     pub t_s_error: Option<f64>,
+    /// What the check under [`Settings::e_tol`] found.
+    pub check: Check,
+}
+
+/// What the check of an impact under [`Settings::e_tol`] found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Check {
+    /// Not checked: one run at `rtol` (no `e_tol`, or a sampled run), without an estimate.
+    Off,
+    /// The estimate `e_error` is at most `e_tol`.
+    Met,
+    /// The estimate `e_error` stayed above `e_tol`: the tightest run (rtol 1e-14) still
+    /// differed from the one before it, or a tighter run failed.
+    Unmet,
+    /// No run at another tolerance finished (the check at `100 rtol` failed, and so did the
+    /// run at `rtol / 100` or it was below 1e-14): `e` is one unchecked run at `rtol`.
+    Unverified,
+}
+
+impl Check {
+    /// The name in outputs: `"off"`, `"met"`, `"unmet"` or `"unverified"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Check::Off => "off",
+            Check::Met => "met",
+            Check::Unmet => "unmet",
+            Check::Unverified => "unverified",
+        }
+    }
 }
 
 impl<const N: usize> Impact<N> {
@@ -220,6 +249,7 @@ impl<const N: usize> Impact<N> {
             rtol: self.rtol,
             e_error: self.e_error,
             t_s_error: self.t_s_error,
+            check: self.check,
         }
     }
 }
@@ -246,6 +276,8 @@ pub struct Cor {
     pub e_error: Option<f64>,
     /// Estimate of the error in `t_s` under [`Settings::e_tol`].
     pub t_s_error: Option<f64>,
+    /// What the check under [`Settings::e_tol`] found.
+    pub check: Check,
 }
 
 impl Cor {
@@ -334,6 +366,11 @@ pub fn impact<M: CollisionModel<N>, const N: usize>(
         out = next;
     }
     out.stats = work;
+    out.check = match out.e_error {
+        None => Check::Unverified,
+        Some(d) if d <= e_tol => Check::Met,
+        Some(_) => Check::Unmet,
+    };
     Ok(out)
 }
 
@@ -440,6 +477,7 @@ fn by_runge_kutta<M: CollisionModel<N>, const N: usize>(
             rtol: settings.rtol,
             e_error: None,
             t_s_error: None,
+            check: Check::Off,
         }
     };
     let mut locator = Locator::new(
@@ -581,5 +619,136 @@ impl GridSampler {
             t = self.next as f64 * dt;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::input::Zero;
+    use crate::{ModelKind, Ndbwshccm, Nondim, NondimParams};
+    use std::cell::Cell;
+
+    /// The Hunt-Crossley limit (`B = Γ = 0`) whose runs at the tolerances in `failing` fail
+    /// (a non-finite right-hand side): it reads each run's rtol where the crate hands it its
+    /// settings, and keeps the Runge-Kutta path.
+    struct Failing {
+        inner: Ndbwshccm<Zero>,
+        failing: Vec<f64>,
+        rtol: Cell<f64>,
+    }
+
+    impl Failing {
+        fn new(failing: &[f64]) -> Self {
+            let nd = Nondim {
+                b: 0.0,
+                gamma: 0.0,
+                kappa: 0.5,
+                sigma: 0.2,
+                n: 1.5,
+                p: 1.5,
+            };
+            Self {
+                inner: Ndbwshccm::new(&NondimParams::new(ModelKind::Shccm, nd).unwrap(), Zero)
+                    .unwrap(),
+                failing: failing.to_vec(),
+                rtol: Cell::new(0.0),
+            }
+        }
+    }
+
+    impl System<3> for Failing {
+        fn rhs(&self, t: f64, y: &State<3>) -> State<3> {
+            let r = self.rtol.get();
+            let fails = self.failing.iter().any(|f| (r / f - 1.0).abs() < 1e-9);
+            self.inner.rhs(t, y) * if fails { f64::NAN } else { 1.0 }
+        }
+    }
+
+    impl CollisionModel<3> for Failing {
+        fn initial_state(&self) -> State<3> {
+            self.inner.initial_state()
+        }
+        fn force(&self, y: &State<3>) -> f64 {
+            self.inner.force(y)
+        }
+        fn displacement(&self, y: &State<3>) -> f64 {
+            self.inner.displacement(y)
+        }
+        fn velocity(&self, y: &State<3>) -> f64 {
+            self.inner.velocity(y)
+        }
+        fn input(&self, t: f64) -> f64 {
+            self.inner.input(t)
+        }
+        fn input_constant_after(&self) -> Option<f64> {
+            self.inner.input_constant_after()
+        }
+        fn series_impact(
+            &self,
+            _: crate::series::Private,
+            settings: &Settings,
+        ) -> Option<SeriesRun<3>> {
+            self.rtol.set(settings.rtol);
+            None
+        }
+        fn impact_speed(&self) -> f64 {
+            1.0
+        }
+        fn state_scale(&self) -> State<3> {
+            State::<3>::repeat(1.0)
+        }
+        fn time_scale(&self) -> f64 {
+            1.0
+        }
+        fn kinks(&self, t: f64, y: &State<3>) -> [f64; 2] {
+            self.inner.kinks(t, y)
+        }
+    }
+
+    fn checked(rtol: f64) -> Settings {
+        Settings {
+            rtol,
+            atol: rtol / 100.0,
+            e_tol: Some(1e-10),
+            ..Settings::default()
+        }
+    }
+
+    #[test]
+    fn a_cor_no_other_run_could_check_says_so() {
+        // The check at 100 rtol and the tighter run at rtol / 100 both fail.
+        let out = impact(&Failing::new(&[1e-6, 1e-10]), &checked(1e-8)).unwrap();
+        assert_eq!(
+            (out.check, out.e_error, out.rtol),
+            (Check::Unverified, None, 1e-8)
+        );
+        assert!(out.separated());
+        // At the floor there is no tighter run to try.
+        let out = impact(&Failing::new(&[1e-12]), &checked(1e-14)).unwrap();
+        assert_eq!((out.check, out.e_error), (Check::Unverified, None));
+    }
+
+    #[test]
+    fn a_check_says_whether_it_met_e_tol() {
+        // Only the check fails: the tighter run checks the run at rtol instead.
+        let out = impact(&Failing::new(&[1e-6]), &checked(1e-8)).unwrap();
+        assert_eq!(out.check, Check::Met);
+        assert!(out.rtol < 1e-8 && out.e_error.unwrap() <= 1e-11, "{out:?}");
+        // A run that differs from its check by more than e_tol, with no tighter run possible.
+        let out = impact(&Failing::new(&[1e-6]), &checked(1e-4)).unwrap();
+        let (estimate, check) = (out.e_error.unwrap(), out.check);
+        assert!(
+            estimate > 1e-10 && check == Check::Unmet,
+            "{estimate:e} {check:?}"
+        );
+        let single = impact(
+            &Failing::new(&[]),
+            &Settings {
+                e_tol: None,
+                ..checked(1e-8)
+            },
+        );
+        assert_eq!(single.unwrap().check, Check::Off);
     }
 }

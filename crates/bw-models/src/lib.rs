@@ -50,7 +50,9 @@ mod series;
 pub mod sweep;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
-pub use impact::{impact, simulate, Cor, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES};
+pub use impact::{
+    impact, simulate, Check, Cor, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES,
+};
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};
 pub use models::{
     Bwmcm, BwmcmEarlier, Bwshccm, CollisionModel, Ndbwmcm, NdbwmcmEarlier, Ndbwshccm,

@@ -4,8 +4,8 @@ use crate::scene::{Scene, System, SystemSpec};
 use bw_models::input::{Constant, Input, Scaled};
 use bw_models::sweep::{self, Row, SweepSettings, Values};
 use bw_models::{
-    impact, nondimensionalize, simulate as sim, BodyMotion, Bwmcm, Bwshccm, CollisionModel, Cor,
-    ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Nondim, NondimParams, PhysicalParams, Sampling,
+    impact, nondimensionalize, simulate as sim, BodyMotion, Bwmcm, Bwshccm, Check, CollisionModel,
+    Cor, ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Nondim, NondimParams, PhysicalParams, Sampling,
     Settings,
 };
 use bwc_ode::Stats;
@@ -53,6 +53,8 @@ pub struct Run {
     pub e_error: Option<f64>,
     /// As `e_error`, for `t_s` (in the unit of `t_s`).
     pub t_s_error: Option<f64>,
+    /// What the check under `e_tol` found; `None` where nothing was simulated.
+    pub check: Option<Check>,
     /// Sampled trajectory (only when an output asks for it).
     pub trajectory: Vec<Sample>,
     /// The contacts of a `[sequence]` scene with the displacement (m) at each separation.
@@ -154,6 +156,7 @@ impl Run {
             rtol: None,
             e_error: None,
             t_s_error: None,
+            check: None,
             trajectory: Vec::new(),
             bounces: Vec::new(),
             interpolation: None,
@@ -502,6 +505,7 @@ fn record(
         rtol: Some(impact.rtol),
         e_error: impact.e_error,
         t_s_error: impact.t_s_error.map(|t| t * scale),
+        check: Some(impact.check),
         trajectory,
         bounces: Vec::new(),
         interpolation: None,

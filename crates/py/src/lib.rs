@@ -71,11 +71,16 @@ fn scene_of(path: Option<PathBuf>, json: Option<&str>) -> PyResult<Scene> {
 /// The outcomes in the order of the codes `cor` returns.
 const OUTCOMES: [&str; 4] = ["separated", "settled", "horizon", "failed"];
 
+/// What each CoR's check against `e_tol` found, in the order of the codes `cor` returns
+/// (`"none"`: nothing simulated, an interpolated speed).
+const CHECKS: [&str; 5] = ["off", "met", "unmet", "unverified", "none"];
+
 /// `bwc.cor`: one impact per speed (or the one nondimensional impact) of the scene given as
 /// JSON text; a dict of numpy arrays `e`, `t_s`, `t_d` (NaN where absent), `separated`,
 /// `e_error` (a checked CoR's estimate of its error in `e`, `[solver] e_tol`; NaN where none),
-/// `rhs_evals`, `interpolated` (whether `e` and `t_s` came from a sweep's interpolant) and
-/// `outcome` (codes into `"separated"`, `"settled"`, `"horizon"`, `"failed"`).
+/// `check` (codes into `CHECKS`), `rhs_evals`, `interpolated` (whether `e` and `t_s` came from
+/// a sweep's interpolant) and `outcome` (codes into `"separated"`, `"settled"`, `"horizon"`,
+/// `"failed"`).
 #[pyfunction]
 #[pyo3(signature = (scene_json, threads=None))]
 fn cor<'py>(
@@ -114,6 +119,12 @@ fn cor<'py>(
         "e_error",
         column(&|r| r.e_error.unwrap_or(f64::NAN)).into_pyarray(py),
     )?;
+    let check = |r: &simulate::Run| {
+        let name = r.check.map_or("none", |c| c.name());
+        CHECKS.iter().position(|n| *n == name).unwrap_or(4) as u8
+    };
+    let checks: Vec<u8> = runs.iter().map(check).collect();
+    out.set_item("check", checks.into_pyarray(py))?;
     let evals: Vec<u64> = runs.iter().map(|r| r.stats.rhs_evals).collect();
     out.set_item("rhs_evals", evals.into_pyarray(py))?;
     let interpolated: Vec<bool> = runs.iter().map(|r| r.interpolation.is_some()).collect();

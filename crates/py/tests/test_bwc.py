@@ -88,11 +88,13 @@ def test_each_cor_carries_its_error_estimate():
     want = hunt_crossley_e(0.5)
     checked = bwc.cor("shccm", hc)
     assert 0 <= checked["e_error"][0] <= 1e-11 and abs(checked["e"][0] - want) < 1e-11
+    assert checked["check"][0] == "met"
     loose = {"rtol": 1e-5, "series": False}
     tightened = bwc.cor("shccm", hc, solver=loose)
     assert tightened["e_error"][0] <= 1e-11 and abs(tightened["e"][0] - want) < 1e-10
     single = bwc.cor("shccm", hc, solver={**loose, "e_tol": 0})
     assert np.isnan(single["e_error"][0]) and abs(single["e"][0] - want) > 1e-9
+    assert single["check"][0] == "off"
     assert single["rhs_evals"][0] < tightened["rhs_evals"][0]
 
 
@@ -103,9 +105,11 @@ def test_a_long_sweep_is_interpolated_to_the_closed_form():
     want = np.array([hunt_crossley_e(0.3 * v) for v in speeds])
     assert out["interpolated"].sum() >= 490
     assert (out["rhs_evals"][out["interpolated"]] == 0).all()
+    assert (out["check"][out["interpolated"]] == "none").all()
     assert np.abs(out["e"] - want).max() < 1e-11
     every = bwc.cor("shccm", hc, speeds, sweep={"interpolate": False})
     assert not every["interpolated"].any() and (every["rhs_evals"] > 0).all()
+    assert (every["check"] == "met").all()
     assert np.abs(out["e"] - every["e"]).max() < 1e-11
     assert np.abs(out["t_s"] / every["t_s"] - 1).max() < 2e-11
 

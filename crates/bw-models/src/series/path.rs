@@ -191,6 +191,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
                 rtol: settings.rtol,
                 e_error: None,
                 t_s_error: None,
+                check: crate::Check::Off,
             }));
         }
         let limit = self.series_steps >= MAX_SERIES_STEPS
@@ -297,6 +298,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
                 rtol: settings.rtol,
                 e_error: None,
                 t_s_error: None,
+                check: crate::Check::Off,
             }));
         }
         self.series_steps += 1;

@@ -7,7 +7,7 @@ mod figures;
 use crate::scene::{OutputSpec, Scene, System};
 use crate::simulate::{Outcome, Run};
 use crate::CliError;
-use bw_models::ModelKind;
+use bw_models::{Check, ModelKind};
 use serde::Serialize;
 use std::path::Path;
 
@@ -23,6 +23,11 @@ pub struct RunSummary {
     /// The contacts of a `[sequence]` scene (absent otherwise).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub bounces: Option<Vec<BounceSummary>>,
+    /// What the check of `e` against `[solver] e_tol` found: `"met"` (`e_error` at most
+    /// `e_tol`), `"unmet"` (above it, and no tighter run was possible), `"unverified"` (no run
+    /// at another tolerance finished: `e` is one unchecked run) or `"off"` (one run: no `e_tol`,
+    /// or a trajectory); null for an interpolated row or a failed run.
+    pub check: Option<&'static str>,
     /// Coefficient of restitution.
     pub e: f64,
     /// The estimate of the error in `e` of a CoR checked against a run at another tolerance
@@ -190,6 +195,7 @@ impl Summary {
                     rtol: r.rtol,
                     e_error: r.e_error,
                     t_s_error: r.t_s_error,
+                    check: r.check.map(Check::name),
                     accepted: r.stats.accepted,
                     rejected: r.stats.rejected,
                     events: r.stats.events,
@@ -291,7 +297,7 @@ pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
             "rest": {"t": t, "x": m, "F": n, "u": n}, "nondimensional": "1",
             "rhs_evals": "count", "accepted": "count", "rejected": "count", "events": "count",
             "jacobians": "count", "series_steps": "count", "source": "text",
-            "rtol": "1", "e_error": "1", "t_s_error": t,
+            "rtol": "1", "e_error": "1", "t_s_error": t, "check": "text",
             "interpolation": {"degree": "count", "estimate": "1", "from": "m/s", "to": "m/s"}},
         "sweep.csv": {"v_0": "m/s", "e": "1", "t_d": "s", "t_s": t, "separated": "true/false",
             "name": "text", "outcome": "text", "source": "text"},

@@ -156,12 +156,14 @@ fn e_tol_checks_each_cor() {
     let checked = run_of("");
     assert!(checked["e_error"].as_f64().unwrap() <= 1e-11, "{checked}");
     assert!(checked["rtol"].as_f64().unwrap() <= 1e-12, "{checked}");
+    assert_eq!(checked["check"], "met", "{checked}");
     assert!(
         (checked["e"].as_f64().unwrap() - e_exact).abs() <= 1e-11,
         "{checked}"
     );
     let single = run_of("e_tol = 0\n");
     assert!(single["e_error"].is_null(), "{single}");
+    assert_eq!(single["check"], "off", "{single}");
     assert!(single["rhs_evals"].as_u64() < checked["rhs_evals"].as_u64());
     let loose = run_of("rtol = 1e-5\n");
     assert!(loose["rtol"].as_f64().unwrap() < 1e-5, "{loose}");
@@ -199,6 +201,7 @@ fn e_tol_checks_each_cor() {
         "{err}"
     );
     assert_eq!(json(&out)["runs"][0]["rtol"].as_f64(), Some(1e-14));
+    assert_eq!(json(&out)["runs"][0]["check"], "unmet");
 }
 
 /// `method = "rosenbrock"` runs RODAS4 (Jacobian evaluations reported, the Hunt-Crossley answer

@@ -23,6 +23,8 @@ __all__ = ["BwcError", "cor", "simulate", "identify", "coverage"]
 # The outcome of each run, indexed by the codes the native sweep returns (a numpy string array
 # without a Python object per speed).
 _OUTCOMES = np.array(["separated", "settled", "horizon", "failed"])
+# What each CoR's check against ``e_tol`` found, indexed by the codes the native sweep returns.
+_CHECKS = np.array(["off", "met", "unmet", "unverified", "none"])
 
 _NONDIMENSIONAL = {"B", "Gamma", "kappa", "sigma", "n", "p", "U"}
 _BASE = {"B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "U_b", "T_b"}
@@ -74,6 +76,9 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     there is no time scale), ``separated`` (bool), ``e_error`` (the estimate of the error in
     ``e``: by default each CoR is checked against a run at 100 times its tolerance, to
     ``solver["e_tol"]`` = 1e-10; NaN for interpolated speeds and with ``e_tol = 0``),
+    ``check`` (what that check found: ``"met"``, ``"unmet"`` (the estimate stayed above
+    ``e_tol`` at the tightest tolerance), ``"unverified"`` (no run at another tolerance
+    finished), ``"off"`` (one run, ``e_tol = 0``) or ``"none"`` (an interpolated speed)),
     ``rhs_evals`` (int, of every run behind a CoR), ``interpolated`` (bool), ``outcome``
     (strings ``"separated"``, ``"settled"``, ``"horizon"``).
 
@@ -99,6 +104,7 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
         scene["sweep"] = _plain(dict(sweep))
     out = _cor(json.dumps(scene), threads)
     out["outcome"] = _OUTCOMES[out["outcome"]]
+    out["check"] = _CHECKS[out["check"]]
     return out
 
 
