@@ -53,6 +53,11 @@ pub struct Settings {
     pub e_tol: Option<f64>,
 }
 
+/// The largest step of the Runge-Kutta path with [`Settings::stop_at_kinks`], as a fraction of
+/// the time to the next point where the right-hand side is not analytic
+/// ([`CollisionModel::clearance`]).
+const CLEARANCE: f64 = 0.5;
+
 /// A CoR evaluation under [`Settings::e_tol`] is accepted when its `e` differs from the check's
 /// by at most this fraction of `e_tol`: where the check's error is the difference, the
 /// reported run's is about a hundredth of it, and the margin covers runs whose error does not
@@ -494,6 +499,12 @@ fn by_runge_kutta<M: CollisionModel<N>, const N: usize>(
     // the contact has settled and will never end.
     let constant_from = model.input_constant_after();
     while it.t() < t_end {
+        if settings.stop_at_kinks {
+            let clear = CLEARANCE * model.clearance(it.y(), it.derivative(), settings.rtol);
+            if it.next_step_size() > clear {
+                it.propose_step_size(clear);
+            }
+        }
         match locator.step(&mut it, t_end)? {
             Step::Event { t, y } => {
                 let upto = t.min(it.t());

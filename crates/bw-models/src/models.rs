@@ -7,7 +7,7 @@ use crate::laws::{hysteresis, Bwmcl, Bwshccl};
 use crate::params::{check, ModelKind, NondimParams, PhysicalParams};
 use crate::power::{Pow, Powers};
 use crate::series::SeriesRun;
-use crate::{ModelError, Settings, State};
+use crate::{ModelError, Nondim, Settings, State};
 use bwc_ode::{Matrix, System};
 
 /// A collision model: a right-hand side with the outputs the impact analysis needs.
@@ -51,6 +51,19 @@ pub trait CollisionModel<const N: usize>: System<N> {
     /// across the hysteretic element (`|v|` or `|ẏ|`) and `z`, in natural (nondimensional)
     /// units so that they compare with the absolute tolerance.
     fn kinks(&self, t: f64, y: &State<N>) -> [f64; 2];
+    /// How long (model time) the state `y`, moving with derivative `f`, stays clear of a point
+    /// where the right-hand side is not analytic (the base of a term `c |s|^q` reaching 0), to
+    /// first order, while that term matters at tolerance `rtol`; `+inf` where none does (the
+    /// default). The Runge-Kutta path with [`Settings::stop_at_kinks`] keeps its steps to half
+    /// of it: an embedded error estimate assumes the solution analytic over a few step lengths
+    /// and passes steps that end close to such a point with errors of a hundred tolerances
+    /// (STABILITY.md, "Session 20"). The NDBWSHCCM and the BWSHCCM say it for `X` and `Z`; the
+    /// MCMs keep the default (measured: it moved a flat separation of the NDBWMCM by up to 1e-9
+    /// at rtol 1e-9).
+    fn clearance(&self, y: &State<N>, f: &State<N>, rtol: f64) -> f64 {
+        let _ = (y, f, rtol);
+        f64::INFINITY
+    }
     /// The Jacobian `∂f/∂y` for implicit methods. Analytic for the nondimensional models; by
     /// default forward differences with steps `√ε max(|y_i|, scale_i)` (relative accuracy about
     /// `1e-8`, enough for the step-size control of RODAS4, which then behaves like a method
@@ -86,6 +99,49 @@ fn check_mass_speed(m: f64, v0: f64) -> Result<(), ModelError> {
     check("v0", v0, v0 > 0.0, "v0 > 0 (m/s)")
 }
 
+/// The time a base `s` moving at `ds` takes to reach 0, where a term `c |s|^q` is not
+/// analytic, if it is approaching and the term matters: while the term's integral over the
+/// approach, about `c |s|^(q+1) / |ds|`, exceeds `rtol` (nondimensional states are of order
+/// 1). Past that, a step may end on or cross the root at an error below the tolerance.
+fn clearance(s: f64, ds: f64, terms: &[(f64, f64)], rtol: f64) -> f64 {
+    if s * ds >= 0.0 {
+        return f64::INFINITY;
+    }
+    let time = (s / ds).abs();
+    let matters = terms
+        .iter()
+        .any(|&(c, q)| c * s.abs().powf(q) * time > rtol);
+    if matters {
+        time
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// [`CollisionModel::clearance`] of the NDBWSHCCM at `(X, Z, V)` with derivative `f`: `X`
+/// carries `κ|X|^p` and `σ|X|^p V`, `Z` carries `(1-κ)|Z|^p` and `(B ± Γ)|Z|^n V`.
+fn shccm_clearance(k: &Nondim, y: [f64; 3], f: [f64; 3], rtol: f64) -> f64 {
+    let v = y[2].abs();
+    let x = clearance(y[0], f[0], &[(k.kappa + k.sigma * v, k.p)], rtol);
+    let hysteresis = (k.b.abs() + k.gamma.abs()) * v;
+    x.min(clearance(
+        y[1],
+        f[1],
+        &[(1.0 - k.kappa, k.p), (hysteresis, k.n)],
+        rtol,
+    ))
+}
+
+/// A state and its time derivative in natural units (Table 1's scales), and `T_c`.
+fn in_natural_units<const N: usize>(
+    y: &State<N>,
+    f: &State<N>,
+    scale: State<N>,
+    t_c: f64,
+) -> (State<N>, State<N>, f64) {
+    (y.component_div(&scale), f.component_div(&scale) * t_c, t_c)
+}
+
 // ----------------------------------------------------------------------------------------------
 // Nondimensional models
 
@@ -104,6 +160,18 @@ pub(crate) struct NdCoefficients {
 }
 
 impl NdCoefficients {
+    /// The parameters as given.
+    fn nondim(&self) -> Nondim {
+        Nondim {
+            b: self.b,
+            gamma: self.gamma,
+            kappa: self.kappa,
+            sigma: self.sigma,
+            n: self.n.exponent(),
+            p: self.p.exponent(),
+        }
+    }
+
     /// `(d/ds |s|^(p-1) s, d/dz ż)` pieces: `p |s|^(p-1)`.
     #[inline]
     pub(crate) fn dpow_p(&self, s: f64) -> f64 {
@@ -225,6 +293,9 @@ impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
     }
     fn kinks(&self, _t: f64, y: &State<3>) -> [f64; 2] {
         [y[2], y[1]]
+    }
+    fn clearance(&self, y: &State<3>, f: &State<3>, rtol: f64) -> f64 {
+        shccm_clearance(&self.k.nondim(), (*y).into(), (*f).into(), rtol)
     }
     fn series_impact(
         &self,
@@ -533,6 +604,10 @@ impl<I: Input> CollisionModel<3> for Bwshccm<I> {
     }
     fn kinks(&self, _t: f64, y: &State<3>) -> [f64; 2] {
         [y[2] / self.v0, y[1] / self.scales.z_c]
+    }
+    fn clearance(&self, y: &State<3>, f: &State<3>, rtol: f64) -> f64 {
+        let (y, f, t_c) = in_natural_units(y, f, self.state_scale(), self.scales.t_c);
+        t_c * shccm_clearance(self.nd.get(), y.into(), f.into(), rtol)
     }
     fn series_impact(
         &self,

@@ -318,6 +318,9 @@ impl<M: CollisionModel<N>, const N: usize> CollisionModel<N> for Resumed<M, N> {
     fn kinks(&self, t: f64, y: &State<N>) -> [f64; 2] {
         self.model.kinks(t, y)
     }
+    fn clearance(&self, y: &State<N>, f: &State<N>, rtol: f64) -> f64 {
+        self.model.clearance(y, f, rtol)
+    }
     fn jacobian(&self, t: f64, y: &State<N>) -> Matrix<N> {
         self.model.jacobian(t, y)
     }

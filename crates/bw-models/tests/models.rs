@@ -919,3 +919,34 @@ fn trajectory_samples_are_bounded() {
     );
     assert!(n <= bw_models::MAX_SAMPLES + 1);
 }
+
+/// The SI BWSHCCM's clearance from a root of a base is its nondimensional model's, in
+/// seconds: Table 1 scales the state, its rate and the time alike.
+#[test]
+fn si_clearance_is_the_nondimensional_one_in_seconds() {
+    use bwc_ode::System;
+    let params = cross(ModelKind::Shccm);
+    let v0 = 20.0;
+    let si = Bwshccm::new(&params, BASEBALL_MASS, v0, Zero).unwrap();
+    let (ndp, sc) = nondimensionalize(&params, BASEBALL_MASS, v0).unwrap();
+    let nd = Ndbwshccm::new(&ndp, Zero).unwrap();
+    // Unloading, both bases approaching 0: X = -0.01, Z = -0.002, V = 0.8.
+    let y_nd = State::<3>::new(-0.01, -0.002, 0.8);
+    let y_si = State::<3>::new(y_nd[0] * sc.x_c, y_nd[1] * sc.z_c, y_nd[2] * v0);
+    let (f_nd, f_si) = (nd.rhs(0.0, &y_nd), si.rhs(0.0, &y_si));
+    let (c_nd, c_si) = (
+        nd.clearance(&y_nd, &f_nd, 1e-12),
+        si.clearance(&y_si, &f_si, 1e-12),
+    );
+    assert!(c_nd.is_finite() && c_nd > 0.0, "{c_nd}");
+    assert!(
+        (c_si / sc.t_c - c_nd).abs() <= 1e-12 * c_nd,
+        "{c_si} s vs {c_nd} T_c"
+    );
+    // Receding from both roots there is none.
+    let back = State::<3>::new(-0.01, -0.002, -0.8);
+    assert_eq!(
+        nd.clearance(&back, &nd.rhs(0.0, &back), 1e-12),
+        f64::INFINITY
+    );
+}
