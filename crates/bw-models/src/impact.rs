@@ -90,10 +90,10 @@ impl Default for Settings {
     /// checked against a run at rtol 1e-10 for an error in `e` of at most `e_tol` = 1e-10.
     /// Chosen from the data (issue 21): no single tolerance keeps the error in `e` below 1e-10
     /// on every separated run of the stress sweep (STABILITY.md, "Session 19: global error
-    /// control": 598 of 52,535 miss at rtol 1e-11, 9 at 1e-13); the checked runs miss 8, by at
-    /// most 4.5e-10, six of them with an estimate above `e_tol`, at about twice the cost of one
-    /// run at rtol 1e-11 on the paper's cases. On the work-precision cases
-    /// (BENCHMARKS.md) one run at rtol 1e-11 already keeps the error below 1e-12.
+    /// control": 598 of 52,535 miss at rtol 1e-11, 9 at 1e-13); the checked runs miss 7 (since
+    /// session 20), by at most 4.5e-10, six of them with an estimate above `e_tol`, at about
+    /// twice the cost of one run at rtol 1e-11 on the paper's cases. On the work-precision
+    /// cases (BENCHMARKS.md) one run at rtol 1e-11 already keeps the error below 1e-12.
     fn default() -> Self {
         Self {
             method: &DOP853,
