@@ -37,6 +37,7 @@
 #![deny(missing_docs)]
 
 mod bodies;
+mod clearance;
 mod impact;
 pub mod input;
 mod laws;
