@@ -36,12 +36,13 @@ pub(crate) fn shccm_clearance(k: &Nondim, y: [f64; 3], f: [f64; 3], rtol: f64) -
     ))
 }
 
-/// A state and its time derivative in natural units (Table 1's scales), and `T_c`.
+/// A state and its time derivative in natural units: states over Table 1's `scale`, time
+/// over `T_c`.
 pub(crate) fn in_natural_units<const N: usize>(
     y: &State<N>,
     f: &State<N>,
     scale: State<N>,
     t_c: f64,
-) -> (State<N>, State<N>, f64) {
-    (y.component_div(&scale), f.component_div(&scale) * t_c, t_c)
+) -> (State<N>, State<N>) {
+    (y.component_div(&scale), f.component_div(&scale) * t_c)
 }

@@ -64,12 +64,13 @@ const CLEARANCE: f64 = 0.5;
 /// fall in proportion to rtol (STABILITY.md).
 const ACCEPT: f64 = 0.1;
 
-/// The factor between the tolerances of successive runs under [`Settings::e_tol`].
-const TIGHTEN: f64 = 100.0;
+/// The factor between the tolerances of successive runs under [`Settings::e_tol`]: the check
+/// runs at `TIGHTEN rtol`, a tighter run at `rtol / TIGHTEN`.
+pub const TIGHTEN: f64 = 100.0;
 
 /// The tightest rtol [`Settings::e_tol`] goes down to: below it DOP853's and the series'
 /// errors are those of rounding.
-const FLOOR_RTOL: f64 = 1e-14;
+pub const FLOOR_RTOL: f64 = 1e-14;
 
 /// How a run treats stiff dynamics.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

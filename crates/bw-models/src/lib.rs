@@ -52,7 +52,8 @@ pub mod sweep;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use impact::{
-    impact, simulate, Check, Cor, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES,
+    impact, simulate, Check, Cor, Impact, Sampling, Settings, Stiffness, FLOOR_RTOL, MAX_SAMPLES,
+    TIGHTEN,
 };
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};
 pub use models::{

@@ -564,7 +564,8 @@ impl<I: Input> CollisionModel<3> for Bwshccm<I> {
         [y[2] / self.v0, y[1] / self.scales.z_c]
     }
     fn clearance(&self, y: &State<3>, f: &State<3>, rtol: f64) -> f64 {
-        let (y, f, t_c) = in_natural_units(y, f, self.state_scale(), self.scales.t_c);
+        let t_c = self.scales.t_c;
+        let (y, f) = in_natural_units(y, f, self.state_scale(), t_c);
         t_c * shccm_clearance(self.nd.get(), y.into(), f.into(), rtol)
     }
     fn series_impact(

@@ -1,9 +1,9 @@
 //! `bwc-simulate`: simulate the impacts a TOML scene describes.
 
-use bw_models::{Check, ModelKind};
+use bw_models::{Check, ModelKind, FLOOR_RTOL, TIGHTEN};
 use bwc_cli::outdir::{self, exit};
 use bwc_cli::simulate::Outcome;
-use bwc_cli::{output, scene::Scene, simulate, CliError};
+use bwc_cli::{output, scene::Scene, simulate, tidy, CliError};
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::PathBuf;
@@ -199,30 +199,25 @@ fn unmet_e_tol(scene: &Scene, label: &str, r: &simulate::Run) {
     match (check, r.e_error) {
         (Check::Unmet, Some(estimate)) => eprintln!(
             "bwc-simulate: warning: {label}: e differs by {estimate:.1e} from the same impact at \
-             100 times its rtol ({rtol:e}), more than [solver].e_tol = {e_tol:e}, and no tighter \
-             run was possible (rtol 1e-14 is the tightest, or the tighter run failed): take e \
-             as known to about {estimate:.0e}"
+             {TIGHTEN} times its rtol ({rtol:e}), more than [solver].e_tol = {e_tol:e}, and no \
+             tighter run was possible (rtol {FLOOR_RTOL:e} is the tightest, or the tighter run \
+             failed): take e as known to about {estimate:.0e}"
         ),
         (Check::Unverified, _) => {
-            let tighter = if rtol / 100.0 >= 1e-14 {
-                format!("so did the run at {:e}", tidy(rtol / 100.0))
+            let tighter = if rtol / TIGHTEN >= FLOOR_RTOL {
+                format!("so did the run at {:e}", tidy(rtol / TIGHTEN))
             } else {
-                "rtol is at the floor, 1e-14, with no tighter run".to_string()
+                format!("rtol is at the floor, {FLOOR_RTOL:e}, with no tighter run")
             };
             eprintln!(
                 "bwc-simulate: warning: {label}: e is one unchecked run at rtol {rtol:e}: the \
                  check against [solver].e_tol = {e_tol:e} failed at rtol {check:e}, and \
                  {tighter}; [solver] rtol = {check:e} with e_tol = 0 shows why the check failed",
-                check = tidy(100.0 * rtol)
+                check = tidy(TIGHTEN * rtol)
             )
         }
         _ => {}
     }
-}
-
-/// `x` to 12 significant digits, so that `100 * 1e-12` reads `1e-10`.
-fn tidy(x: f64) -> f64 {
-    format!("{x:.11e}").parse().unwrap_or(x)
 }
 
 /// The human-readable table, with the unit of every column.

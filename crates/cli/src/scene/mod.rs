@@ -542,11 +542,9 @@ fn output(ctx: &Ctx, raw: &RawScene) -> Result<OutputSpec, CliError> {
     Ok(o)
 }
 
-/// A tenth of `t` to 12 significant digits, so that it reads as written (`1e-11`, not the
-/// `1.0000000000000001e-11` of `1e-10 / 10`) in the summary and on stderr.
+/// A tenth of `t`, reading as written ([`crate::tidy`]).
 fn tenth(t: f64) -> f64 {
-    let x = t / 10.0;
-    format!("{x:.11e}").parse().unwrap_or(x)
+    crate::tidy(t / 10.0)
 }
 
 /// `[sweep]`, the tolerance by default a tenth of the solver's `e_tol` (1e-11), or its `rtol`
