@@ -53,6 +53,10 @@ impl Limits {
         let last = remaining <= h * (1.0 + 1e-12);
         if last {
             h = remaining;
+        } else {
+            // A step the time can take exactly (t + h has no rounding), so that the state and
+            // the time advance by the same h.
+            h = (t + h) - t;
         }
         let h_floor = self.min_step.max(16.0 * f64::EPSILON * t.abs());
         if h <= h_floor && !(last && h > 0.0) {

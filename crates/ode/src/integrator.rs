@@ -106,6 +106,22 @@ impl<const N: usize> Dense<N> {
     }
 }
 
+/// `y + d` rounded, and what the rounding lost (Knuth's TwoSum, exact for any magnitudes): the
+/// integrators add it to the next step's increment (compensated summation). Without it each
+/// step's rounding of the state, about `ε |y|`, stays in it; over the tens of thousands of steps
+/// of a long contact at tight tolerances these add up to more than the tolerance (STABILITY.md,
+/// "Session 21").
+#[inline]
+pub(crate) fn compensated<const N: usize>(y: &State<N>, d: &State<N>) -> (State<N>, State<N>) {
+    let sum = y + d;
+    let lost = State::<N>::from_fn(|i, _| {
+        let (a, b, s) = (y[i], d[i], sum[i]);
+        let b_virtual = s - a;
+        (a - (s - b_virtual)) + (b - b_virtual)
+    });
+    (sum, lost)
+}
+
 /// An adaptive explicit Runge-Kutta integration of `y' = f(t, y)` in progress.
 ///
 /// Owns its state on the stack: stepping allocates nothing. Each [`Integrator::step`] takes one
@@ -134,6 +150,12 @@ pub struct Integrator<F, const N: usize> {
     t: f64,
     y: State<N>,
     f_now: State<N>,
+    /// The rounding error of `y` (what the last update lost when it was rounded), added to the
+    /// next increment: compensated summation, so that rounding errors of the state do not grow
+    /// with the number of steps.
+    carry: State<N>,
+    /// `carry` at the start of the last accepted step.
+    carry_prev: State<N>,
     /// Proposed size of the next step.
     h: f64,
     // The last accepted step: [t_prev, t], its stages and its interpolant.
@@ -197,6 +219,8 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
             t: t0,
             y: y0,
             f_now: State::zeros(),
+            carry: State::zeros(),
+            carry_prev: State::zeros(),
             h: 0.0,
             t_prev: t0,
             y_prev: y0,
@@ -329,35 +353,54 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
     }
 
     /// Evaluates stages `1..stages` of a step of size `h` from the current point and returns the
-    /// new solution `y_1`. Stage 0 is `f(t, y)`.
-    fn stages(&mut self, h: f64) -> State<N> {
+    /// new solution `y_1` with its rounding error ([`Integrator::advance`]). Stage 0 is
+    /// `f(t, y)`.
+    fn stages(&mut self, h: f64) -> (State<N>, State<N>) {
         let tab = self.tab;
         self.k[0] = self.f_now;
+        let mut end = None;
         for i in 1..tab.stages {
-            let yi = self.combine(&self.y, tab.a[i], h);
+            let yi = if i == tab.fsal {
+                // The fsal stage is evaluated at y_1 itself.
+                let (y1, carry) = self.advance(tab.a[i], h);
+                end = Some((y1, carry));
+                y1
+            } else {
+                self.combine(&self.y, &self.carry, tab.a[i], h)
+            };
             if i == tab.stiffness.stage {
                 self.y_stiff = yi;
             }
             self.k[i] = self.eval(self.t + tab.c[i] * h, &yi);
         }
-        if tab.fsal < tab.stages {
-            // The fsal stage was evaluated at y_1 itself.
-            self.combine(&self.y, tab.a[tab.fsal], h)
-        } else {
-            self.combine(&self.y, tab.b, h)
-        }
+        end.unwrap_or_else(|| self.advance(tab.b, h))
     }
 
-    /// `y + h Σ_j w_j k_j`, skipping zero weights.
+    /// `h Σ_j w_j k_j`, skipping zero weights.
     #[inline]
-    fn combine(&self, y: &State<N>, w: &[f64], h: f64) -> State<N> {
+    fn increment(&self, w: &[f64], h: f64) -> State<N> {
         let mut acc = State::<N>::zeros();
         for (wj, kj) in w.iter().zip(&self.k) {
             if *wj != 0.0 {
                 acc.axpy(*wj, kj, 1.0);
             }
         }
-        y + acc * h
+        acc * h
+    }
+
+    /// `y + (h Σ_j w_j k_j + carry)`: a stage from the state `y` whose rounding error is
+    /// `carry`. The stages take the carry as the step's end does, so that differences between
+    /// them (the stiffness test's) are not differences of roundings.
+    #[inline]
+    fn combine(&self, y: &State<N>, carry: &State<N>, w: &[f64], h: f64) -> State<N> {
+        y + (self.increment(w, h) + carry)
+    }
+
+    /// The state after a step, `y_1 = y + (h Σ_j w_j k_j + carry)` rounded, and what that
+    /// rounding lost, to be carried into the next step ([`compensated`]).
+    #[inline]
+    fn advance(&self, w: &[f64], h: f64) -> (State<N>, State<N>) {
+        compensated(&self.y, &(self.increment(w, h) + self.carry))
     }
 
     /// Scaled error norm of the step just computed (`<= 1`: acceptable).
@@ -387,8 +430,9 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         }
     }
 
-    /// Finishes a step of size `h` ending at `t1` with solution `y1`: makes it the last step.
-    fn accept(&mut self, h: f64, t1: f64, y1: State<N>) -> Result<(), Error> {
+    /// Finishes a step of size `h` ending at `t1` with solution `y1` (rounded by `carry`):
+    /// makes it the last step.
+    fn accept(&mut self, h: f64, t1: f64, (y1, carry): (State<N>, State<N>)) -> Result<(), Error> {
         let tab = self.tab;
         let f1 = if tab.fsal < tab.stages {
             self.k[tab.fsal]
@@ -406,6 +450,8 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         self.stiffness_test(h, &y1, &f1);
         self.t_prev = self.t;
         self.y_prev = self.y;
+        self.carry_prev = self.carry;
+        self.carry = carry;
         self.h_prev = h;
         self.t = t1;
         self.y = y1;
@@ -472,7 +518,8 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
             let (h, last) = self
                 .limits
                 .trial(self.t, t_end, self.h, &self.stats, &self.y)?;
-            let y1 = self.stages(h);
+            let end = self.stages(h);
+            let y1 = end.0;
             let err = self.error_norm(h, &y1);
             if err.is_finite() && err <= 1.0 {
                 let t1 = if last { t_end } else { self.t + h };
@@ -483,7 +530,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
                 if self.last_rejected {
                     h_new = h_new.min(h);
                 }
-                self.accept(h, t1, y1)?;
+                self.accept(h, t1, end)?;
                 self.fac_old = err.max(1e-4);
                 self.last_rejected = false;
                 // Keep the proposal from the controller even when the last step was clipped.
@@ -517,9 +564,9 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
     /// # Errors
     /// [`Error::NonFiniteState`] if the step produced NaN or infinity.
     pub fn step_fixed(&mut self, h: f64) -> Result<(), Error> {
-        let y1 = self.stages(h);
+        let end = self.stages(h);
         let t1 = self.t + h;
-        self.accept(h, t1, y1)
+        self.accept(h, t1, end)
     }
 
     /// Integrates until `t = t_end` (exactly).
@@ -540,7 +587,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
             let tab = self.tab;
             let (t0, h) = (self.t_prev, self.h_prev);
             for i in tab.fsal + 1..tab.total_stages() {
-                let yi = self.combine(&self.y_prev, tab.a[i], h);
+                let yi = self.combine(&self.y_prev, &self.carry_prev, tab.a[i], h);
                 self.k[i] = self.eval(t0 + tab.c[i] * h, &yi);
             }
             // F_r = h [(Σ_j D_rj) k_0 + Σ_j D_rj (k_j - k_0)]: the stages differ from k_0 by
@@ -577,6 +624,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         inside_last_step(t_stop, self.t_prev, self.t)?;
         self.t = self.t_prev;
         self.y = self.y_prev;
+        self.carry = self.carry_prev;
         self.f_now = self.k[0];
         self.stats.accepted -= 1;
         self.stats.rejected += 1;
@@ -604,6 +652,8 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         }
         self.t = t;
         self.y = y;
+        self.carry = State::zeros();
+        self.carry_prev = State::zeros();
         self.f_now = f;
         self.t_prev = t;
         self.y_prev = y;

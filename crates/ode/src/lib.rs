@@ -16,6 +16,9 @@
 //! with the system's [`Jacobian`]; [`Solver`] starts with an explicit method and switches to it
 //! when the stiffness test fires ([`Method`]). All three implement [`Stepper`], the interface
 //! event location works on.
+//! Both integrators carry the rounding error of each update of the state into the next step
+//! (compensated summation) and take steps the time takes exactly, so that rounding errors do
+//! not add up over the hundreds of thousands of steps of a long integration at tight tolerances.
 //! Nothing is allocated per step or per solve; failures are values ([`Error`]) carrying the time
 //! and state where they happened. Integration can stop at any instant inside a step
 //! ([`Integrator::retake_to`]) and restart ([`Integrator::restart`]): the `bwc-events` crate

@@ -17,7 +17,7 @@
 #![allow(clippy::excessive_precision)] // coefficients keep their published digits
 
 use crate::control::{aimed, inside_last_step, Limits};
-use crate::integrator::{Dense, Stats, Trial};
+use crate::integrator::{compensated, Dense, Stats, Trial};
 use crate::{Error, Options, State, System};
 
 /// An `N x N` matrix on the stack.
@@ -144,6 +144,10 @@ pub struct Rosenbrock<F, const N: usize> {
     y_prev: State<N>,
     f_prev: State<N>,
     h_prev: f64,
+    /// The rounding error of `y`, added to the next increment (compensated summation, as in
+    /// [`crate::Integrator`]), and its value at the start of the last accepted step.
+    carry: State<N>,
+    carry_prev: State<N>,
     /// Stage increments `g_1 .. g_5` of the last accepted step (for the dense output).
     g: [State<N>; 5],
     last_rejected: bool,
@@ -179,6 +183,8 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
             y_prev: y0,
             f_prev: f_now,
             h_prev: 0.0,
+            carry: State::zeros(),
+            carry_prev: State::zeros(),
             g: [State::zeros(); 5],
             last_rejected: false,
             stats: Stats {
@@ -280,9 +286,15 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
         self.y.as_slice().to_vec()
     }
 
-    /// One RODAS4 step of size `h` from the current point: the new solution and the error
-    /// estimate, or `None` when `M` is singular or a value is not finite.
-    fn attempt(&mut self, h: f64, jac: &Matrix<N>, ft: &State<N>) -> Option<(State<N>, State<N>)> {
+    /// One RODAS4 step of size `h` from the current point: the new solution, the error
+    /// estimate and the new solution's rounding error (carried into the next step), or `None`
+    /// when `M` is singular or a value is not finite.
+    fn attempt(
+        &mut self,
+        h: f64,
+        jac: &Matrix<N>,
+        ft: &State<N>,
+    ) -> Option<(State<N>, State<N>, State<N>)> {
         // N is tiny (3 or 4 here): nalgebra inverts in closed form up to 4 x 4 (by LU beyond),
         // and each stage is then one matrix-vector product.
         let m_inv = (Matrix::<N>::identity() / (GAMMA * h) - jac).try_inverse()?;
@@ -308,14 +320,14 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
             }
             g[i] = m_inv * b;
         }
-        let mut y1 = self.y;
+        let mut d = g[5] + self.carry;
         for (aj, gj) in A[4].iter().zip(&g) {
-            y1.axpy(*aj, gj, 1.0);
+            d.axpy(*aj, gj, 1.0);
         }
-        y1 += g[5];
+        let (y1, lost) = compensated(&self.y, &d);
         self.g.copy_from_slice(&g[..5]);
         let ok = y1.iter().chain(g[5].iter()).all(|v| v.is_finite());
-        ok.then_some((y1, g[5]))
+        ok.then_some((y1, g[5], lost))
     }
 
     /// As [`crate::Integrator::step_aiming`].
@@ -343,11 +355,11 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
                 .limits
                 .trial(self.t, t_end, self.h, &self.stats, &self.y)?;
             let attempt = self.attempt(h, &jac, &ft);
-            let err = attempt.as_ref().map_or(f64::INFINITY, |(y1, e)| {
+            let err = attempt.as_ref().map_or(f64::INFINITY, |(y1, e, _)| {
                 let sk = self.atol + self.rtol.component_mul(&self.y.abs().sup(&y1.abs()));
                 (e.component_div(&sk).norm_squared() / N as f64).sqrt()
             });
-            if let (Some((y1, _)), true) = (attempt, err <= 1.0) {
+            if let (Some((y1, _, carry)), true) = (attempt, err <= 1.0) {
                 let t1 = if last { t_end } else { self.t + h };
                 let f1 = self.eval(t1, &y1);
                 if !f1.iter().all(|v| v.is_finite()) {
@@ -364,6 +376,8 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
                 self.t_prev = self.t;
                 self.y_prev = self.y;
                 self.f_prev = self.f_now;
+                self.carry_prev = self.carry;
+                self.carry = carry;
                 self.h_prev = h;
                 self.t = t1;
                 self.y = y1;
@@ -377,7 +391,7 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
             }
             self.stats.rejected += 1;
             self.last_rejected = true;
-            let y1 = attempt.map_or(self.y, |(y1, _)| y1);
+            let y1 = attempt.map_or(self.y, |(y1, _, _)| y1);
             let trial = Trial {
                 t0: self.t,
                 y0: &self.y,
@@ -433,6 +447,7 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
         inside_last_step(t_stop, self.t_prev, self.t)?;
         self.t = self.t_prev;
         self.y = self.y_prev;
+        self.carry = self.carry_prev;
         self.f_now = self.f_prev;
         self.stats.accepted -= 1;
         self.stats.rejected += 1;
