@@ -1,6 +1,9 @@
 //! One impact: integrate a model from the instant of contact to separation
 //! `t_s = inf{t > 0 : F <= 0 <= v}` and report `t_s`, `e = v(t_s) / v0` and `t_d = t_s`.
 
+use crate::checked::Check;
+#[cfg(doc)]
+use crate::checked::{impact, tighter, CHECK_METHOD, TIGHTER_METHOD};
 use crate::models::CollisionModel;
 use crate::params::check;
 use crate::series::SeriesRun;
@@ -42,14 +45,16 @@ pub struct Settings {
     /// about the Runge-Kutta path's error (1e-11 at rtol 1e-11).
     pub series: bool,
     /// Global error control of CoR evaluations ([`impact`]), the target for the error in `e`.
-    /// `Some(e_tol)`: each impact is computed at `rtol` and checked against the same impact at
-    /// `100 rtol` (`atol` scaled alike); where their `e` differ by more than `0.1 e_tol` (or
-    /// only one separated), it is computed again at `rtol / 100` and checked against the run
-    /// at `rtol`, and so on down to rtol 1e-14. The result is the tightest run, with the last
-    /// difference as its error estimate ([`Impact::e_error`]; at most `0.1 e_tol` except where
-    /// rtol 1e-14 did not get there). Validated on the stress sweep (STABILITY.md, "Session
-    /// 19: global error control"). `None`: one run at `rtol`. Trajectories ([`simulate`]) are
-    /// one run either way.
+    /// `Some(e_tol)`: each impact is computed at `rtol` and checked against the impact at
+    /// `100 rtol` (`atol` scaled alike), whose Runge-Kutta steps are [`CHECK_METHOD`]'s
+    /// (Verner's 9(8)); where their `e` differ by more than `0.1 e_tol` (or only one
+    /// separated), it is computed again at `rtol / 100` with [`TIGHTER_METHOD`] (Verner's 7(6))
+    /// and checked against the run at `rtol`, and so on down to rtol 1e-14 ([`tighter`]). The
+    /// result is the tightest run, with the last difference as its error estimate
+    /// ([`Impact::e_error`]; at most `0.1 e_tol` except where rtol 1e-14 did not get there).
+    /// Validated on the stress sweep (STABILITY.md, "Session 19: global error control" and
+    /// "Session 21"). `None`: one run at `rtol`. Trajectories ([`simulate`]) are one run either
+    /// way.
     pub e_tol: Option<f64>,
 }
 
@@ -57,20 +62,6 @@ pub struct Settings {
 /// the time to the next point where the right-hand side is not analytic
 /// ([`CollisionModel::clearance`]).
 const CLEARANCE: f64 = 0.5;
-
-/// A CoR evaluation under [`Settings::e_tol`] is accepted when its `e` differs from the check's
-/// by at most this fraction of `e_tol`: where the check's error is the difference, the
-/// reported run's is about a hundredth of it, and the margin covers runs whose error does not
-/// fall in proportion to rtol (STABILITY.md).
-const ACCEPT: f64 = 0.1;
-
-/// The factor between the tolerances of successive runs under [`Settings::e_tol`]: the check
-/// runs at `TIGHTEN rtol`, a tighter run at `rtol / TIGHTEN`.
-pub const TIGHTEN: f64 = 100.0;
-
-/// The tightest rtol [`Settings::e_tol`] goes down to: below it DOP853's and the series'
-/// errors are those of rounding.
-pub const FLOOR_RTOL: f64 = 1e-14;
 
 /// How a run treats stiff dynamics.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -90,11 +81,11 @@ impl Default for Settings {
     /// stopping at the non-smooth points, no step limit, horizon 1000, and CoR evaluations
     /// checked against a run at rtol 1e-10 for an error in `e` of at most `e_tol` = 1e-10.
     /// Chosen from the data (issue 21): no single tolerance keeps the error in `e` below 1e-10
-    /// on every separated run of the stress sweep (STABILITY.md, "Session 19: global error
-    /// control": 598 of 52,535 miss at rtol 1e-11, 9 at 1e-13); the checked runs miss 7 (since
-    /// session 20), by at most 4.5e-10, six of them with an estimate above `e_tol`, at about
-    /// twice the cost of one run at rtol 1e-11 on the paper's cases. On the work-precision
-    /// cases (BENCHMARKS.md) one run at rtol 1e-11 already keeps the error below 1e-12.
+    /// on every separated run of the stress sweep (STABILITY.md, "Session 21": 565 of about
+    /// 52,600 miss at rtol 1e-11, 55 at 1e-14); the checked runs miss 10, by up to 3.9e-8, each
+    /// with an estimate above `e_tol`, at about twice the cost of one run at rtol 1e-11 on the
+    /// paper's cases. On the work-precision cases (BENCHMARKS.md) one
+    /// run at rtol 1e-11 already keeps the error below 1e-12.
     fn default() -> Self {
         Self {
             method: &DOP853,
@@ -205,33 +196,6 @@ pub struct Impact<const N: usize> {
     pub check: Check,
 }
 
-/// What the check of an impact under [`Settings::e_tol`] found.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Check {
-    /// Not checked: one run at `rtol` (no `e_tol`, or a sampled run), without an estimate.
-    Off,
-    /// The estimate `e_error` is at most `e_tol`.
-    Met,
-    /// The estimate `e_error` stayed above `e_tol`: the tightest run (rtol 1e-14) still
-    /// differed from the one before it, or a tighter run failed.
-    Unmet,
-    /// No run at another tolerance finished (the check at `100 rtol` failed, and so did the
-    /// run at `rtol / 100` or it was below 1e-14): `e` is one unchecked run at `rtol`.
-    Unverified,
-}
-
-impl Check {
-    /// The name in outputs: `"off"`, `"met"`, `"unmet"` or `"unverified"`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Check::Off => "off",
-            Check::Met => "met",
-            Check::Unmet => "unmet",
-            Check::Unverified => "unverified",
-        }
-    }
-}
-
 impl<const N: usize> Impact<N> {
     /// Whether the bodies separated.
     pub fn separated(&self) -> bool {
@@ -331,64 +295,6 @@ impl<const N: usize, M: CollisionModel<N>> Switches<N> for Kinks<'_, M> {
     fn floor(&self) -> Values {
         [self.floor; MAX_FUNCTIONS]
     }
-}
-
-/// Coefficient of restitution, separation time and statistics of one impact, under
-/// [`Settings::e_tol`] checked against runs at other tolerances; stores nothing and allocates
-/// nothing.
-///
-/// # Errors
-/// As [`simulate`]. Under [`Settings::e_tol`], a failure of the first run at `rtol` (the check
-/// at `100 rtol` counts as a differing run); a failure of a tighter run returns the run before
-/// it, with its estimate.
-pub fn impact<M: CollisionModel<N>, const N: usize>(
-    model: &M,
-    settings: &Settings,
-) -> Result<Impact<N>, ModelError> {
-    let Some(e_tol) = settings.e_tol else {
-        return simulate(model, settings, Sampling::None, |_, _| {});
-    };
-    settings.validate()?;
-    let at = |rtol: f64| Settings {
-        rtol,
-        atol: settings.atol * (rtol / settings.rtol),
-        e_tol: None,
-        ..*settings
-    };
-    let run = |rtol: f64| simulate(model, &at(rtol), Sampling::None, |_, _| {});
-    let check = run(TIGHTEN * settings.rtol).ok();
-    let mut out = run(settings.rtol)?;
-    let mut work = out.stats;
-    if let Some(c) = &check {
-        work += c.stats;
-        estimate(&mut out, c);
-    }
-    let mut rtol = settings.rtol;
-    while !out.e_error.is_some_and(|d| d <= ACCEPT * e_tol) && rtol / TIGHTEN >= FLOOR_RTOL {
-        rtol /= TIGHTEN;
-        let Ok(mut next) = run(rtol) else { break };
-        work += next.stats;
-        estimate(&mut next, &out);
-        out = next;
-    }
-    out.stats = work;
-    out.check = match out.e_error {
-        None => Check::Unverified,
-        Some(d) if d <= e_tol => Check::Met,
-        Some(_) => Check::Unmet,
-    };
-    Ok(out)
-}
-
-/// Sets `out`'s error estimates from the run `before` it, at a looser tolerance. Runs that
-/// differ in outcome differ by `e` itself.
-fn estimate<const N: usize>(out: &mut Impact<N>, before: &Impact<N>) {
-    out.e_error = Some(if out.separated() == before.separated() {
-        (out.e - before.e).abs()
-    } else {
-        out.e.max(before.e)
-    });
-    out.t_s_error = before.t_s.zip(out.t_s).map(|(a, c)| (a - c).abs());
 }
 
 /// Integrates one impact from contact to separation, passing sampled states `(t, y)` to `sink`
@@ -631,136 +537,5 @@ impl GridSampler {
             t = self.next as f64 * dt;
         }
         Ok(())
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::input::Zero;
-    use crate::{ModelKind, Ndbwshccm, Nondim, NondimParams};
-    use std::cell::Cell;
-
-    /// The Hunt-Crossley limit (`B = Γ = 0`) whose runs at the tolerances in `failing` fail
-    /// (a non-finite right-hand side): it reads each run's rtol where the crate hands it its
-    /// settings, and keeps the Runge-Kutta path.
-    struct Failing {
-        inner: Ndbwshccm<Zero>,
-        failing: Vec<f64>,
-        rtol: Cell<f64>,
-    }
-
-    impl Failing {
-        fn new(failing: &[f64]) -> Self {
-            let nd = Nondim {
-                b: 0.0,
-                gamma: 0.0,
-                kappa: 0.5,
-                sigma: 0.2,
-                n: 1.5,
-                p: 1.5,
-            };
-            Self {
-                inner: Ndbwshccm::new(&NondimParams::new(ModelKind::Shccm, nd).unwrap(), Zero)
-                    .unwrap(),
-                failing: failing.to_vec(),
-                rtol: Cell::new(0.0),
-            }
-        }
-    }
-
-    impl System<3> for Failing {
-        fn rhs(&self, t: f64, y: &State<3>) -> State<3> {
-            let r = self.rtol.get();
-            let fails = self.failing.iter().any(|f| (r / f - 1.0).abs() < 1e-9);
-            self.inner.rhs(t, y) * if fails { f64::NAN } else { 1.0 }
-        }
-    }
-
-    impl CollisionModel<3> for Failing {
-        fn initial_state(&self) -> State<3> {
-            self.inner.initial_state()
-        }
-        fn force(&self, y: &State<3>) -> f64 {
-            self.inner.force(y)
-        }
-        fn displacement(&self, y: &State<3>) -> f64 {
-            self.inner.displacement(y)
-        }
-        fn velocity(&self, y: &State<3>) -> f64 {
-            self.inner.velocity(y)
-        }
-        fn input(&self, t: f64) -> f64 {
-            self.inner.input(t)
-        }
-        fn input_constant_after(&self) -> Option<f64> {
-            self.inner.input_constant_after()
-        }
-        fn series_impact(
-            &self,
-            _: crate::series::Private,
-            settings: &Settings,
-        ) -> Option<SeriesRun<3>> {
-            self.rtol.set(settings.rtol);
-            None
-        }
-        fn impact_speed(&self) -> f64 {
-            1.0
-        }
-        fn state_scale(&self) -> State<3> {
-            State::<3>::repeat(1.0)
-        }
-        fn time_scale(&self) -> f64 {
-            1.0
-        }
-        fn kinks(&self, t: f64, y: &State<3>) -> [f64; 2] {
-            self.inner.kinks(t, y)
-        }
-    }
-
-    fn checked(rtol: f64) -> Settings {
-        Settings {
-            rtol,
-            atol: rtol / 100.0,
-            e_tol: Some(1e-10),
-            ..Settings::default()
-        }
-    }
-
-    #[test]
-    fn a_cor_no_other_run_could_check_says_so() {
-        // The check at 100 rtol and the tighter run at rtol / 100 both fail.
-        let out = impact(&Failing::new(&[1e-6, 1e-10]), &checked(1e-8)).unwrap();
-        assert_eq!(
-            (out.check, out.e_error, out.rtol),
-            (Check::Unverified, None, 1e-8)
-        );
-        assert!(out.separated());
-        // At the floor there is no tighter run to try.
-        let out = impact(&Failing::new(&[1e-12]), &checked(1e-14)).unwrap();
-        assert_eq!((out.check, out.e_error), (Check::Unverified, None));
-    }
-
-    #[test]
-    fn a_check_says_whether_it_met_e_tol() {
-        // Only the check fails: the tighter run checks the run at rtol instead.
-        let out = impact(&Failing::new(&[1e-6]), &checked(1e-8)).unwrap();
-        assert_eq!(out.check, Check::Met);
-        assert!(out.rtol < 1e-8 && out.e_error.unwrap() <= 1e-11, "{out:?}");
-        // A run that differs from its check by more than e_tol, with no tighter run possible.
-        let out = impact(&Failing::new(&[1e-6]), &checked(1e-4)).unwrap();
-        let (estimate, check) = (out.e_error.unwrap(), out.check);
-        assert!(
-            estimate > 1e-10 && check == Check::Unmet,
-            "{estimate:e} {check:?}"
-        );
-        let single = impact(
-            &Failing::new(&[]),
-            &Settings {
-                e_tol: None,
-                ..checked(1e-8)
-            },
-        );
-        assert_eq!(single.unwrap().check, Check::Off);
     }
 }

@@ -37,6 +37,7 @@
 #![deny(missing_docs)]
 
 mod bodies;
+mod checked;
 mod clearance;
 mod impact;
 pub mod input;
@@ -51,10 +52,8 @@ mod series;
 pub mod sweep;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
-pub use impact::{
-    impact, simulate, Check, Cor, Impact, Sampling, Settings, Stiffness, FLOOR_RTOL, MAX_SAMPLES,
-    TIGHTEN,
-};
+pub use checked::{impact, tighter, Check, CHECK_METHOD, FLOOR_RTOL, TIGHTEN, TIGHTER_METHOD};
+pub use impact::{simulate, Cor, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES};
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};
 pub use models::{
     Bwmcm, BwmcmEarlier, Bwshccm, CollisionModel, Ndbwmcm, NdbwmcmEarlier, Ndbwshccm,

@@ -1,6 +1,6 @@
 //! `bwc-simulate`: simulate the impacts a TOML scene describes.
 
-use bw_models::{Check, ModelKind, FLOOR_RTOL, TIGHTEN};
+use bw_models::{Check, ModelKind, CHECK_METHOD, FLOOR_RTOL, TIGHTEN};
 use bwc_cli::outdir::{self, exit};
 use bwc_cli::simulate::Outcome;
 use bwc_cli::{output, scene::Scene, simulate, tidy, CliError};
@@ -204,16 +204,18 @@ fn unmet_e_tol(scene: &Scene, label: &str, r: &simulate::Run) {
              failed): take e as known to about {estimate:.0e}"
         ),
         (Check::Unverified, _) => {
-            let tighter = if rtol / TIGHTEN >= FLOOR_RTOL {
-                format!("so did the run at {:e}", tidy(rtol / TIGHTEN))
+            let tighter = if rtol > FLOOR_RTOL {
+                format!("so did the run at {:e}", tidy(bw_models::tighter(rtol)))
             } else {
                 format!("rtol is at the floor, {FLOOR_RTOL:e}, with no tighter run")
             };
             eprintln!(
                 "bwc-simulate: warning: {label}: e is one unchecked run at rtol {rtol:e}: the \
                  check against [solver].e_tol = {e_tol:e} failed at rtol {check:e}, and \
-                 {tighter}; [solver] rtol = {check:e} with e_tol = 0 shows why the check failed",
-                check = tidy(TIGHTEN * rtol)
+                 {tighter}; [solver] method = \"{method}\", rtol = {check:e} with e_tol = 0 \
+                 shows why the check failed",
+                check = tidy(TIGHTEN * rtol),
+                method = CHECK_METHOD.name.to_lowercase()
             )
         }
         _ => {}
