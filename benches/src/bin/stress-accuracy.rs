@@ -7,14 +7,16 @@
 //! so that a run's own error cannot pass for the truth.
 //!
 //! `cargo run --release -p bwc-benches --bin stress-accuracy -- [COUNT] [SEED] [RTOL | default |
-//! e_tol=TOL ...] [fine=RTOL] [check=RTOL] [list]` (default 30000, 1, `default` and rtol 1e-11
-//! 1e-12 1e-13, references at rtol 3e-15: with compensated summation the references agree to
-//! about 1e-11 there, STABILITY.md, "Session 21"). An RTOL is one run at that tolerance (`e_tol`
-//! off, atol = rtol / 100); `default` is the sweep's settings, the defaults, whose CoRs are
-//! checked to `e_tol` = 1e-10: for it the table also counts the runs whose own estimate exceeds
+//! library | e_tol=TOL ...] [fine=RTOL] [check=RTOL] [list]` (default 30000, 1, `default` and
+//! rtol 1e-11 1e-12 1e-13, references at rtol 3e-15: with compensated summation the references
+//! agree to about 1e-11 there, STABILITY.md, "Session 21"). An RTOL is one run at that tolerance
+//! (`e_tol` off, atol = rtol / 100); `default` is the sweep's settings, the defaults, whose CoRs
+//! are checked to `e_tol` = 1e-10: for it the table also counts the runs whose own estimate exceeds
 //! `e_tol`, or that have none (`flagged`), the misses among the rest (`silent`) and the runs no
-//! other tolerance could check (`unverified`, among the flagged); `e_tol=TOL` is the defaults
-//! with that target (the misses still counted above 1e-10). `list` prints each miss.
+//! other tolerance could check (`unverified`, among the flagged); `library` is the defaults with
+//! the library's step limit (`Settings::default().max_steps`) in place of the sweep's 200,000;
+//! `e_tol=TOL` is the defaults with that target (the misses still counted above 1e-10). `list`
+//! prints each miss.
 
 use bw_models::{Check, Settings};
 use bwc_benches::stress::{settings, sweep_with, Outcome};
@@ -52,6 +54,13 @@ fn main() {
         .skip(2)
         .filter_map(|a| match a.as_str() {
             "default" => Some(("default".to_string(), settings())),
+            "library" => Some((
+                "library".to_string(),
+                Settings {
+                    max_steps: Settings::default().max_steps,
+                    ..settings()
+                },
+            )),
             _ => match a.strip_prefix("e_tol=").and_then(|t| t.parse().ok()) {
                 Some(t) => Some((
                     format!("e_tol={t:e}"),
