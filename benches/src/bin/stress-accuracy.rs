@@ -49,9 +49,50 @@ fn main() {
     };
     let (fine_rtol, check_rtol) = (reference("fine=", 3e-15), reference("check=", 3e-15));
     let list = args.iter().any(|a| a == "list");
-    let mut runs: Vec<(String, Settings)> = args
+    let on_runge_kutta = |method, rtol| Settings {
+        method,
+        max_steps: REFERENCE_MAX_STEPS,
+        ..at(rtol, false)
+    };
+    let references = References {
+        fine: sweep_with(seed, count, &on_runge_kutta(&VERN9, fine_rtol)),
+        check: sweep_with(seed, count, &on_runge_kutta(&VERN7, check_rtol)),
+    };
+    bwc_cli::out!(
+        "# {count} cases, seed {seed}: misses above {MISS:e} against Vern9 at rtol {fine_rtol:e} \
+         (checked against Vern7 at {check_rtol:e})"
+    );
+    bwc_cli::out!(
+        "settings\tseparated\toff\toff_series\tlargest\tflagged\tsilent\tunverified\twall_s"
+    );
+    for (name, s) in settings_from(&args[args.len().min(2)..]) {
+        let clock = Instant::now();
+        let runs = sweep_with(seed, count, &s);
+        let wall = clock.elapsed().as_secs_f64();
+        let t = tally(&name, &runs, &references, list);
+        let (flagged, silent, unverified) = match s.e_tol {
+            Some(_) => (
+                t.flagged.to_string(),
+                t.silent.to_string(),
+                t.unverified.to_string(),
+            ),
+            None => ("-".to_string(), "-".to_string(), "-".to_string()),
+        };
+        bwc_cli::out!(
+            "{name}\t{}\t{}\t{}\t{:.1e}\t{flagged}\t{silent}\t{unverified}\t{wall:.1}",
+            t.separated,
+            t.off,
+            t.off_series,
+            t.largest
+        );
+    }
+}
+
+/// The settings named on the command line (after COUNT and SEED), or `default` and rtol 1e-11,
+/// 1e-12 and 1e-13 where none is.
+fn settings_from(args: &[String]) -> Vec<(String, Settings)> {
+    let runs: Vec<(String, Settings)> = args
         .iter()
-        .skip(2)
         .filter_map(|a| match a.as_str() {
             "default" => Some(("default".to_string(), settings())),
             "library" => Some((
@@ -73,75 +114,56 @@ fn main() {
             },
         })
         .collect();
-    if runs.is_empty() {
-        runs = vec![("default".to_string(), settings())];
-        runs.extend([1e-11, 1e-12, 1e-13].map(|r| (format!("{r:e}"), at(r, true))));
+    if !runs.is_empty() {
+        return runs;
     }
-    let on_runge_kutta = |method, rtol| Settings {
-        method,
-        max_steps: REFERENCE_MAX_STEPS,
-        ..at(rtol, false)
-    };
-    let fine = sweep_with(seed, count, &on_runge_kutta(&VERN9, fine_rtol));
-    let check = sweep_with(seed, count, &on_runge_kutta(&VERN7, check_rtol));
-    bwc_cli::out!(
-        "# {count} cases, seed {seed}: misses above {MISS:e} against Vern9 at rtol {fine_rtol:e} \
-         (checked against Vern7 at {check_rtol:e})"
-    );
-    bwc_cli::out!(
-        "settings\tseparated\toff\toff_series\tlargest\tflagged\tsilent\tunverified\twall_s"
-    );
-    for (name, s) in runs {
-        let clock = Instant::now();
-        let runs = sweep_with(seed, count, &s);
-        let wall = clock.elapsed().as_secs_f64();
-        let mut t = Tally::default();
-        for (i, ((run, f), c)) in runs.iter().zip(&fine).zip(&check).enumerate() {
-            let (Some(e), Some(ef), Some(ec)) = (separated_e(run), separated_e(f), separated_e(c))
-            else {
-                continue;
-            };
-            t.separated += 1;
-            let flagged = s.e_tol.is_some() && run.check != Some(Check::Met);
-            t.flagged += usize::from(flagged);
-            t.unverified += usize::from(run.check == Some(Check::Unverified));
-            let miss = (e - ef).abs();
-            if miss > MISS && (ec - ef).abs() < 0.1 * miss {
-                t.off += 1;
-                t.off_series += usize::from(run.series);
-                t.silent += usize::from(!flagged);
-                t.largest = t.largest.max(miss);
-                if list {
-                    let case = &run.case;
-                    bwc_cli::out!(
-                        "# {name} case {i}: {:?} e {e} reference {ef} miss {miss:.1e} \
-                         estimate {:?} series {} stiff {} input {:?} v0 {}",
-                        case.kind,
-                        run.e_error,
-                        run.series,
-                        run.switched,
-                        case.input,
-                        case.v0
-                    );
-                }
+    let mut runs = vec![("default".to_string(), settings())];
+    runs.extend([1e-11, 1e-12, 1e-13].map(|r| (format!("{r:e}"), at(r, true))));
+    runs
+}
+
+/// The two reference sweeps: Verner's 9(8) at `fine` and Verner's 7(6) at `check`.
+struct References {
+    fine: Vec<Outcome>,
+    check: Vec<Outcome>,
+}
+
+/// Counts the misses of the sweep `runs` of setting `name` (printing each if `list`).
+fn tally(name: &str, runs: &[Outcome], references: &References, list: bool) -> Tally {
+    let mut t = Tally::default();
+    let pairs = references.fine.iter().zip(&references.check);
+    for (i, (run, (f, c))) in runs.iter().zip(pairs).enumerate() {
+        let (Some(e), Some(ef), Some(ec)) = (separated_e(run), separated_e(f), separated_e(c))
+        else {
+            continue;
+        };
+        t.separated += 1;
+        // Runs without `e_tol` are `Check::Off`: never flagged.
+        let flagged = matches!(run.check, Some(Check::Unmet | Check::Unverified));
+        t.flagged += usize::from(flagged);
+        t.unverified += usize::from(run.check == Some(Check::Unverified));
+        let miss = (e - ef).abs();
+        if miss > MISS && (ec - ef).abs() < 0.1 * miss {
+            t.off += 1;
+            t.off_series += usize::from(run.series);
+            t.silent += usize::from(!flagged);
+            t.largest = t.largest.max(miss);
+            if list {
+                let case = &run.case;
+                bwc_cli::out!(
+                    "# {name} case {i}: {:?} e {e} reference {ef} miss {miss:.1e} \
+                     estimate {:?} series {} stiff {} input {:?} v0 {}",
+                    case.kind,
+                    run.e_error,
+                    run.series,
+                    run.switched,
+                    case.input,
+                    case.v0
+                );
             }
         }
-        let (flagged, silent, unverified) = match s.e_tol {
-            Some(_) => (
-                t.flagged.to_string(),
-                t.silent.to_string(),
-                t.unverified.to_string(),
-            ),
-            None => ("-".to_string(), "-".to_string(), "-".to_string()),
-        };
-        bwc_cli::out!(
-            "{name}\t{}\t{}\t{}\t{:.1e}\t{flagged}\t{silent}\t{unverified}\t{wall:.1}",
-            t.separated,
-            t.off,
-            t.off_series,
-            t.largest
-        );
     }
+    t
 }
 
 /// One run at `rtol` (atol = rtol / 100, `e_tol` off) with the sweep's other settings.
