@@ -113,21 +113,7 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::from(exit::OK),
-        Err(e) => {
-            match &e {
-                CliError::Many(all) => {
-                    eprintln!("bwc-identify: {} mistakes:", all.len());
-                    for one in all {
-                        eprintln!("bwc-identify: {one}");
-                    }
-                }
-                _ => eprintln!("bwc-identify: {e}"),
-            }
-            ExitCode::from(match e {
-                CliError::Output { file: Some(_), .. } => exit::NOT_WRITTEN,
-                _ => exit::ERROR,
-            })
-        }
+        Err(e) => ExitCode::from(e.report("bwc-identify")),
     }
 }
 

@@ -50,21 +50,7 @@ fn main() -> ExitCode {
     } = Cli::parse().command;
     match run(&scene, out.as_deref(), json, threads.map(|t| t as usize)) {
         Ok(status) => ExitCode::from(status),
-        Err(e) => {
-            match &e {
-                CliError::Many(all) => {
-                    eprintln!("bwc-simulate: {} mistakes:", all.len());
-                    for one in all {
-                        eprintln!("bwc-simulate: {one}");
-                    }
-                }
-                _ => eprintln!("bwc-simulate: {e}"),
-            }
-            ExitCode::from(match e {
-                CliError::Output { file: Some(_), .. } => exit::NOT_WRITTEN,
-                _ => exit::ERROR,
-            })
-        }
+        Err(e) => ExitCode::from(e.report("bwc-simulate")),
     }
 }
 
