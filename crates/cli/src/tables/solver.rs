@@ -37,22 +37,7 @@ pub(crate) fn solver_settings(
     let r = sv.get_ref();
     let key = |k: &str| format!("{name}.{k}");
     if let Some(m) = &r.method {
-        match m.get_ref().as_str() {
-            "dopri5" => s.method = &DOPRI5,
-            "dop853" => s.method = &DOP853,
-            "vern7" => s.method = &VERN7,
-            "vern9" => s.method = &VERN9,
-            "rosenbrock" => s.stiffness = Stiffness::Rosenbrock,
-            other => {
-                return Err(ctx.invalid(
-                    &m.span(),
-                    key("method"),
-                    format!(
-                        "\"{other}\": use \"dopri5\", \"dop853\", \"vern7\", \"vern9\" or \"rosenbrock\""
-                    ),
-                ))
-            }
-        };
+        set_method(ctx, m, &key("method"), &mut s)?;
     }
     if let Some(v) = &r.switch_when_stiff {
         if s.stiffness != Stiffness::Rosenbrock {
@@ -106,4 +91,25 @@ pub(crate) fn solver_settings(
         ctx.model_error(e, name, span_of, &sv.span())
     })?;
     Ok(s)
+}
+
+/// Sets the Runge-Kutta method of `s` (or Rosenbrock throughout) from its name in `[solver]`.
+fn set_method(ctx: &Ctx, m: &Spanned<String>, key: &str, s: &mut Settings) -> Result<(), CliError> {
+    match m.get_ref().as_str() {
+        "dopri5" => s.method = &DOPRI5,
+        "dop853" => s.method = &DOP853,
+        "vern7" => s.method = &VERN7,
+        "vern9" => s.method = &VERN9,
+        "rosenbrock" => s.stiffness = Stiffness::Rosenbrock,
+        other => {
+            return Err(ctx.invalid(
+                &m.span(),
+                key,
+                format!(
+                "\"{other}\": use \"dopri5\", \"dop853\", \"vern7\", \"vern9\" or \"rosenbrock\""
+            ),
+            ))
+        }
+    }
+    Ok(())
 }
