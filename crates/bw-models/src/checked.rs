@@ -42,11 +42,22 @@ pub enum Check {
     /// The estimate `e_error` is at most `e_tol`.
     Met,
     /// The estimate `e_error` stayed above `e_tol`: the tightest run (rtol 1e-14) still
-    /// differed from the one before it, or a tighter run failed.
+    /// differed from the one before it, or a tighter run failed ([`Impact::tighter_failed`]).
     Unmet,
     /// No run at another tolerance finished (the check at `100 rtol` failed, and so did the
     /// run at `rtol / 100` or it was below 1e-14): `e` is one unchecked run at `rtol`.
     Unverified,
+}
+
+/// A run under [`Settings::e_tol`] tighter than the reported one that failed, so that the
+/// check stopped there ([`Impact::tighter_failed`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FailedRun {
+    /// Its relative tolerance.
+    pub rtol: f64,
+    /// Whether it needed more than [`Settings::max_steps`] steps (a larger `max_steps` lets it
+    /// finish); `false` for another failure (a step size too small, a non-finite state).
+    pub out_of_steps: bool,
 }
 
 impl Check {
@@ -95,22 +106,41 @@ pub fn impact<M: CollisionModel<N>, const N: usize>(
         estimate(&mut out, c);
     }
     let mut rtol = settings.rtol;
+    let mut failed = None;
     while !out.e_error.is_some_and(|d| d <= ACCEPT * e_tol) && rtol > FLOOR_RTOL {
         rtol = tighter(rtol);
-        let Ok(mut next) = run(TIGHTER_METHOD, rtol) else {
-            break;
+        let mut next = match run(TIGHTER_METHOD, rtol) {
+            Ok(next) => next,
+            Err(err) => {
+                failed = Some(FailedRun {
+                    rtol,
+                    out_of_steps: out_of_steps(&err),
+                });
+                break;
+            }
         };
         work += next.stats;
         estimate(&mut next, &out);
         out = next;
     }
     out.stats = work;
+    out.tighter_failed = failed;
     out.check = match out.e_error {
         None => Check::Unverified,
         Some(d) if d <= e_tol => Check::Met,
         Some(_) => Check::Unmet,
     };
     Ok(out)
+}
+
+/// Whether `err` is a run that needed more than [`Settings::max_steps`] steps.
+fn out_of_steps(err: &ModelError) -> bool {
+    matches!(
+        err,
+        ModelError::Solver(bwc_events::Error::Solver(
+            bwc_ode::Error::TooManySteps { .. }
+        ))
+    )
 }
 
 /// The tolerance of the run after one at `rtol` under [`Settings::e_tol`]: `rtol / TIGHTEN`,
@@ -241,9 +271,45 @@ mod tests {
             (Check::Unverified, None, 1e-8)
         );
         assert!(out.separated());
+        let failed = out.tighter_failed.unwrap();
+        assert!((failed.rtol / 1e-10 - 1.0).abs() < 1e-9 && !failed.out_of_steps);
         // At the floor there is no tighter run to try.
         let out = impact(&Failing::new(&[1e-12]), &checked(1e-14)).unwrap();
-        assert_eq!((out.check, out.e_error), (Check::Unverified, None));
+        assert_eq!(
+            (out.check, out.e_error, out.tighter_failed),
+            (Check::Unverified, None, None)
+        );
+    }
+
+    #[test]
+    fn a_tighter_run_out_of_steps_says_that_more_steps_would_help() {
+        // Single runs' steps: the run at rtol 1e-5 and Verner's 7(6) at 1e-7 after it.
+        let steps = |method: &'static Tableau, rtol: f64| {
+            let single = Settings {
+                method,
+                e_tol: None,
+                ..checked(rtol)
+            };
+            let out = impact(&Failing::new(&[]), &single).unwrap();
+            out.stats.accepted + out.stats.rejected
+        };
+        let (at_rtol, tighter) = (steps(&bwc_ode::DOP853, 1e-5), steps(TIGHTER_METHOD, 1e-7));
+        assert!(tighter > at_rtol, "{tighter} {at_rtol}");
+        let settings = Settings {
+            e_tol: Some(1e-30),
+            max_steps: at_rtol,
+            ..checked(1e-5)
+        };
+        let out = impact(&Failing::new(&[]), &settings).unwrap();
+        let failed = out.tighter_failed.unwrap();
+        assert!(
+            (failed.rtol / 1e-7 - 1.0).abs() < 1e-9 && failed.out_of_steps,
+            "{failed:?}"
+        );
+        assert_eq!((out.check, out.rtol), (Check::Unmet, 1e-5));
+        // Met, or down to the floor: nothing failed.
+        let out = impact(&Failing::new(&[]), &checked(1e-8)).unwrap();
+        assert_eq!((out.check, out.tighter_failed), (Check::Met, None));
     }
 
     #[test]

@@ -1,9 +1,9 @@
 //! One impact: integrate a model from the instant of contact to separation
 //! `t_s = inf{t > 0 : F <= 0 <= v}` and report `t_s`, `e = v(t_s) / v0` and `t_d = t_s`.
 
-use crate::checked::Check;
 #[cfg(doc)]
 use crate::checked::{impact, tighter, CHECK_METHOD, TIGHTER_METHOD};
+use crate::checked::{Check, FailedRun};
 use crate::models::CollisionModel;
 use crate::params::check;
 use crate::series::SeriesRun;
@@ -194,6 +194,9 @@ pub struct Impact<const N: usize> {
     pub t_s_error: Option<f64>,
     /// What the check under [`Settings::e_tol`] found.
     pub check: Check,
+    /// Under [`Settings::e_tol`]: the tighter run that failed, where one did (the check stopped
+    /// there and `e` is the run before it).
+    pub tighter_failed: Option<FailedRun>,
 }
 
 impl<const N: usize> Impact<N> {
@@ -220,6 +223,7 @@ impl<const N: usize> Impact<N> {
             e_error: self.e_error,
             t_s_error: self.t_s_error,
             check: self.check,
+            tighter_failed: self.tighter_failed,
         }
     }
 }
@@ -248,6 +252,8 @@ pub struct Cor {
     pub t_s_error: Option<f64>,
     /// What the check under [`Settings::e_tol`] found.
     pub check: Check,
+    /// The tighter run under [`Settings::e_tol`] that failed, where one did.
+    pub tighter_failed: Option<FailedRun>,
 }
 
 impl Cor {
@@ -390,6 +396,7 @@ fn by_runge_kutta<M: CollisionModel<N>, const N: usize>(
             e_error: None,
             t_s_error: None,
             check: Check::Off,
+            tighter_failed: None,
         }
     };
     let mut locator = Locator::new(

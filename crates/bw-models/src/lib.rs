@@ -52,7 +52,9 @@ mod series;
 pub mod sweep;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
-pub use checked::{impact, tighter, Check, CHECK_METHOD, FLOOR_RTOL, TIGHTEN, TIGHTER_METHOD};
+pub use checked::{
+    impact, tighter, Check, FailedRun, CHECK_METHOD, FLOOR_RTOL, TIGHTEN, TIGHTER_METHOD,
+};
 pub use impact::{simulate, Cor, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES};
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};
 pub use models::{

@@ -5,8 +5,8 @@ use bw_models::input::{Constant, Input, Scaled};
 use bw_models::sweep::{self, Row, SweepSettings, Values};
 use bw_models::{
     impact, nondimensionalize, simulate as sim, BodyMotion, Bwmcm, Bwshccm, Check, CollisionModel,
-    Cor, ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Nondim, NondimParams, PhysicalParams, Sampling,
-    Settings,
+    Cor, FailedRun, ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Nondim, NondimParams,
+    PhysicalParams, Sampling, Settings,
 };
 use bwc_ode::Stats;
 use rayon::prelude::*;
@@ -55,6 +55,8 @@ pub struct Run {
     pub t_s_error: Option<f64>,
     /// What the check under `e_tol` found; `None` where nothing was simulated.
     pub check: Option<Check>,
+    /// The tighter run under `e_tol` that failed, where one did.
+    pub tighter_failed: Option<FailedRun>,
     /// Sampled trajectory (only when an output asks for it).
     pub trajectory: Vec<Sample>,
     /// The contacts of a `[sequence]` scene with the displacement (m) at each separation.
@@ -157,6 +159,7 @@ impl Run {
             e_error: None,
             t_s_error: None,
             check: None,
+            tighter_failed: None,
             trajectory: Vec::new(),
             bounces: Vec::new(),
             interpolation: None,
@@ -506,6 +509,7 @@ fn record(
         e_error: impact.e_error,
         t_s_error: impact.t_s_error.map(|t| t * scale),
         check: Some(impact.check),
+        tighter_failed: impact.tighter_failed,
         trajectory,
         bounces: Vec::new(),
         interpolation: None,

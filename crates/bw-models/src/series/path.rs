@@ -192,6 +192,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
                 e_error: None,
                 t_s_error: None,
                 check: crate::Check::Off,
+                tighter_failed: None,
             }));
         }
         let limit = self.series_steps >= MAX_SERIES_STEPS
@@ -299,6 +300,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
                 e_error: None,
                 t_s_error: None,
                 check: crate::Check::Off,
+                tighter_failed: None,
             }));
         }
         self.series_steps += 1;

@@ -182,16 +182,27 @@ fn unmet_e_tol(scene: &Scene, label: &str, r: &simulate::Run) {
     let (Some(e_tol), Some(check), Some(rtol)) = (scene.settings.e_tol, r.check, r.rtol) else {
         return;
     };
+    // Why no tighter run settled it, and the setting that would let one finish.
+    let stop = match r.tighter_failed {
+        Some(f) if f.out_of_steps => format!(
+            "the run at rtol {:e} needed more than [solver].max_steps = {} steps; a larger \
+             max_steps lets it finish",
+            tidy(f.rtol),
+            scene.settings.max_steps
+        ),
+        Some(f) => format!("the run at rtol {:e} failed", tidy(f.rtol)),
+        None => format!("rtol {FLOOR_RTOL:e} is the tightest"),
+    };
     match (check, r.e_error) {
         (Check::Unmet, Some(estimate)) => eprintln!(
-            "bwc-simulate: warning: {label}: e differs by {estimate:.1e} from the same impact at \
-             {TIGHTEN} times its rtol ({rtol:e}), more than [solver].e_tol = {e_tol:e}, and no \
-             tighter run was possible (rtol {FLOOR_RTOL:e} is the tightest, or the tighter run \
-             failed): take e as known to about {estimate:.0e}"
+            "bwc-simulate: warning: {label}: e at rtol {:e} differs by {estimate:.1e} from the \
+             same impact at a looser rtol, more than [solver].e_tol = {e_tol:e}, and no tighter \
+             run was possible ({stop}): take e as known to about {estimate:.0e}",
+            tidy(rtol)
         ),
         (Check::Unverified, _) => {
             let tighter = if rtol > FLOOR_RTOL {
-                format!("so did the run at {:e}", tidy(bw_models::tighter(rtol)))
+                format!("so did the tighter one ({stop})")
             } else {
                 format!("rtol is at the floor, {FLOOR_RTOL:e}, with no tighter run")
             };

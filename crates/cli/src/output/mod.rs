@@ -73,10 +73,23 @@ pub struct RunSummary {
     pub t_s: Option<f64>,
     /// As `e_error`, for `t_s` (its unit), where both runs separated.
     pub t_s_error: Option<f64>,
+    /// Under `[solver] e_tol`: the tighter run that failed, so that the check stopped at the
+    /// run before it (`rtol`, and `out_of_steps`: whether a larger `[solver] max_steps` would
+    /// let it finish); null where none failed.
+    pub tighter_failed: Option<FailedRunSummary>,
     /// Unit of `t_s`.
     pub time_unit: &'static str,
     /// Impact speed (m/s), null for nondimensional scenes.
     pub v0: Option<f64>,
+}
+
+/// A tighter run under `e_tol` that failed (`bw_models::FailedRun`).
+#[derive(Debug, Serialize)]
+pub struct FailedRunSummary {
+    /// Its relative tolerance.
+    pub rtol: f64,
+    /// Whether it needed more than `[solver] max_steps` steps.
+    pub out_of_steps: bool,
 }
 
 /// The interpolant a run of a sweep came from (`bw_models::sweep`).
@@ -192,10 +205,14 @@ impl Summary {
                     t_d: r.t_d,
                     separated: r.outcome == Outcome::Separated,
                     rhs_evals: r.stats.rhs_evals,
-                    rtol: r.rtol,
+                    rtol: r.rtol.map(crate::tidy),
                     e_error: r.e_error,
                     t_s_error: r.t_s_error,
                     check: r.check.map(Check::name),
+                    tighter_failed: r.tighter_failed.map(|f| FailedRunSummary {
+                        rtol: crate::tidy(f.rtol),
+                        out_of_steps: f.out_of_steps,
+                    }),
                     accepted: r.stats.accepted,
                     rejected: r.stats.rejected,
                     events: r.stats.events,
@@ -298,6 +315,7 @@ pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
             "rhs_evals": "count", "accepted": "count", "rejected": "count", "events": "count",
             "jacobians": "count", "series_steps": "count", "source": "text",
             "rtol": "1", "e_error": "1", "t_s_error": t, "check": "text",
+            "tighter_failed": {"rtol": "1", "out_of_steps": "true/false"},
             "interpolation": {"degree": "count", "estimate": "1", "from": "m/s", "to": "m/s"}},
         "sweep.csv": {"v_0": "m/s", "e": "1", "t_d": "s", "t_s": t, "separated": "true/false",
             "name": "text", "outcome": "text", "source": "text"},

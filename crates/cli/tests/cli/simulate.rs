@@ -202,6 +202,31 @@ fn e_tol_checks_each_cor() {
     );
     assert_eq!(json(&out)["runs"][0]["rtol"].as_f64(), Some(1e-14));
     assert_eq!(json(&out)["runs"][0]["check"], "unmet");
+    assert!(json(&out)["runs"][0]["tighter_failed"].is_null());
+    // A tighter run that runs out of steps: the warning names the setting that lets it finish.
+    let steps = |run: &serde_json::Value| {
+        run["accepted"].as_u64().unwrap() + run["rejected"].as_u64().unwrap()
+    };
+    let limit = steps(&loose_single);
+    std::fs::write(
+        &scene,
+        format!("{hc}[solver]\nseries = false\nrtol = 1e-5\ne_tol = 1e-18\nmax_steps = {limit}\n"),
+    )
+    .unwrap();
+    let out = simulate(&["run", scene.to_str().unwrap(), "--json"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("the run at rtol 1e-7 needed more than [solver].max_steps")
+            && err.contains("a larger max_steps lets it finish"),
+        "{err}"
+    );
+    let run = &json(&out)["runs"][0];
+    assert_eq!(
+        (run["rtol"].as_f64(), &run["check"]),
+        (Some(1e-5), &"unmet".into())
+    );
+    assert_eq!(run["tighter_failed"]["out_of_steps"], true, "{run}");
+    assert_eq!(run["tighter_failed"]["rtol"].as_f64(), Some(1e-7), "{run}");
 }
 
 /// `method = "rosenbrock"` runs RODAS4 (Jacobian evaluations reported, the Hunt-Crossley answer
