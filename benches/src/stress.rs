@@ -2,7 +2,9 @@
 //! admissible sets, each run classified (issue 7, STABILITY.md).
 
 use bw_models::input::{Constant, FromFn, Input};
-use bw_models::{impact_at, BaseMap, BaseParams, Check, ModelError, ModelKind, Settings};
+use bw_models::{
+    impact_at, BaseMap, BaseParams, Check, FailedRun, ModelError, ModelKind, Settings,
+};
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -78,6 +80,8 @@ pub struct Outcome {
     pub e_error: Option<f64>,
     /// What the run's check against `Settings::e_tol` found, for a run that ended.
     pub check: Option<Check>,
+    /// The tighter run under `Settings::e_tol` that failed, where one did.
+    pub tighter_failed: Option<FailedRun>,
 }
 
 fn log_uniform(rng: &mut impl Rng, lo: f64, hi: f64) -> f64 {
@@ -170,6 +174,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
     let mut result = None;
     let mut e_error = None;
     let mut check = None;
+    let mut tighter_failed = None;
     let (class, evals) = match BaseMap::new(case.kind, case.base)
         .and_then(|map| {
             // Nondimensional input of magnitude |U| <= 10 at every speed: scale u by 1 / U_factor.
@@ -191,6 +196,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
             result = Some((out.e, out.t_s));
             e_error = out.e_error;
             check = Some(out.check);
+            tighter_failed = out.tighter_failed;
         }) {
         Ok(out) if out.separated() && out.e.is_finite() && out.e >= 0.0 => {
             if unforced && out.e > 1.0 + 1e-9 {
@@ -227,6 +233,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
         result,
         e_error,
         check,
+        tighter_failed,
     }
 }
 

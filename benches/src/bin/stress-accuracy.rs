@@ -152,9 +152,10 @@ fn tally(name: &str, runs: &[Outcome], references: &References, list: bool) -> T
                 let case = &run.case;
                 bwc_cli::out!(
                     "# {name} case {i}: {:?} e {e} reference {ef} miss {miss:.1e} \
-                     estimate {:?} series {} stiff {} input {:?} v0 {}",
+                     estimate {:?} tighter run failed {:?} series {} stiff {} input {:?} v0 {}",
                     case.kind,
                     run.e_error,
+                    run.tighter_failed,
                     run.series,
                     run.switched,
                     case.input,

@@ -52,11 +52,13 @@ fn main() {
         ] {
             let d = run_with(&case, &s);
             bwc_cli::out!(
-                "# {name} (at most {} steps): (e, t_s) {:?}, estimate {:?}, check {:?}, {:.2} s",
+                "# {name} (at most {} steps): (e, t_s) {:?}, estimate {:?}, check {:?}, tighter \
+                 run failed {:?}, {:.2} s",
                 s.max_steps,
                 d.result,
                 d.e_error,
                 d.check,
+                d.tighter_failed,
                 d.seconds
             );
         }
