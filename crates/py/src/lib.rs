@@ -78,7 +78,9 @@ const CHECKS: [&str; 5] = ["off", "met", "unmet", "unverified", "none"];
 /// `bwc.cor`: one impact per speed (or the one nondimensional impact) of the scene given as
 /// JSON text; a dict of numpy arrays `e`, `t_s`, `t_d` (NaN where absent), `separated`,
 /// `e_error` (a checked CoR's estimate of its error in `e`, `[solver] e_tol`; NaN where none),
-/// `check` (codes into `CHECKS`), `rhs_evals`, `interpolated` (whether `e` and `t_s` came from
+/// `check` (codes into `CHECKS`), `tighter_failed_rtol` (the rtol of a tighter run under
+/// `e_tol` that failed; NaN where none did), `tighter_out_of_steps` (whether it ran out of
+/// `max_steps`), `rhs_evals`, `interpolated` (whether `e` and `t_s` came from
 /// a sweep's interpolant) and `outcome` (codes into `"separated"`, `"settled"`, `"horizon"`,
 /// `"failed"`).
 #[pyfunction]
@@ -125,6 +127,15 @@ fn cor<'py>(
     };
     let checks: Vec<u8> = runs.iter().map(check).collect();
     out.set_item("check", checks.into_pyarray(py))?;
+    out.set_item(
+        "tighter_failed_rtol",
+        column(&|r| r.tighter_failed.map_or(f64::NAN, |f| bwc_cli::tidy(f.rtol))).into_pyarray(py),
+    )?;
+    let out_of_steps: Vec<bool> = runs
+        .iter()
+        .map(|r| r.tighter_failed.is_some_and(|f| f.out_of_steps))
+        .collect();
+    out.set_item("tighter_out_of_steps", PyArray1::from_vec(py, out_of_steps))?;
     let evals: Vec<u64> = runs.iter().map(|r| r.stats.rhs_evals).collect();
     out.set_item("rhs_evals", evals.into_pyarray(py))?;
     let interpolated: Vec<bool> = runs.iter().map(|r| r.interpolation.is_some()).collect();

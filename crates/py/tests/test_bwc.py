@@ -96,6 +96,14 @@ def test_each_cor_carries_its_error_estimate():
     assert np.isnan(single["e_error"][0]) and abs(single["e"][0] - want) > 1e-9
     assert single["check"][0] == "off"
     assert single["rhs_evals"][0] < tightened["rhs_evals"][0]
+    assert np.isnan(checked["tighter_failed_rtol"][0]) and not checked["tighter_out_of_steps"][0]
+    # A tighter run that needs more steps than allowed: the check stops at the run before it.
+    run = bwc.simulate({"model": "shccm", "nondimensional": hc,
+                        "solver": {**loose, "e_tol": 0}})["runs"][0]
+    limit = run["accepted"] + run["rejected"]
+    short = bwc.cor("shccm", hc, solver={**loose, "e_tol": 1e-18, "max_steps": limit})
+    assert short["check"][0] == "unmet" and short["tighter_out_of_steps"][0]
+    assert short["tighter_failed_rtol"][0] == 1e-7
 
 
 def test_a_long_sweep_is_interpolated_to_the_closed_form():

@@ -79,7 +79,10 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     ``check`` (what that check found: ``"met"``, ``"unmet"`` (the estimate stayed above
     ``e_tol`` at the tightest tolerance), ``"unverified"`` (no run at another tolerance
     finished), ``"off"`` (one run, ``e_tol = 0``) or ``"none"`` (an interpolated speed)),
-    ``rhs_evals`` (int, of every run behind a CoR), ``interpolated`` (bool), ``outcome``
+    ``tighter_failed_rtol`` (the tolerance of a tighter run of that check that failed, so that
+    the check stopped at the run before it; NaN where none did), ``tighter_out_of_steps``
+    (bool: that run needed more than ``solver["max_steps"]`` steps, and a larger value lets it
+    finish), ``rhs_evals`` (int, of every run behind a CoR), ``interpolated`` (bool), ``outcome``
     (strings ``"separated"``, ``"settled"``, ``"horizon"``).
 
     Many speeds (from about 140 up, under a constant input) are served by Chebyshev
