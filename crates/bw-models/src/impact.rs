@@ -82,10 +82,11 @@ impl Default for Settings {
     /// checked against a run at rtol 1e-10 for an error in `e` of at most `e_tol` = 1e-10.
     /// Chosen from the data (issue 21): no single tolerance keeps the error in `e` below 1e-10
     /// on every separated run of the stress sweep (STABILITY.md, "Session 21": 565 of about
-    /// 52,600 miss at rtol 1e-11, 55 at 1e-14); the checked runs miss 10, by up to 3.9e-8, each
-    /// with an estimate above `e_tol`, at about twice the cost of one run at rtol 1e-11 on the
-    /// paper's cases. On the work-precision cases (BENCHMARKS.md) one
-    /// run at rtol 1e-11 already keeps the error below 1e-12.
+    /// 52,600 miss at rtol 1e-11, 55 at 1e-14); the checked runs miss about 6, by up to 1.1e-9,
+    /// each with an estimate above `e_tol` (runs whose truth double precision pins down only to
+    /// a few 1e-10: "Session 22"), at about twice the cost of one run at rtol 1e-11 on the
+    /// paper's cases. On the work-precision cases (BENCHMARKS.md) one run at rtol 1e-11 already
+    /// keeps the error below 1e-12.
     fn default() -> Self {
         Self {
             method: &DOP853,

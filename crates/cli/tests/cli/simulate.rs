@@ -149,10 +149,12 @@ fn e_tol_checks_each_cor() {
     let hc = "model = \"shccm\"\n[nondimensional]\nB = 0\nGamma = 0\nkappa = 0.5\nsigma = 0.5\nn = 1\np = 1.5\n";
     let e_exact = 0.748434931597434;
     let scene = dir.join("hc.toml");
-    let run_of = |extra: &str| {
+    // The scene with `extra` in its [solver] table, run with --json.
+    let output_of = |extra: &str| {
         std::fs::write(&scene, format!("{hc}[solver]\nseries = false\n{extra}")).unwrap();
-        json(&simulate(&["run", scene.to_str().unwrap(), "--json"]))["runs"][0].clone()
+        simulate(&["run", scene.to_str().unwrap(), "--json"])
     };
+    let run_of = |extra: &str| json(&output_of(extra))["runs"][0].clone();
     let checked = run_of("");
     assert!(checked["e_error"].as_f64().unwrap() <= 1e-11, "{checked}");
     assert!(checked["rtol"].as_f64().unwrap() <= 1e-12, "{checked}");
@@ -187,12 +189,7 @@ fn e_tol_checks_each_cor() {
         "{text}"
     );
     // A target below rounding is not met, and the run says so.
-    std::fs::write(
-        &scene,
-        format!("{hc}[solver]\nseries = false\ne_tol = 1e-18\n"),
-    )
-    .unwrap();
-    let out = simulate(&["run", scene.to_str().unwrap(), "--json"]);
+    let out = output_of("e_tol = 1e-18\n");
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         err.contains("warning")
@@ -208,12 +205,9 @@ fn e_tol_checks_each_cor() {
         run["accepted"].as_u64().unwrap() + run["rejected"].as_u64().unwrap()
     };
     let limit = steps(&loose_single);
-    std::fs::write(
-        &scene,
-        format!("{hc}[solver]\nseries = false\nrtol = 1e-5\ne_tol = 1e-18\nmax_steps = {limit}\n"),
-    )
-    .unwrap();
-    let out = simulate(&["run", scene.to_str().unwrap(), "--json"]);
+    let out = output_of(&format!(
+        "rtol = 1e-5\ne_tol = 1e-18\nmax_steps = {limit}\n"
+    ));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         err.contains("the run at rtol 1e-7 needed more than [solver].max_steps")
