@@ -1,7 +1,7 @@
 //! Stress sweep: random admissible parameter sets of both models, including the edges of the
 //! admissible sets, each run classified (issue 7, STABILITY.md).
 
-use bw_models::input::{Constant, FromFn, Input};
+use bw_models::input::{Constant, Sine};
 use bw_models::{
     impact_at, BaseMap, BaseParams, Check, FailedRun, ModelError, ModelKind, Settings,
 };
@@ -82,6 +82,8 @@ pub struct Outcome {
     pub check: Option<Check>,
     /// The tighter run under `Settings::e_tol` that failed, where one did.
     pub tighter_failed: Option<FailedRun>,
+    /// Whether the result is the double-double run's (`Settings::double_double`).
+    pub double_double: bool,
 }
 
 fn log_uniform(rng: &mut impl Rng, lo: f64, hi: f64) -> f64 {
@@ -164,30 +166,35 @@ pub fn run(case: &Case) -> Outcome {
     run_with(case, &settings())
 }
 
+/// The case's input `u(t) = a + b sin(w t)` divided by `factor`, the base map's `U_factor` at
+/// the case's speed: a nondimensional input of magnitude `|U| <= 10` at every speed.
+pub fn input(case: &Case, factor: f64) -> Sine {
+    let (a, b, w) = case.input;
+    Sine {
+        a: a / factor,
+        b: b / factor,
+        omega: w,
+    }
+}
+
 /// Runs one case with `settings`.
 pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
     let clock = Instant::now();
-    let (a, b, w) = case.input;
-    let u = FromFn(move |t: f64| a + b * (w * t).sin());
+    let (a, b, _) = case.input;
     let unforced = a == 0.0 && b == 0.0;
     let (mut switched, mut series) = (false, false);
     let mut result = None;
     let mut e_error = None;
     let mut check = None;
     let mut tighter_failed = None;
+    let mut double_double = false;
     let (class, evals) = match BaseMap::new(case.kind, case.base)
         .and_then(|map| {
-            // Nondimensional input of magnitude |U| <= 10 at every speed: scale u by 1 / U_factor.
             let (_, s) = map.at(case.v0)?;
             if b == 0.0 {
                 impact_at(&map, Constant(a / s.factor), case.v0, settings)
             } else {
-                impact_at(
-                    &map,
-                    FromFn(move |t: f64| u.at(t) / s.factor),
-                    case.v0,
-                    settings,
-                )
+                impact_at(&map, input(case, s.factor), case.v0, settings)
             }
         })
         .inspect(|out| {
@@ -197,6 +204,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
             e_error = out.e_error;
             check = Some(out.check);
             tighter_failed = out.tighter_failed;
+            double_double = out.double_double;
         }) {
         Ok(out) if out.separated() && out.e.is_finite() && out.e >= 0.0 => {
             if unforced && out.e > 1.0 + 1e-9 {
@@ -234,6 +242,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
         e_error,
         check,
         tighter_failed,
+        double_double,
     }
 }
 

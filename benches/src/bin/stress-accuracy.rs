@@ -7,7 +7,7 @@
 //! so that a run's own error cannot pass for the truth.
 //!
 //! `cargo run --release -p bwc-benches --bin stress-accuracy -- [COUNT] [SEED] [RTOL | default |
-//! library | e_tol=TOL ...] [fine=RTOL] [check=RTOL] [list]` (default 30000, 1, `default` and
+//! library | double-double | e_tol=TOL ...] [fine=RTOL] [check=RTOL] [list]` (default 30000, 1, `default` and
 //! rtol 1e-11 1e-12 1e-13, references at rtol 3e-15: with compensated summation the references
 //! agree to about 1e-11 there, STABILITY.md, "Session 21"). An RTOL is one run at that tolerance
 //! (`e_tol` off, atol = rtol / 100); `default` is the sweep's settings, the defaults, whose CoRs
@@ -15,6 +15,7 @@
 //! `e_tol`, or that have none (`flagged`), the misses among the rest (`silent`) and the runs no
 //! other tolerance could check (`unverified`, among the flagged); `library` is the defaults with
 //! the library's step limit (`Settings::default().max_steps`) in place of the sweep's 200,000;
+//! `double-double` is `library` with `Settings::double_double` on;
 //! `e_tol=TOL` is the defaults with that target (the misses still counted above 1e-10). `list`
 //! prints each miss.
 
@@ -99,6 +100,14 @@ fn settings_from(args: &[String]) -> Vec<(String, Settings)> {
                 "library".to_string(),
                 Settings {
                     max_steps: Settings::default().max_steps,
+                    ..settings()
+                },
+            )),
+            "double-double" => Some((
+                "double-double".to_string(),
+                Settings {
+                    max_steps: Settings::default().max_steps,
+                    double_double: true,
                     ..settings()
                 },
             )),

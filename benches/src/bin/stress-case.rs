@@ -6,9 +6,9 @@
 //!
 //! `cargo run --release -p bwc-benches --bin stress-case -- SEED RTOL[,RTOL...] CASE [CASE...]`
 
-use bw_models::input::{Constant, FromFn};
+use bw_models::input::Constant;
 use bw_models::{impact_at, BaseMap, Settings};
-use bwc_benches::stress::{run_with, sample, settings, Case};
+use bwc_benches::stress::{input, run_with, sample, settings, Case};
 use bwc_ode::{Tableau, DOP853, VERN7, VERN9};
 
 /// A reference may take this many steps: the hardest cases take a few hundred thousand at rtol
@@ -82,7 +82,7 @@ fn one(case: &Case, method: &'static Tableau, rtol: f64) {
         max_steps: MAX_STEPS,
         ..settings()
     };
-    let (a, b, w) = case.input;
+    let (a, b, _) = case.input;
     let clock = std::time::Instant::now();
     // The sweep's input, scaled as `stress::run_with` scales it.
     let out = BaseMap::new(case.kind, case.base).and_then(|map| {
@@ -91,8 +91,7 @@ fn one(case: &Case, method: &'static Tableau, rtol: f64) {
         if b == 0.0 {
             impact_at(&map, Constant(a / f), case.v0, &s)
         } else {
-            let u = FromFn(move |t: f64| (a + b * (w * t).sin()) / f);
-            impact_at(&map, u, case.v0, &s)
+            impact_at(&map, input(case, f), case.v0, &s)
         }
     });
     let seconds = clock.elapsed().as_secs_f64();

@@ -5,8 +5,10 @@
 
 use crate::impact::{simulate, Impact, Sampling, Settings};
 use crate::models::CollisionModel;
+use crate::precise::DdFailure;
+use crate::series::Private;
 use crate::ModelError;
-use bwc_ode::{Tableau, VERN7, VERN9};
+use bwc_ode::{Extrapolation, Tableau, VERN7, VERN9};
 
 /// A CoR evaluation under [`Settings::e_tol`] is accepted when its `e` differs from the check's
 /// by at most this fraction of `e_tol`: where the check's error is the difference, the
@@ -125,12 +127,67 @@ pub fn impact<M: CollisionModel<N>, const N: usize>(
     }
     out.stats = work;
     out.tighter_failed = failed;
-    out.check = match out.e_error {
+    out.check = verdict(out.e_error, e_tol);
+    if out.check == Check::Unmet && settings.double_double {
+        if let Some(precise) = double_double(model, settings, e_tol, work) {
+            return Ok(precise);
+        }
+    }
+    Ok(out)
+}
+
+/// What an estimate says against `e_tol`.
+fn verdict(e_error: Option<f64>, e_tol: f64) -> Check {
+    match e_error {
         None => Check::Unverified,
         Some(d) if d <= e_tol => Check::Met,
         Some(_) => Check::Unmet,
-    };
-    Ok(out)
+    }
+}
+
+/// The tolerances of the double-double runs ([`Settings::double_double`]): the second is
+/// reported, checked against the first. On the stress sweep's runs that double precision
+/// cannot settle, rtol 1e-16 gets `e` to about 1e-13 and 1e-18 to about 1e-15; at 1e-14 the
+/// steps can pass over a pair of kinks and miss `e` by 7e-9 (STABILITY.md, "Session 23").
+pub const DOUBLE_DOUBLE_RTOLS: [f64; 2] = [1e-16, 1e-18];
+
+/// One run of the double-double path ([`Settings::double_double`]) at `rtol` (`atol` scaled
+/// as `settings.atol / settings.rtol`), with `settings.max_steps` and `settings.t_max`; `None`
+/// where `model` has no such path (only [`crate::Ndbwshccm`] and [`crate::Ndbwmcm`] under an
+/// input with [`crate::input::Input::at_dd`]). For references: its statistics are its own.
+///
+/// # Errors
+/// [`DdFailure`] where the run does not reach the separation.
+pub fn impact_double_double<M: CollisionModel<N>, const N: usize>(
+    model: &M,
+    rtol: f64,
+    settings: &Settings,
+) -> Option<Result<Impact<N>, DdFailure>> {
+    let ext = Extrapolation::new(rtol, settings.atol * (rtol / settings.rtol));
+    model.double_double_impact(Private(()), ext, settings)
+}
+
+/// The impact in double-double arithmetic, where the model has that path and both runs reach
+/// the separation and agree to `e_tol`; `work` is the double-precision runs' cost, added to
+/// the statistics.
+fn double_double<M: CollisionModel<N>, const N: usize>(
+    model: &M,
+    settings: &Settings,
+    e_tol: f64,
+    work: bwc_ode::Stats,
+) -> Option<Impact<N>> {
+    let run = |rtol: f64| impact_double_double(model, rtol, settings);
+    let [loose, fine] = DOUBLE_DOUBLE_RTOLS;
+    let loose = run(loose)?.ok()?;
+    let mut out = run(fine)?.ok()?;
+    estimate(&mut out, &loose);
+    // The reported `e` is rounded to double precision: its error is at least that rounding,
+    // even where both runs round to the same double.
+    out.e_error = out.e_error.map(|d| d.max(0.5 * f64::EPSILON * out.e.abs()));
+    out.check = verdict(out.e_error, e_tol);
+    out.stats += work;
+    out.stats += loose.stats;
+    (out.check == Check::Met).then_some(out)
 }
 
 /// Whether `err` is a run that needed more than [`Settings::max_steps`] steps.
@@ -363,5 +420,51 @@ mod tests {
             },
         );
         assert_eq!(single.unwrap().check, Check::Off);
+    }
+
+    /// Case 7221 of the stress sweep's seed 1 (STABILITY.md, "Session 23"): an NDBWMCM
+    /// contact 50 time units long under a sinusoid, whose `e` double precision gets only to
+    /// about 1e-9. Its reference, 0.017492850063003707, is the double-double path at rtol 1e-20
+    /// and 1e-24 (agreeing to 1e-17); that path meets the closed forms to 1e-25
+    /// (`precise.rs`).
+    #[test]
+    fn double_double_settles_what_double_precision_cannot() {
+        use crate::input::Sine;
+        use crate::{impact_at, BaseMap, BaseParams};
+        let base = BaseParams {
+            b_b: 0.12910110765342317,
+            gamma_b: -0.06155493494432533,
+            kappa: 0.9999002987721985,
+            sigma_b: 395.136288272385,
+            n: 8.183188614474556,
+            p: 10.0,
+            u_b: 1.0,
+            t_b: 1.0,
+        };
+        let v0 = 0.0030045141757612365;
+        let map = BaseMap::new(ModelKind::Mcm, base).unwrap();
+        let factor = map.at(v0).unwrap().1.factor;
+        let u = Sine {
+            a: 0.0,
+            b: 2.737817997146834 / factor,
+            omega: 2.911951122767874,
+        };
+        let reference = 0.017492850063003707;
+        let double = Settings {
+            double_double: false,
+            ..Settings::default()
+        };
+        let out = impact_at(&map, u, v0, &double).unwrap();
+        assert_eq!((out.check, out.double_double), (Check::Unmet, false));
+        assert!((out.e - reference).abs() > 1e-10, "{out:?}");
+        let precise = Settings {
+            double_double: true,
+            ..Settings::default()
+        };
+        let out = impact_at(&map, u, v0, &precise).unwrap();
+        assert_eq!((out.check, out.double_double), (Check::Met, true));
+        assert_eq!(out.rtol, DOUBLE_DOUBLE_RTOLS[1]);
+        assert!((out.e - reference).abs() < 1e-12, "{out:?}");
+        assert!(out.e_error.unwrap() < 1e-10);
     }
 }

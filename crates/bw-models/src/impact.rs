@@ -56,6 +56,16 @@ pub struct Settings {
     /// "Session 21"). `None`: one run at `rtol`. Trajectories ([`simulate`]) are one run either
     /// way.
     pub e_tol: Option<f64>,
+    /// Under [`Settings::e_tol`], where the check stays [`Check::Unmet`] after the tightest
+    /// double-precision run: compute the impact again in double-double arithmetic
+    /// ([`bwc_ode::Extrapolation`] at rtol 1e-16 and 1e-18, the second checked against the
+    /// first), and report that where the two agree to `e_tol`
+    /// ([`Impact::double_double`]). For the few long, forced, stiff contacts whose `e` double
+    /// precision cannot pin down below about 1e-9 (STABILITY.md, "Session 23"); seconds to a
+    /// minute per impact. Only the nondimensional models under inputs with a double-double form
+    /// ([`crate::input::Input::at_dd`]) have this path. Off by default until it has been
+    /// validated on more of the stress sweep (STABILITY.md, "Session 23").
+    pub double_double: bool,
 }
 
 /// The largest step of the Runge-Kutta path with [`Settings::stop_at_kinks`], as a fraction of
@@ -99,6 +109,7 @@ impl Default for Settings {
             stiffness: Stiffness::Switch,
             series: true,
             e_tol: Some(1e-10),
+            double_double: false,
         }
     }
 }
@@ -198,6 +209,9 @@ pub struct Impact<const N: usize> {
     /// Under [`Settings::e_tol`]: the tighter run that failed, where one did (the check stopped
     /// there and `e` is the run before it).
     pub tighter_failed: Option<FailedRun>,
+    /// Whether the reported run is the double-double one ([`Settings::double_double`]); its
+    /// `rtol` is then the double-double run's.
+    pub double_double: bool,
 }
 
 impl<const N: usize> Impact<N> {
@@ -225,6 +239,7 @@ impl<const N: usize> Impact<N> {
             t_s_error: self.t_s_error,
             check: self.check,
             tighter_failed: self.tighter_failed,
+            double_double: self.double_double,
         }
     }
 }
@@ -255,6 +270,8 @@ pub struct Cor {
     pub check: Check,
     /// The tighter run under [`Settings::e_tol`] that failed, where one did.
     pub tighter_failed: Option<FailedRun>,
+    /// Whether the reported run is the double-double one.
+    pub double_double: bool,
 }
 
 impl Cor {
@@ -398,6 +415,7 @@ fn by_runge_kutta<M: CollisionModel<N>, const N: usize>(
             t_s_error: None,
             check: Check::Off,
             tighter_failed: None,
+            double_double: false,
         }
     };
     let mut locator = Locator::new(

@@ -1,5 +1,7 @@
 //! External inputs `u(t)` (forces in N, or nondimensional `U(T)`).
 
+use bwc_ode::dd::{self, Dd};
+
 /// A time-dependent input signal.
 pub trait Input {
     /// The value at time `t`.
@@ -22,6 +24,13 @@ pub trait Input {
     fn constant_after(&self) -> Option<f64> {
         self.is_constant().then_some(f64::NEG_INFINITY)
     }
+
+    /// The value at `t` in double-double arithmetic, for the double-double path of a CoR
+    /// evaluation ([`crate::Settings::double_double`]); `None` (the default) where the input
+    /// has no such form, and the evaluation stays in double precision.
+    fn at_dd(&self, _t: Dd) -> Option<Dd> {
+        None
+    }
 }
 
 /// No input: `u = 0`.
@@ -35,6 +44,9 @@ impl Input for Zero {
     }
     fn is_zero(&self) -> bool {
         true
+    }
+    fn at_dd(&self, _t: Dd) -> Option<Dd> {
+        Some(Dd::from(0.0))
     }
 }
 
@@ -52,6 +64,9 @@ impl Input for Constant {
     }
     fn is_constant(&self) -> bool {
         true
+    }
+    fn at_dd(&self, _t: Dd) -> Option<Dd> {
+        Some(Dd::from(self.0))
     }
 }
 
@@ -96,6 +111,36 @@ impl<A: Input, B: Input> Input for Sum<A, B> {
     fn constant_after(&self) -> Option<f64> {
         Some(self.0.constant_after()?.max(self.1.constant_after()?))
     }
+    fn at_dd(&self, t: Dd) -> Option<Dd> {
+        Some(self.0.at_dd(t)? + self.1.at_dd(t)?)
+    }
+}
+
+/// A sinusoid `u(t) = a + b sin(ω t)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sine {
+    /// Mean `a`.
+    pub a: f64,
+    /// Amplitude `b`.
+    pub b: f64,
+    /// Angular frequency `ω` (1 / time unit).
+    pub omega: f64,
+}
+
+impl Input for Sine {
+    #[inline]
+    fn at(&self, t: f64) -> f64 {
+        self.a + self.b * (self.omega * t).sin()
+    }
+    fn is_zero(&self) -> bool {
+        self.a == 0.0 && self.b == 0.0
+    }
+    fn is_constant(&self) -> bool {
+        self.b == 0.0 || self.omega == 0.0
+    }
+    fn at_dd(&self, t: Dd) -> Option<Dd> {
+        Some(dd::sin(t * self.omega) * self.b + self.a)
+    }
 }
 
 /// `factor * inner(time_scale * t)`: an input seen on another time and force scale (used for
@@ -128,6 +173,9 @@ impl<I: Input> Input for Scaled<I> {
         let t = self.inner.constant_after()?;
         // inner(time_scale * t) is constant for time_scale * t >= t_inner.
         (self.time_scale > 0.0).then(|| t / self.time_scale)
+    }
+    fn at_dd(&self, t: Dd) -> Option<Dd> {
+        Some(self.inner.at_dd(t * self.time_scale)? * self.factor)
     }
 }
 
@@ -190,6 +238,17 @@ impl Input for Table {
         let (t0, t1, u0, u1) = (self.t[i - 1], self.t[i], self.u[i - 1], self.u[i]);
         u0 + (u1 - u0) * (t - t0) / (t1 - t0)
     }
+    fn at_dd(&self, t: Dd) -> Option<Dd> {
+        let i = self.t.partition_point(|&ti| t >= ti);
+        if i == 0 {
+            return Some(Dd::from(self.u[0]));
+        }
+        if i == self.t.len() {
+            return Some(Dd::from(self.u[i - 1]));
+        }
+        let (t0, t1, u0, u1) = (self.t[i - 1], self.t[i], self.u[i - 1], self.u[i]);
+        Some((t - t0) * Dd::new_sub(u1, u0) / Dd::new_sub(t1, t0) + u0)
+    }
     fn is_constant(&self) -> bool {
         self.u.iter().all(|u| *u == self.u[0])
     }
@@ -227,6 +286,9 @@ impl<I: Input + ?Sized> Input for &I {
     fn constant_after(&self) -> Option<f64> {
         (**self).constant_after()
     }
+    fn at_dd(&self, t: Dd) -> Option<Dd> {
+        (**self).at_dd(t)
+    }
 }
 
 #[cfg(test)]
@@ -257,6 +319,42 @@ mod tests {
         assert_eq!(s.at(1.0), 1.0);
         assert_eq!(Sum(Constant(1.0), FromFn(|t: f64| t)).at(2.0), 3.0);
         assert!(Sum(Zero, Constant(0.0)).is_zero());
+    }
+
+    /// The double-double forms agree with the inputs to rounding, and exactly where both are
+    /// exact; an input without one says so.
+    #[test]
+    fn double_double_forms_match_the_inputs() {
+        let sine = Sine {
+            a: 0.5,
+            b: 2.0,
+            omega: 3.0,
+        };
+        let tab = Table::new(&[(0.0, 1.0), (1.0, 3.0), (2.5, -1.0)]).unwrap();
+        let scaled = Scaled {
+            inner: sine,
+            factor: 0.25,
+            time_scale: 1.5,
+        };
+        for t in [0.0, 0.3, 1.0, 1.7, 2.5, 9.0] {
+            let d = Dd::from(t);
+            assert!((sine.at_dd(d).unwrap().hi() - sine.at(t)).abs() < 1e-15);
+            assert!((tab.at_dd(d).unwrap().hi() - tab.at(t)).abs() < 1e-15);
+            assert!((scaled.at_dd(d).unwrap().hi() - scaled.at(t)).abs() < 1e-15);
+        }
+        // sin(3 * π/6) = 1 to double-double precision: 0.5 + 2 = 2.5.
+        let pi_6 = dd::dd(std::f64::consts::FRAC_PI_6, -5.360408832255455e-17);
+        assert!((sine.at_dd(pi_6).unwrap() - 2.5).hi().abs() < 1e-30);
+        assert_eq!(tab.at_dd(Dd::from(1.0)).unwrap(), Dd::from(3.0));
+        assert_eq!(
+            Sum(Constant(1.0), Zero).at_dd(Dd::from(4.0)),
+            Some(Dd::from(1.0))
+        );
+        assert_eq!(FromFn(|t: f64| t).at_dd(Dd::from(1.0)), None);
+        assert_eq!(
+            Sum(Constant(1.0), FromFn(|t: f64| t)).at_dd(Dd::from(1.0)),
+            None
+        );
     }
 
     #[test]

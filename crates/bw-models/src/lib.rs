@@ -45,6 +45,7 @@ mod laws;
 mod models;
 mod params;
 mod power;
+mod precise;
 mod scaling;
 mod separation;
 pub mod sequence;
@@ -53,7 +54,8 @@ pub mod sweep;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use checked::{
-    impact, tighter, Check, FailedRun, CHECK_METHOD, FLOOR_RTOL, TIGHTEN, TIGHTER_METHOD,
+    impact, impact_double_double, tighter, Check, FailedRun, CHECK_METHOD, DOUBLE_DOUBLE_RTOLS,
+    FLOOR_RTOL, TIGHTEN, TIGHTER_METHOD,
 };
 pub use impact::{simulate, Cor, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES};
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};
@@ -62,6 +64,7 @@ pub use models::{
 };
 pub use params::{BaseParams, ModelKind, Nondim, NondimParams, Physical, PhysicalParams};
 pub use power::Pow;
+pub use precise::DdFailure;
 pub use scaling::{base_params, impact_at, nondimensionalize, BaseMap, InputScaling, Scales};
 pub use separation::{separated, Separation};
 

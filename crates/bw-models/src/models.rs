@@ -37,6 +37,17 @@ pub trait CollisionModel<const N: usize>: System<N> {
     ) -> Option<SeriesRun<N>> {
         None
     }
+    /// The crate's double-double path of the nondimensional models ([`Settings::double_double`];
+    /// private as [`Self::series_impact`]): `None` where the model has none.
+    #[doc(hidden)]
+    fn double_double_impact(
+        &self,
+        _: crate::series::Private,
+        _ext: bwc_ode::Extrapolation,
+        _settings: &Settings,
+    ) -> Option<Result<crate::Impact<N>, crate::precise::DdFailure>> {
+        None
+    }
     /// Whether the input is constant at all times.
     fn input_is_constant(&self) -> bool {
         self.input_constant_after() == Some(f64::NEG_INFINITY)
@@ -222,6 +233,15 @@ impl<I: Input> System<3> for Ndbwshccm<I> {
 }
 
 impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
+    fn double_double_impact(
+        &self,
+        _: crate::series::Private,
+        ext: bwc_ode::Extrapolation,
+        settings: &Settings,
+    ) -> Option<Result<crate::Impact<3>, crate::precise::DdFailure>> {
+        let model = (ModelKind::Shccm, self.k.nondim(), &self.input);
+        crate::precise::run_model(model, ext, settings, |y| State::<3>::new(y[1], y[2], y[3]))
+    }
     fn initial_state(&self) -> State<3> {
         State::<3>::new(0.0, 0.0, -1.0)
     }
@@ -345,6 +365,15 @@ impl<I: Input> System<4> for Ndbwmcm<I> {
 }
 
 impl<I: Input> CollisionModel<4> for Ndbwmcm<I> {
+    fn double_double_impact(
+        &self,
+        _: crate::series::Private,
+        ext: bwc_ode::Extrapolation,
+        settings: &Settings,
+    ) -> Option<Result<crate::Impact<4>, crate::precise::DdFailure>> {
+        let model = (ModelKind::Mcm, self.k.nondim(), &self.input);
+        crate::precise::run_model(model, ext, settings, State::<4>::from)
+    }
     fn initial_state(&self) -> State<4> {
         State::<4>::new(0.0, 0.0, 0.0, -1.0)
     }

@@ -1,6 +1,7 @@
 //! Input signals described in scene files, evaluated at run time.
 
 use bw_models::input::{Arctan, Input, Table};
+use bwc_ode::dd::Dd;
 
 /// An external input `u(t)` built from a scene: a constant (including gravity `-m g`), the
 /// paper's arctan ramp, a piecewise-linear table, or a sum of these.
@@ -46,6 +47,18 @@ impl Input for Signal {
             Signal::Constant(_) => true,
             Signal::Sum(terms) => terms.iter().all(Input::is_constant),
             _ => false,
+        }
+    }
+
+    /// Constants and tables have a double-double form; the arctan ramp has none yet.
+    fn at_dd(&self, t: Dd) -> Option<Dd> {
+        match self {
+            Signal::Constant(c) => Some(Dd::from(*c)),
+            Signal::Arctan(_) => None,
+            Signal::Table(tab) => tab.at_dd(t),
+            Signal::Sum(terms) => terms
+                .iter()
+                .try_fold(Dd::from(0.0), |acc, s| Some(acc + s.at_dd(t)?)),
         }
     }
 }

@@ -57,6 +57,8 @@ pub struct Run {
     pub check: Option<Check>,
     /// The tighter run under `e_tol` that failed, where one did.
     pub tighter_failed: Option<FailedRun>,
+    /// Whether the reported run is the double-double one (`bw_models::Settings::double_double`).
+    pub double_double: bool,
     /// Sampled trajectory (only when an output asks for it).
     pub trajectory: Vec<Sample>,
     /// The contacts of a `[sequence]` scene with the displacement (m) at each separation.
@@ -160,6 +162,7 @@ impl Run {
             t_s_error: None,
             check: None,
             tighter_failed: None,
+            double_double: false,
             trajectory: Vec::new(),
             bounces: Vec::new(),
             interpolation: None,
@@ -510,6 +513,7 @@ fn record(
         t_s_error: impact.t_s_error.map(|t| t * scale),
         check: Some(impact.check),
         tighter_failed: impact.tighter_failed,
+        double_double: impact.double_double,
         trajectory,
         bounces: Vec::new(),
         interpolation: None,

@@ -24,6 +24,10 @@
 //! ([`Integrator::retake_to`]) and restart ([`Integrator::restart`]): the `bwc-events` crate
 //! builds event location on these.
 //!
+//! Beyond double precision, [`Extrapolation`] is Gragg-Bulirsch-Stoer extrapolation on
+//! double-double states ([`dd`]), for the rare integrations whose answer rounding errors of
+//! 1e-16 decide.
+//!
 //! ```
 //! use bwc_ode::{Integrator, Options, State, VERN7};
 //! // Harmonic oscillator x'' = -x: after a full period the state returns to (1, 0).
@@ -37,7 +41,9 @@
 #![deny(missing_docs)]
 
 mod control;
+pub mod dd;
 mod error;
+mod extrapolation;
 mod integrator;
 mod methods;
 mod options;
@@ -46,6 +52,7 @@ mod stepper;
 pub mod tableau;
 
 pub use error::Error;
+pub use extrapolation::{DdSystem, DdTrial, Extrapolation};
 pub use integrator::{Dense, Integrator, Stats, Trial, MAX_STAGES};
 pub use methods::{DOP853, DOPRI5, VERN7, VERN9};
 pub use options::{Controller, Options};

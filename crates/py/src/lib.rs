@@ -80,7 +80,8 @@ const CHECKS: [&str; 5] = ["off", "met", "unmet", "unverified", "none"];
 /// `e_error` (a checked CoR's estimate of its error in `e`, `[solver] e_tol`; NaN where none),
 /// `check` (codes into `CHECKS`), `tighter_failed_rtol` (the rtol of a tighter run under
 /// `e_tol` that failed; NaN where none did), `tighter_out_of_steps` (whether it ran out of
-/// `max_steps`), `rhs_evals`, `interpolated` (whether `e` and `t_s` came from
+/// `max_steps`), `double_double` (whether the reported run is the double-double one,
+/// `[solver] double_double`), `rhs_evals`, `interpolated` (whether `e` and `t_s` came from
 /// a sweep's interpolant) and `outcome` (codes into `"separated"`, `"settled"`, `"horizon"`,
 /// `"failed"`).
 #[pyfunction]
@@ -136,6 +137,8 @@ fn cor<'py>(
         .map(|r| r.tighter_failed.is_some_and(|f| f.out_of_steps))
         .collect();
     out.set_item("tighter_out_of_steps", PyArray1::from_vec(py, out_of_steps))?;
+    let double_double: Vec<bool> = runs.iter().map(|r| r.double_double).collect();
+    out.set_item("double_double", PyArray1::from_vec(py, double_double))?;
     let evals: Vec<u64> = runs.iter().map(|r| r.stats.rhs_evals).collect();
     out.set_item("rhs_evals", evals.into_pyarray(py))?;
     let interpolated: Vec<bool> = runs.iter().map(|r| r.interpolation.is_some()).collect();

@@ -193,6 +193,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
                 t_s_error: None,
                 check: crate::Check::Off,
                 tighter_failed: None,
+                double_double: false,
             }));
         }
         let limit = self.series_steps >= MAX_SERIES_STEPS
@@ -301,6 +302,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
                 t_s_error: None,
                 check: crate::Check::Off,
                 tighter_failed: None,
+                double_double: false,
             }));
         }
         self.series_steps += 1;

@@ -20,6 +20,9 @@ pub struct RunSummary {
     pub t_c: Option<f64>,
     /// Accepted steps.
     pub accepted: u64,
+    /// `"double"`, or `"double-double"` where the reported run is the double-double one
+    /// (`[solver] double_double`: the double-precision runs could not meet `e_tol`).
+    pub arithmetic: &'static str,
     /// The contacts of a `[sequence]` scene (absent otherwise).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub bounces: Option<Vec<BounceSummary>>,
@@ -213,6 +216,11 @@ impl Summary {
                         rtol: crate::tidy(f.rtol),
                         out_of_steps: f.out_of_steps,
                     }),
+                    arithmetic: if r.double_double {
+                        "double-double"
+                    } else {
+                        "double"
+                    },
                     accepted: r.stats.accepted,
                     rejected: r.stats.rejected,
                     events: r.stats.events,
@@ -315,7 +323,7 @@ pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
             "rhs_evals": "count", "accepted": "count", "rejected": "count", "events": "count",
             "jacobians": "count", "series_steps": "count", "source": "text",
             "rtol": "1", "e_error": "1", "t_s_error": t, "check": "text",
-            "tighter_failed": {"rtol": "1", "out_of_steps": "true/false"},
+            "tighter_failed": {"rtol": "1", "out_of_steps": "true/false"}, "arithmetic": "text",
             "interpolation": {"degree": "count", "estimate": "1", "from": "m/s", "to": "m/s"}},
         "sweep.csv": {"v_0": "m/s", "e": "1", "t_d": "s", "t_s": t, "separated": "true/false",
             "name": "text", "outcome": "text", "source": "text"},

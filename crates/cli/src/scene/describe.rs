@@ -111,6 +111,7 @@ pub(crate) fn settings(s: &Settings) -> Value {
         "switch_when_stiff": s.stiffness == Stiffness::Switch,
         "series": s.series,
         "e_tol": s.e_tol,
+        "double_double": s.double_double,
     })
 }
 

@@ -221,6 +221,22 @@ fn e_tol_checks_each_cor() {
     );
     assert_eq!(run["tighter_failed"]["out_of_steps"], true, "{run}");
     assert_eq!(run["tighter_failed"]["rtol"].as_f64(), Some(1e-7), "{run}");
+    assert_eq!(checked["arithmetic"], "double", "{checked}");
+    // A target double precision cannot check is met in double-double, where switched on.
+    let precise = run_of("e_tol = 1e-15\ndouble_double = true\n");
+    assert_eq!(
+        (&precise["arithmetic"], &precise["check"]),
+        (&"double-double".into(), &"met".into()),
+        "{precise}"
+    );
+    assert_eq!(precise["rtol"].as_f64(), Some(1e-18), "{precise}");
+    assert!(
+        (precise["e"].as_f64().unwrap() - e_exact).abs() <= 1e-15,
+        "{precise}"
+    );
+    let double = run_of("e_tol = 1e-15\n");
+    assert_eq!(double["arithmetic"], "double", "{double}");
+    assert!(double["rtol"].as_f64().unwrap() >= 1e-14, "{double}");
 }
 
 /// `method = "rosenbrock"` runs RODAS4 (Jacobian evaluations reported, the Hunt-Crossley answer

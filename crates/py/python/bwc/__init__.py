@@ -82,7 +82,10 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     ``tighter_failed_rtol`` (the tolerance of a tighter run of that check that failed, so that
     the check stopped at the run before it; NaN where none did), ``tighter_out_of_steps``
     (bool: that run needed more than ``solver["max_steps"]`` steps, and a larger value lets it
-    finish), ``rhs_evals`` (int, of every run behind a CoR), ``interpolated`` (bool), ``outcome``
+    finish), ``double_double`` (bool: where double precision could not meet ``e_tol``, the CoR
+    was computed again in double-double arithmetic and that run is reported, with
+    ``solver["double_double"] = True``; off by default), ``rhs_evals`` (int, of every run behind a
+    CoR), ``interpolated`` (bool), ``outcome``
     (strings ``"separated"``, ``"settled"``, ``"horizon"``).
 
     Many speeds (from about 140 up, under a constant input) are served by Chebyshev

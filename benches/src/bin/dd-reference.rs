@@ -1,0 +1,116 @@
+//! Double-double references for single stress cases (STABILITY.md, "Session 23"): `e` and
+//! `T_s` of each case by the library's double-double path (`bw_models::impact_double_double`:
+//! Gragg-Bulirsch-Stoer extrapolation of order 16 in double-double arithmetic) at each of a
+//! list of tolerances, beside the defaults' run (at the library's step limit, with and without
+//! `Settings::double_double`) and their distances from the last reference. Cases run in
+//! parallel, one per thread.
+//!
+//! `cargo run --release -p bwc-benches --bin dd-reference -- SEED RTOL[,RTOL...] CASE [CASE...]`
+
+use bw_models::input::Scaled;
+use bw_models::{
+    impact_double_double, BaseMap, DdFailure, Impact, ModelKind, Ndbwmcm, Ndbwshccm, Settings,
+};
+use bwc_benches::stress::{input, run_with, sample, settings, Case};
+use bwc_ode::Stats;
+use rayon::prelude::*;
+use std::time::Instant;
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let parsed = (|| -> Option<(u64, Vec<f64>, Vec<u64>)> {
+        let seed = args.first()?.parse().ok()?;
+        let rtols = args.get(1)?.split(',').map(|r| r.parse().ok());
+        let cases = args.get(2..)?.iter().map(|c| c.parse().ok());
+        Some((
+            seed,
+            rtols.collect::<Option<_>>()?,
+            cases.collect::<Option<_>>()?,
+        ))
+    })();
+    let Some((seed, rtols, cases)) = parsed.filter(|(_, r, c)| !r.is_empty() && !c.is_empty())
+    else {
+        eprintln!("usage: dd-reference SEED RTOL[,RTOL...] CASE [CASE...] (SEED, CASE integers)");
+        std::process::exit(2);
+    };
+    let reports: Vec<String> = cases.par_iter().map(|&i| report(seed, i, &rtols)).collect();
+    for r in reports {
+        bwc_cli::out!("{r}");
+    }
+}
+
+/// `(e, T_s, statistics)` of the double-double run of `case` at `rtol`, `None` where the case
+/// is inadmissible.
+fn reference(case: &Case, rtol: f64, s: &Settings) -> Option<Result<(f64, f64, Stats), DdFailure>> {
+    let map = BaseMap::new(case.kind, case.base).ok()?;
+    let (nd, scales) = map.at(case.v0).ok()?;
+    // The sweep's input as `impact_at` scales it.
+    let u = Scaled {
+        inner: input(case, scales.factor),
+        factor: scales.factor,
+        time_scale: scales.time_scale,
+    };
+    fn parts<const N: usize>(i: Impact<N>) -> (f64, f64, Stats) {
+        (i.e, i.t_s.unwrap_or(f64::NAN), i.stats)
+    }
+    Some(match case.kind {
+        ModelKind::Shccm => {
+            impact_double_double(&Ndbwshccm::new(&nd, u).ok()?, rtol, s)?.map(parts)
+        }
+        ModelKind::Mcm => impact_double_double(&Ndbwmcm::new(&nd, u).ok()?, rtol, s)?.map(parts),
+    })
+}
+
+/// Everything printed for case `i`.
+fn report(seed: u64, i: u64, rtols: &[f64]) -> String {
+    let case = sample(seed, i);
+    let mut lines = vec![format!(
+        "# case {i} of seed {seed}: {:?}, v0 {}, input {:?}, {:?}",
+        case.kind, case.v0, case.input, case.base
+    )];
+    let library = Settings {
+        max_steps: Settings::default().max_steps,
+        ..settings()
+    };
+    lines.push("rtol\te\tt_s\tsteps\trejected\tevals\tevents\tseconds".into());
+    let mut last = None;
+    for &rtol in rtols {
+        let clock = Instant::now();
+        let out = reference(&case, rtol, &library);
+        let seconds = clock.elapsed().as_secs_f64();
+        lines.push(match out {
+            None => format!("{rtol:e}\tno double-double path (inadmissible)"),
+            Some(Err(f)) => format!("{rtol:e}\tfailed: {f}"),
+            Some(Ok((e, t_s, st))) => {
+                last = Some(e);
+                format!(
+                    "{rtol:e}\t{e:.17e}\t{t_s:.17e}\t{}\t{}\t{}\t{}\t{seconds:.1}",
+                    st.accepted, st.rejected, st.rhs_evals, st.events
+                )
+            }
+        });
+    }
+    for (name, double_double) in [("double precision only", false), ("the defaults", true)] {
+        let d = run_with(
+            &case,
+            &Settings {
+                double_double,
+                ..library
+            },
+        );
+        let off = match (d.result, last) {
+            (Some((e, _)), Some(r)) => format!("{:.2e}", (r - e).abs()),
+            _ => "-".into(),
+        };
+        lines.push(format!(
+            "# {name}: e {:?}, estimate {:?}, check {:?}, double-double {}, {:.1} s; off the \
+             last reference by {off}",
+            d.result.map(|r| r.0),
+            d.e_error,
+            d.check,
+            d.double_double,
+            d.seconds
+        ));
+    }
+    lines.join("\n")
+}
