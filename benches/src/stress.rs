@@ -161,6 +161,29 @@ pub fn settings() -> Settings {
     }
 }
 
+/// The arguments `SEED RTOL[,RTOL...] CASE [CASE...]` of the single-case tools (`tool` names
+/// the tool in the usage message, printed with exit status 2 where they do not parse).
+pub fn cases_args(tool: &str) -> (u64, Vec<f64>, Vec<u64>) {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let parsed = (|| -> Option<(u64, Vec<f64>, Vec<u64>)> {
+        let seed = args.first()?.parse().ok()?;
+        let rtols = args.get(1)?.split(',').map(|r| r.parse().ok());
+        let cases = args.get(2..)?.iter().map(|c| c.parse().ok());
+        Some((
+            seed,
+            rtols.collect::<Option<_>>()?,
+            cases.collect::<Option<_>>()?,
+        ))
+    })();
+    match parsed.filter(|(_, r, c)| !r.is_empty() && !c.is_empty()) {
+        Some(parsed) => parsed,
+        None => {
+            eprintln!("usage: {tool} SEED RTOL[,RTOL...] CASE [CASE...] (SEED, CASE integers)");
+            std::process::exit(2);
+        }
+    }
+}
+
 /// Runs one case with the sweep's [`settings`].
 pub fn run(case: &Case) -> Outcome {
     run_with(case, &settings())

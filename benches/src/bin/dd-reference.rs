@@ -11,28 +11,13 @@ use bw_models::input::Scaled;
 use bw_models::{
     impact_double_double, BaseMap, DdFailure, Impact, ModelKind, Ndbwmcm, Ndbwshccm, Settings,
 };
-use bwc_benches::stress::{input, run_with, sample, settings, Case};
+use bwc_benches::stress::{cases_args, input, run_with, sample, settings, Case};
 use bwc_ode::Stats;
 use rayon::prelude::*;
 use std::time::Instant;
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let parsed = (|| -> Option<(u64, Vec<f64>, Vec<u64>)> {
-        let seed = args.first()?.parse().ok()?;
-        let rtols = args.get(1)?.split(',').map(|r| r.parse().ok());
-        let cases = args.get(2..)?.iter().map(|c| c.parse().ok());
-        Some((
-            seed,
-            rtols.collect::<Option<_>>()?,
-            cases.collect::<Option<_>>()?,
-        ))
-    })();
-    let Some((seed, rtols, cases)) = parsed.filter(|(_, r, c)| !r.is_empty() && !c.is_empty())
-    else {
-        eprintln!("usage: dd-reference SEED RTOL[,RTOL...] CASE [CASE...] (SEED, CASE integers)");
-        std::process::exit(2);
-    };
+    let (seed, rtols, cases) = cases_args("dd-reference");
     let reports: Vec<String> = cases.par_iter().map(|&i| report(seed, i, &rtols)).collect();
     for r in reports {
         bwc_cli::out!("{r}");
@@ -90,7 +75,10 @@ fn report(seed: u64, i: u64, rtols: &[f64]) -> String {
             }
         });
     }
-    for (name, double_double) in [("double precision only", false), ("the defaults", true)] {
+    for (name, double_double) in [
+        ("the defaults (double precision)", false),
+        ("with double_double", true),
+    ] {
         let d = run_with(
             &case,
             &Settings {

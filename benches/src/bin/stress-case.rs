@@ -8,7 +8,7 @@
 
 use bw_models::input::Constant;
 use bw_models::{impact_at, BaseMap, Settings};
-use bwc_benches::stress::{input, run_with, sample, settings, Case};
+use bwc_benches::stress::{cases_args, input, run_with, sample, settings, Case};
 use bwc_ode::{Tableau, DOP853, VERN7, VERN9};
 
 /// A reference may take this many steps: the hardest cases take a few hundred thousand at rtol
@@ -16,22 +16,7 @@ use bwc_ode::{Tableau, DOP853, VERN7, VERN9};
 const MAX_STEPS: u64 = 50_000_000;
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let parsed = (|| -> Option<(u64, Vec<f64>, Vec<u64>)> {
-        let seed = args.first()?.parse().ok()?;
-        let rtols = args.get(1)?.split(',').map(|r| r.parse().ok());
-        let cases = args.get(2..)?.iter().map(|c| c.parse().ok());
-        Some((
-            seed,
-            rtols.collect::<Option<_>>()?,
-            cases.collect::<Option<_>>()?,
-        ))
-    })();
-    let Some((seed, rtols, cases)) = parsed.filter(|(_, r, c)| !r.is_empty() && !c.is_empty())
-    else {
-        eprintln!("usage: stress-case SEED RTOL[,RTOL...] CASE [CASE...] (SEED, CASE integers)");
-        std::process::exit(2);
-    };
+    let (seed, rtols, cases) = cases_args("stress-case");
     for i in cases {
         let case = sample(seed, i);
         bwc_cli::out!(

@@ -226,28 +226,30 @@ impl Table {
     }
 }
 
+impl Table {
+    /// The piece `(t0, t1, u0, u1)` a time lies in, given how many `t_i` it has reached, or
+    /// the value held outside the table's range.
+    fn piece(&self, reached: usize) -> Result<(f64, f64, f64, f64), f64> {
+        match reached {
+            0 => Err(self.u[0]),
+            i if i == self.t.len() => Err(self.u[i - 1]),
+            i => Ok((self.t[i - 1], self.t[i], self.u[i - 1], self.u[i])),
+        }
+    }
+}
+
 impl Input for Table {
     fn at(&self, t: f64) -> f64 {
-        let i = self.t.partition_point(|&ti| ti <= t);
-        if i == 0 {
-            return self.u[0];
+        match self.piece(self.t.partition_point(|&ti| ti <= t)) {
+            Ok((t0, t1, u0, u1)) => u0 + (u1 - u0) * (t - t0) / (t1 - t0),
+            Err(held) => held,
         }
-        if i == self.t.len() {
-            return self.u[i - 1];
-        }
-        let (t0, t1, u0, u1) = (self.t[i - 1], self.t[i], self.u[i - 1], self.u[i]);
-        u0 + (u1 - u0) * (t - t0) / (t1 - t0)
     }
     fn at_dd(&self, t: Dd) -> Option<Dd> {
-        let i = self.t.partition_point(|&ti| t >= ti);
-        if i == 0 {
-            return Some(Dd::from(self.u[0]));
-        }
-        if i == self.t.len() {
-            return Some(Dd::from(self.u[i - 1]));
-        }
-        let (t0, t1, u0, u1) = (self.t[i - 1], self.t[i], self.u[i - 1], self.u[i]);
-        Some((t - t0) * Dd::new_sub(u1, u0) / Dd::new_sub(t1, t0) + u0)
+        Some(match self.piece(self.t.partition_point(|&ti| t >= ti)) {
+            Ok((t0, t1, u0, u1)) => (t - t0) * Dd::new_sub(u1, u0) / Dd::new_sub(t1, t0) + u0,
+            Err(held) => Dd::from(held),
+        })
     }
     fn is_constant(&self) -> bool {
         self.u.iter().all(|u| *u == self.u[0])

@@ -81,7 +81,8 @@ impl<I: Input> Model<'_, I> {
     /// The right-hand side, on the branch of the rate's sign `frozen` where given.
     fn rhs_on(&self, t: Dd, y: &DdState, frozen: Option<f64>) -> DdState {
         let abs = |w: Dd| frozen.map_or(w.abs(), |s| w * s);
-        let (f, zn) = self.force_and_zn(y);
+        let (f, ln_z) = self.force_and_ln_z(y);
+        let zn = pow_abs_ln(ln_z, self.k.n);
         let vdot = f + self.u.at_dd(t).unwrap_or(Dd::from(f64::NAN));
         match self.kind {
             ModelKind::Shccm => [
@@ -103,8 +104,8 @@ impl<I: Input> Model<'_, I> {
         }
     }
 
-    /// `(F, |Z|^n)` at `y`.
-    fn force_and_zn(&self, y: &DdState) -> (Dd, Dd) {
+    /// `(F, ln |Z|)` at `y` (the logarithm for `|Z|^n`, `None` at `Z = 0`).
+    fn force_and_ln_z(&self, y: &DdState) -> (Dd, Option<Dd>) {
         let k = &self.k;
         let (ly, lz) = (ln_abs(y[1]), ln_abs(y[2]));
         let (yq, yp) = signed_and_abs(y[1], ly, k.p);
@@ -114,32 +115,20 @@ impl<I: Input> Model<'_, I> {
         if self.kind == ModelKind::Shccm {
             f -= yp * y[3] * k.sigma;
         }
-        (f, pow_abs_ln(lz, k.n))
+        (f, lz)
     }
 
-    /// The force `F`.
-    fn force(&self, y: &DdState) -> Dd {
-        self.force_and_zn(y).0
-    }
-
-    /// The functions whose zeros are the non-smooth points: the rate driving `Z` (`V` or
-    /// `Y'`) and `Z`, as [`crate::CollisionModel::kinks`].
-    fn kinks(&self, y: &DdState) -> [Dd; 2] {
+    /// The event functions at `y`: the functions whose zeros are the non-smooth points (the
+    /// rate driving `Z`, `V` or `Y'`, and `Z`, as [`crate::CollisionModel::kinks`]) and
+    /// `max(F, -V)`, at most 0 exactly where `F <= 0 <= V` (separated).
+    fn events(&self, y: &DdState) -> [Dd; 3] {
+        let f = self.force_and_ln_z(y).0;
         let rate = match self.kind {
             ModelKind::Shccm => y[3],
-            ModelKind::Mcm => y[3] + self.force(y) * self.k.sigma,
+            ModelKind::Mcm => y[3] + f * self.k.sigma,
         };
-        [rate, y[2]]
-    }
-
-    /// `max(F, -V)`: at most 0 exactly where `F <= 0 <= V` (separated).
-    fn separation(&self, y: &DdState) -> Dd {
-        let (f, v) = (self.force(y), -y[3]);
-        if f > v {
-            f
-        } else {
-            v
-        }
+        let v = -y[3];
+        [rate, y[2], if f > v { f } else { v }]
     }
 }
 
@@ -226,32 +215,26 @@ struct Run<'m, 'a, I> {
 }
 
 impl<I: Input> Run<'_, '_, I> {
-    /// One extrapolation step of size `h` from `(t, y)` with `f0 = f(t, y)`.
-    fn step(&mut self, t: Dd, y: &DdState, f0: &DdState, h: Dd) -> DdTrial<4> {
-        let trial = self.ext.step(self.m, t, y, f0, h);
-        self.evals += trial.evals;
-        trial
-    }
-
-    /// As [`Self::step`], on the branch `frozen` (a sign of the rate) where given.
-    fn step_on(
+    /// One extrapolation step of size `h` from `(t, y)` with `f0 = f(t, y)`, on the branch
+    /// `frozen` (a sign of the rate) where given.
+    fn step(
         &mut self,
         (t, y, f0): (Dd, &DdState, &DdState),
         h: Dd,
         frozen: Option<f64>,
-    ) -> DdState {
+    ) -> DdTrial<4> {
         let trial = match frozen {
             Some(sign) => self.ext.step(&Frozen { m: self.m, sign }, t, y, f0, h),
             None => self.ext.step(self.m, t, y, f0, h),
         };
         self.evals += trial.evals;
-        trial.y
+        trial
     }
 
-    /// The event functions at `y`: the two kink functions and `max(F, -V)`.
-    fn events(&self, y: &DdState) -> [Dd; 3] {
-        let [a, b] = self.m.kinks(y);
-        [a, b, self.m.separation(y)]
+    /// The event functions at the state `h` after the start `at` (one step).
+    fn events_after(&mut self, at: (Dd, &DdState, &DdState), h: Dd) -> [Dd; 3] {
+        let y = self.step(at, h, None).y;
+        self.m.events(&y)
     }
 
     /// The first event inside the accepted step `[t, t + h]`, if any. `at_root[w]`: kink
@@ -268,11 +251,11 @@ impl<I: Input> Run<'_, '_, I> {
     ) -> Option<Crossing> {
         let n = trial.samples.len() + 1;
         let checked = |w: usize, first: bool| w == 2 || !first || !at_root[w];
-        let (mut a, mut ga, mut ga_exact) = (Dd::from(0.0), self.events(y), true);
+        let (mut a, mut ga, mut ga_exact) = (Dd::from(0.0), self.m.events(y), true);
         for i in 1..=n {
             let b = h * (i as f64 / n as f64);
             let last = i == n;
-            let gb = self.events(if last {
+            let gb = self.m.events(if last {
                 &trial.y
             } else {
                 &trial.samples[i - 1]
@@ -284,14 +267,12 @@ impl<I: Input> Run<'_, '_, I> {
             }
             // Accurate values at both ends of the interval.
             if !ga_exact {
-                let ya = self.step(t, y, f0, a).y;
-                ga = self.events(&ya);
+                ga = self.events_after((t, y, f0), a);
             }
             let gb = if last {
                 gb
             } else {
-                let yb = self.step(t, y, f0, b).y;
-                self.events(&yb)
+                self.events_after((t, y, f0), b)
             };
             let found = (0..3)
                 .filter(|&w| checked(w, first) && crosses(w, ga[w], gb[w]))
@@ -318,7 +299,7 @@ impl<I: Input> Run<'_, '_, I> {
         let end = b;
         // A root of the rate (function 0) is searched for on the branch before it.
         let frozen = (which == 0).then(|| fa.hi().signum());
-        let mut far = (b, self.step_on((t, y, f0), b, frozen));
+        let mut far = (b, self.step((t, y, f0), b, frozen).y);
         // Which end the last iteration replaced: Illinois halves the other end's value when
         // the same end is replaced twice in a row, so that regula falsi does not stall.
         let mut last_far = None;
@@ -335,8 +316,8 @@ impl<I: Input> Run<'_, '_, I> {
             if (c - a).hi() * (c - b).hi() >= 0.0 || !c.hi().is_finite() {
                 c = (a + b) * 0.5;
             }
-            let yc = self.step_on((t, y, f0), c, frozen);
-            let fc = self.events(&yc)[which];
+            let yc = self.step((t, y, f0), c, frozen).y;
+            let fc = self.m.events(&yc)[which];
             let on_far_side = crosses(which, fa, fc) || (which != 2 && fc == 0.0);
             if on_far_side {
                 far = (c, yc);
@@ -385,7 +366,7 @@ pub(crate) fn impact<I: Input>(
     let mut run = Run { m, ext, evals: 0 };
     let (mut t, mut y) = (zero, [zero, zero, zero, Dd::from(-1.0)]);
     let (mut h, mut steps, mut rejected, mut kinks) = (Dd::from(1e-6), 0, 0, 0);
-    let mut at_root = m.kinks(&y).map(|g| g == 0.0);
+    let mut at_root = [0, 1].map(|w| m.events(&y)[w] == 0.0);
     let done = |t, y, run: &Run<I>, steps, rejected, kinks| DdRun {
         t_s: t,
         y,
@@ -403,7 +384,7 @@ pub(crate) fn impact<I: Input>(
         }
         let f0 = m.rhs(t, &y);
         run.evals += 1;
-        let trial = run.step(t, &y, &f0, h);
+        let trial = run.step((t, &y, &f0), h, None);
         let factor = ext.factor(trial.err);
         if trial.err.is_nan() || trial.err > 1.0 {
             rejected += 1;
@@ -429,7 +410,7 @@ pub(crate) fn impact<I: Input>(
                 kinks += 1;
                 // A kink can coincide with the separation (Z = X = 0 where an elastic
                 // contact ends); the separation's own crossing starts from `> 0`.
-                if m.separation(&y) <= 0.0 {
+                if m.events(&y)[2] <= 0.0 {
                     return Ok(done(t, y, &run, steps, rejected, kinks));
                 }
             }
