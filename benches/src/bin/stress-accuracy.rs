@@ -7,7 +7,7 @@
 //! so that a run's own error cannot pass for the truth.
 //!
 //! `cargo run --release -p bwc-benches --bin stress-accuracy -- [COUNT] [SEED] [RTOL | default |
-//! library | double-double | e_tol=TOL ...] [fine=RTOL] [check=RTOL] [list]` (default 30000, 1, `default` and
+//! library | double-double | double | e_tol=TOL ...] [fine=RTOL] [check=RTOL] [list]` (default 30000, 1, `default` and
 //! rtol 1e-11 1e-12 1e-13, references at rtol 3e-15: with compensated summation the references
 //! agree to about 1e-11 there, STABILITY.md, "Session 21"). An RTOL is one run at that tolerance
 //! (`e_tol` off, atol = rtol / 100); `default` is the sweep's settings, the defaults, whose CoRs
@@ -15,9 +15,10 @@
 //! `e_tol`, or that have none (`flagged`), the misses among the rest (`silent`) and the runs no
 //! other tolerance could check (`unverified`, among the flagged); `library` is the defaults with
 //! the library's step limit (`Settings::default().max_steps`) in place of the sweep's 200,000;
-//! `double-double` is `library` with `Settings::double_double` on;
+//! `double-double` is `library` with `Settings::double_double` on (the library's default since
+//! session 24) and `double` is `library` with it off (double precision only);
 //! `e_tol=TOL` is the defaults with that target (the misses still counted above 1e-10). `list`
-//! prints each miss.
+//! prints each miss, and each flagged run of a setting with `double_double` on.
 
 use bw_models::{Check, Settings};
 use bwc_benches::stress::{settings, sweep_with, Outcome};
@@ -70,7 +71,7 @@ fn main() {
         let clock = Instant::now();
         let runs = sweep_with(seed, count, &s);
         let wall = clock.elapsed().as_secs_f64();
-        let t = tally(&name, &runs, &references, list);
+        let t = tally(&name, &runs, &references, (list, list && s.double_double));
         let (flagged, silent, unverified) = match s.e_tol {
             Some(_) => (
                 t.flagged.to_string(),
@@ -111,6 +112,14 @@ fn settings_from(args: &[String]) -> Vec<(String, Settings)> {
                     ..settings()
                 },
             )),
+            "double" => Some((
+                "double".to_string(),
+                Settings {
+                    max_steps: Settings::default().max_steps,
+                    double_double: false,
+                    ..settings()
+                },
+            )),
             _ => match a.strip_prefix("e_tol=").and_then(|t| t.parse().ok()) {
                 Some(t) => Some((
                     format!("e_tol={t:e}"),
@@ -137,8 +146,9 @@ struct References {
     check: Vec<Outcome>,
 }
 
-/// Counts the misses of the sweep `runs` of setting `name` (printing each if `list`).
-fn tally(name: &str, runs: &[Outcome], references: &References, list: bool) -> Tally {
+/// Counts the misses of the sweep `runs` of setting `name`, printing each if `list.0` and each
+/// flagged run if `list.1`.
+fn tally(name: &str, runs: &[Outcome], references: &References, list: (bool, bool)) -> Tally {
     let mut t = Tally::default();
     let pairs = references.fine.iter().zip(&references.check);
     for (i, (run, (f, c))) in runs.iter().zip(pairs).enumerate() {
@@ -152,12 +162,21 @@ fn tally(name: &str, runs: &[Outcome], references: &References, list: bool) -> T
         t.flagged += usize::from(flagged);
         t.unverified += usize::from(run.check == Some(Check::Unverified));
         let miss = (e - ef).abs();
+        if flagged && list.1 {
+            bwc_cli::out!(
+                "# {name} case {i}: flagged, {:?}, e {e} reference {ef} ({miss:.1e} off) estimate \
+                 {:?} double-double {}",
+                run.check,
+                run.e_error,
+                run.double_double
+            );
+        }
         if miss > MISS && (ec - ef).abs() < 0.1 * miss {
             t.off += 1;
             t.off_series += usize::from(run.series);
             t.silent += usize::from(!flagged);
             t.largest = t.largest.max(miss);
-            if list {
+            if list.0 {
                 let case = &run.case;
                 bwc_cli::out!(
                     "# {name} case {i}: {:?} e {e} reference {ef} miss {miss:.1e} \

@@ -188,6 +188,9 @@ impl<I1: Input, I2: Input> Input for RelativeInput<'_, I1, I2> {
     fn constant_after(&self) -> Option<f64> {
         Some(self.u1.constant_after()?.max(self.u2.constant_after()?))
     }
+    fn at_dd(&self, t: bwc_ode::dd::Dd) -> Option<bwc_ode::dd::Dd> {
+        Some(self.u1.at_dd(t)? * (1.0 - self.eta) - self.u2.at_dd(t)? * self.eta)
+    }
 }
 
 /// Right-hand side of eq:com: `ẋ_m = v_m`, `v̇_m = (u1 + u2) / (m1 + m2)` (0 for a fixed body 2).

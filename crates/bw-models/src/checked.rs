@@ -153,8 +153,9 @@ pub const DOUBLE_DOUBLE_RTOLS: [f64; 2] = [1e-16, 1e-18];
 
 /// One run of the double-double path ([`Settings::double_double`]) at `rtol` (`atol` scaled
 /// as `settings.atol / settings.rtol`), with `settings.max_steps` and `settings.t_max`; `None`
-/// where `model` has no such path (only [`crate::Ndbwshccm`] and [`crate::Ndbwmcm`] under an
-/// input with [`crate::input::Input::at_dd`]). For references: its statistics are its own.
+/// where `model` has no such path (the nondimensional and SI models, [`crate::Ndbwshccm`],
+/// [`crate::Ndbwmcm`], [`crate::Bwshccm`] and [`crate::Bwmcm`], have it under an input with
+/// [`crate::input::Input::at_dd`]). For references: its statistics are its own.
 ///
 /// # Errors
 /// [`DdFailure`] where the run does not reach the separation.

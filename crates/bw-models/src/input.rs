@@ -91,6 +91,9 @@ impl Input for Arctan {
     fn at(&self, t: f64) -> f64 {
         std::f64::consts::FRAC_2_PI * self.m * self.d * (self.omega * t).atan()
     }
+    fn at_dd(&self, t: Dd) -> Option<Dd> {
+        Some(dd::div(dd::atan(t * self.omega), dd::frac_pi_2()) * (Dd::from(self.m) * self.d))
+    }
 }
 
 /// The sum of two inputs.
@@ -247,7 +250,9 @@ impl Input for Table {
     }
     fn at_dd(&self, t: Dd) -> Option<Dd> {
         Some(match self.piece(self.t.partition_point(|&ti| t >= ti)) {
-            Ok((t0, t1, u0, u1)) => (t - t0) * Dd::new_sub(u1, u0) / Dd::new_sub(t1, t0) + u0,
+            Ok((t0, t1, u0, u1)) => {
+                dd::div((t - t0) * Dd::new_sub(u1, u0), Dd::new_sub(t1, t0)) + u0
+            }
             Err(held) => Dd::from(held),
         })
     }
@@ -338,8 +343,14 @@ mod tests {
             factor: 0.25,
             time_scale: 1.5,
         };
+        let ramp = Arctan {
+            m: 2.0,
+            d: 250.0,
+            omega: 3.0,
+        };
         for t in [0.0, 0.3, 1.0, 1.7, 2.5, 9.0] {
             let d = Dd::from(t);
+            assert!((ramp.at_dd(d).unwrap().hi() - ramp.at(t)).abs() < 1e-12);
             assert!((sine.at_dd(d).unwrap().hi() - sine.at(t)).abs() < 1e-15);
             assert!((tab.at_dd(d).unwrap().hi() - tab.at(t)).abs() < 1e-15);
             assert!((scaled.at_dd(d).unwrap().hi() - scaled.at(t)).abs() < 1e-15);
@@ -348,6 +359,9 @@ mod tests {
         let pi_6 = dd::dd(std::f64::consts::FRAC_PI_6, -5.360408832255455e-17);
         assert!((sine.at_dd(pi_6).unwrap() - 2.5).hi().abs() < 1e-30);
         assert_eq!(tab.at_dd(Dd::from(1.0)).unwrap(), Dd::from(3.0));
+        // arctan(1) = π/4: the ramp is at half its final value m D = 500.
+        let one_third = Dd::from(1.0) / 3.0;
+        assert!((ramp.at_dd(one_third).unwrap() - 250.0).hi().abs() < 1e-28);
         assert_eq!(
             Sum(Constant(1.0), Zero).at_dd(Dd::from(4.0)),
             Some(Dd::from(1.0))

@@ -3,7 +3,7 @@
 //! NDBWMCM form (eq:BWMCM_nd) for the equivalence the paper states.
 
 use crate::clearance::{in_natural_units, shccm_clearance};
-use crate::input::{Constant, Input};
+use crate::input::{Constant, Input, Scaled};
 use crate::laws::{hysteresis, Bwmcl, Bwshccl};
 use crate::params::{check, ModelKind, NondimParams, PhysicalParams};
 use crate::power::{Pow, Powers};
@@ -37,8 +37,9 @@ pub trait CollisionModel<const N: usize>: System<N> {
     ) -> Option<SeriesRun<N>> {
         None
     }
-    /// The crate's double-double path of the nondimensional models ([`Settings::double_double`];
-    /// private as [`Self::series_impact`]): `None` where the model has none.
+    /// The crate's double-double path of the nondimensional models, and of the SI models
+    /// through them ([`Settings::double_double`]; private as [`Self::series_impact`]): `None`
+    /// where the model has none.
     #[doc(hidden)]
     fn double_double_impact(
         &self,
@@ -608,6 +609,19 @@ impl<I: Input> CollisionModel<3> for Bwshccm<I> {
             .series_impact(key, settings)?;
         Some(in_si(run, self.state_scale(), self.scales.t_c))
     }
+    fn double_double_impact(
+        &self,
+        _: crate::series::Private,
+        ext: bwc_ode::Extrapolation,
+        settings: &Settings,
+    ) -> Option<Result<crate::Impact<3>, crate::precise::DdFailure>> {
+        let (u, scale) = (scaled_input(&self.input, &self.scales), self.state_scale());
+        let model = (ModelKind::Shccm, *self.nd.get(), &u);
+        let run = crate::precise::run_model(model, ext, settings, |y| {
+            State::<3>::new(y[1], y[2], y[3]).component_mul(&scale)
+        })?;
+        Some(run.map(|out| dd_in_si(out, self.scales.t_c)))
+    }
 }
 
 /// BWMCM in the Lipschitz form (eq:EBWMCM) in SI units, states `(r, y, z, v)`: the BWMCL
@@ -697,6 +711,19 @@ impl<I: Input> CollisionModel<4> for Bwmcm<I> {
             .series_impact(key, settings)?;
         Some(in_si(run, self.state_scale(), self.scales.t_c))
     }
+    fn double_double_impact(
+        &self,
+        _: crate::series::Private,
+        ext: bwc_ode::Extrapolation,
+        settings: &Settings,
+    ) -> Option<Result<crate::Impact<4>, crate::precise::DdFailure>> {
+        let (u, scale) = (scaled_input(&self.input, &self.scales), self.state_scale());
+        let model = (ModelKind::Mcm, *self.nd.get(), &u);
+        let run = crate::precise::run_model(model, ext, settings, |y| {
+            State::<4>::from(y).component_mul(&scale)
+        })?;
+        Some(run.map(|out| dd_in_si(out, self.scales.t_c)))
+    }
 }
 
 /// A constant input `u` (N) as the nondimensional models' `U = u T_c² / (m X_c)` (Table 1);
@@ -705,6 +732,25 @@ fn nondimensional_input<I: Input>(input: &I, scales: &crate::Scales) -> Option<C
     input
         .is_constant()
         .then(|| Constant(input.at(0.0) * scales.u_factor))
+}
+
+/// The input `u(t)` (N) as the nondimensional models' `U(T) = u(T T_c) T_c² / (m X_c)`
+/// (Table 1), for any input.
+fn scaled_input<'a, I: Input>(input: &'a I, scales: &crate::Scales) -> Scaled<&'a I> {
+    Scaled {
+        inner: input,
+        factor: scales.u_factor,
+        time_scale: scales.t_c,
+    }
+}
+
+/// A double-double run of the nondimensional model with the SI model's state: its times in
+/// seconds.
+fn dd_in_si<const N: usize>(out: crate::Impact<N>, t_c: f64) -> crate::Impact<N> {
+    crate::Impact {
+        t_s: out.t_s.map(|t| t * t_c),
+        ..out
+    }
 }
 
 /// A series run of the nondimensional model in the SI model's units: times times `T_c`, each

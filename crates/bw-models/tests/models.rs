@@ -950,3 +950,58 @@ fn si_clearance_is_the_nondimensional_one_in_seconds() {
         f64::INFINITY
     );
 }
+
+/// The SI models' double-double path (the nondimensional model's, scaled by Table 1): the
+/// linear elastic contact (`p = 1`, `c = β = γ = 0`, `A = 1`, so `z = x` and `m v' = -k x`)
+/// lasts `π sqrt(m / k)` with `e = 1`; under the arctan ramp both models agree with the
+/// double-precision path at tight tolerances.
+#[test]
+fn si_models_have_the_double_double_path() {
+    let s = Settings::default();
+    let (m, k) = (0.2, 4.0e5);
+    let linear = Physical {
+        k,
+        c: 0.0,
+        n: 1.5,
+        p: 1.0,
+        alpha: 0.3,
+        beta: 0.0,
+        gamma: 0.0,
+        a: 1.0,
+    };
+    let params = PhysicalParams::new(ModelKind::Shccm, linear).unwrap();
+    let model = Bwshccm::new(&params, m, 1.5, Zero).unwrap();
+    let out = impact_double_double(&model, 1e-20, &s).unwrap().unwrap();
+    let t_s = std::f64::consts::PI * (m / k).sqrt();
+    assert!((out.t_s.unwrap() - t_s).abs() < 1e-15 * t_s, "{out:?}");
+    assert!((out.e - 1.0).abs() < 1e-15 && out.double_double, "{out:?}");
+    // x(t_s) = 0 and v(t_s) = 1.5 m/s, in SI units.
+    assert!(out.state[0].abs() < 1e-15 && (out.state[2] - 1.5).abs() < 1e-14);
+
+    let ramp = Arctan {
+        m: BASEBALL_MASS,
+        d: -300.0,
+        omega: 2e3,
+    };
+    let fine = tight();
+    for kind in [ModelKind::Shccm, ModelKind::Mcm] {
+        let (dd, double) = match kind {
+            ModelKind::Shccm => {
+                let model = Bwshccm::new(&cross(kind), BASEBALL_MASS, 3.03, ramp).unwrap();
+                let dd = impact_double_double(&model, 1e-18, &s).unwrap().unwrap();
+                (dd.cor(), impact(&model, &fine).unwrap().cor())
+            }
+            ModelKind::Mcm => {
+                let model = Bwmcm::new(&cross(kind), BASEBALL_MASS, 3.03, ramp).unwrap();
+                let dd = impact_double_double(&model, 1e-18, &s).unwrap().unwrap();
+                (dd.cor(), impact(&model, &fine).unwrap().cor())
+            }
+        };
+        assert!(
+            (dd.e - double.e).abs() < 1e-11,
+            "{kind:?}: {dd:?} {double:?}"
+        );
+        let (a, b) = (dd.t_s.unwrap(), double.t_s.unwrap());
+        assert!((a - b).abs() < 1e-11 * b, "{kind:?}: t_s {a} vs {b}");
+    }
+}

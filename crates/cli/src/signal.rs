@@ -50,11 +50,11 @@ impl Input for Signal {
         }
     }
 
-    /// Constants and tables have a double-double form; the arctan ramp has none yet.
+    /// Every signal has a double-double form.
     fn at_dd(&self, t: Dd) -> Option<Dd> {
         match self {
             Signal::Constant(c) => Some(Dd::from(*c)),
-            Signal::Arctan(_) => None,
+            Signal::Arctan(a) => a.at_dd(t),
             Signal::Table(tab) => tab.at_dd(t),
             Signal::Sum(terms) => terms
                 .iter()

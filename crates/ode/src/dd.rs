@@ -12,8 +12,13 @@
 //!   small `exp - 1` exact to the last bit.
 //! - `ln(x)`: one Newton step `y + x exp(-y) - 1` from the `f64` logarithm, which squares its
 //!   relative error of about 1e-16 (near `x = 1` the step works with `exp(y) - 1` and `x - 1`).
-//! - `sin(x)`: reduced by a multiple of `π/2` to `|r| <= π/4`, then the Taylor series of sin
-//!   or cos.
+//! - `sin(x)`, `cos(x)`: reduced by a multiple of `π/2` to `|r| <= π/4`, then the Taylor
+//!   series of sin or cos.
+//! - `atan(x)`: two Newton steps on `tan θ = x` from the `f64` arctangent.
+//! - `div(a, b)`: twofloat's quotient of two double-double numbers is off by about 1e-17
+//!   relative (its reciprocal's residual `1 - b t` is rounded, not computed with a fused
+//!   multiply-add), so `a / b.hi` is corrected by the residual `a - q b` instead. Division by
+//!   an `f64` is twofloat's, which is accurate.
 
 use twofloat::TwoFloat;
 
@@ -26,6 +31,11 @@ const LN_2: (f64, f64) = (std::f64::consts::LN_2, 2.3190468138462996e-17);
 const FRAC_PI_2: (f64, f64) = (std::f64::consts::FRAC_PI_2, 6.123233995736766e-17);
 /// Terms of a series are summed until they fall below this fraction of the sum.
 const SERIES_EPS: f64 = 1e-34;
+
+/// `π/2` in double-double.
+pub fn frac_pi_2() -> Dd {
+    dd(FRAC_PI_2.0, FRAC_PI_2.1)
+}
 
 /// The double-double `hi + lo`.
 pub fn dd(hi: f64, lo: f64) -> Dd {
@@ -112,18 +122,44 @@ pub fn copysign(v: Dd, s: Dd) -> Dd {
     }
 }
 
+/// `a / b` to a few 1e-32 relative: `q = a / b_hi`, then `q + (a - q b) / b_hi`.
+pub fn div(a: Dd, b: Dd) -> Dd {
+    let q = a / b.hi();
+    q + (a - q * b) / b.hi()
+}
+
 /// `sin x`, accurate to about `max(1, |x|) 1e-31` absolute: the reduction's product `k π/2`
 /// is rounded in double-double.
 pub fn sin(x: Dd) -> Dd {
-    let half_pi = dd(FRAC_PI_2.0, FRAC_PI_2.1);
+    quarter_turns(x, 0)
+}
+
+/// `cos x`, accurate as [`sin`].
+pub fn cos(x: Dd) -> Dd {
+    quarter_turns(x, 1)
+}
+
+/// `sin(x + q π/2)`, from `x = r + k π/2` with `|r| <= π/4`.
+fn quarter_turns(x: Dd, q: i64) -> Dd {
     let k = (x.hi() / FRAC_PI_2.0).round();
-    let r = x - half_pi * k;
-    match (k as i64).rem_euclid(4) {
+    let r = x - frac_pi_2() * k;
+    match (k as i64 + q).rem_euclid(4) {
         0 => sin_series(r),
         1 => cos_series(r),
         2 => -sin_series(r),
         _ => -cos_series(r),
     }
+}
+
+/// `arctan x` in `(-π/2, π/2)`, to about 1e-31 relative: double precision's `atan`, then two
+/// Newton steps on `tan θ = x` (`θ += (x cos θ - sin θ) cos θ`), each squaring the error.
+pub fn atan(x: Dd) -> Dd {
+    let mut theta = Dd::from(x.hi().atan());
+    for _ in 0..2 {
+        let c = cos(theta);
+        theta += (x * c - sin(theta)) * c;
+    }
+    theta
 }
 
 /// Taylor series of sin about 0 for `|r| <= π/4`.
@@ -159,10 +195,10 @@ mod tests {
         ((v - r) / r).hi().abs()
     }
 
-    // References: Python's decimal module at 60 digits (150 for the sine series at 101.3), split
-    // into (hi, lo).
+    // References: Python's decimal module at 60 digits (150 for the sine series at 101.3), and
+    // mpmath for cos and atan, split into (hi, lo).
     #[test]
-    fn exp_ln_sin_match_sixty_digit_values() {
+    fn elementary_functions_match_sixty_digit_values() {
         let exps = [
             (0.37, (1.4477346146633245, -8.202046215242462e-17)),
             (2.9, (18.17414536944306, -1.0319935825855902e-15)),
@@ -193,6 +229,43 @@ mod tests {
             let err = rel(sin(Dd::from(x)), want);
             assert!(err < 1e-30 * x.abs().max(1.0), "sin({x}): {err:e}");
         }
+        let coss = [
+            (0.37f64, (0.9323273456060345, -4.9569278923610965e-17)),
+            (2.9, (-0.9709581651495905, 4.579633153232696e-17)),
+            (-13.25, (0.775285470129288, -2.5054737101750566e-17)),
+            (101.3, (0.7185820465431654, -7.59059826650291e-18)),
+        ];
+        for (x, want) in coss {
+            let err = rel(cos(Dd::from(x)), want);
+            assert!(err < 1e-30 * x.abs().max(1.0), "cos({x}): {err:e}");
+        }
+        // mpmath at 60 digits.
+        let atans = [
+            (0.37, (0.3543799191234378, 2.7167638414024308e-18)),
+            (-2.9, (-1.2387368592520112, 2.571119118874906e-17)),
+            (1e-5, (9.999999999666668e-06, -4.575803486027043e-22)),
+            (55.5, (1.5527802582408412, 6.82508897992337e-17)),
+            (3.0e8, (1.5707963234615634, -1.070556332167147e-16)),
+        ];
+        for (x, want) in atans {
+            let err = rel(atan(Dd::from(x)), want);
+            assert!(err < 1e-30, "atan({x}): {err:e}");
+        }
+        // 1/3, 7.77/π and 0.5 = (π/4)/(π/2), mpmath at 60 digits.
+        let pi = frac_pi_2() * 2.0;
+        assert!(
+            rel(
+                div(Dd::from(1.0), Dd::from(3.0)),
+                (1.0 / 3.0, 1.850371707708594e-17)
+            ) < 1e-31
+        );
+        assert!(
+            rel(
+                div(Dd::from(7.77), pi),
+                (2.4732678156480534, -4.2692584220805796e-17)
+            ) < 1e-31
+        );
+        assert!(rel(div(frac_pi_2() * 0.5, frac_pi_2()), (0.5, 0.0)) < 1e-31);
         let p = pow_abs(Dd::from(-0.0123), 8.183188614474556);
         assert!(rel(p, (2.340632631448418e-16, 1.676321860368279e-32)) < 1e-30);
         assert_eq!(pow_abs(Dd::from(0.0), 2.5).hi(), 0.0);
@@ -204,5 +277,9 @@ mod tests {
         let want = (2.050270164379556, 1.4155943491569727e-17);
         assert!(rel(Dd::from(7.77).ln(), want) > 1e-20);
         assert!(rel(ln(Dd::from(7.77)), want) < 1e-30);
+        // And its quotient of two double-double numbers.
+        let half = frac_pi_2() * 0.5;
+        assert!(rel(half / frac_pi_2(), (0.5, 0.0)) > 1e-20);
+        assert!(rel(div(half, frac_pi_2()), (0.5, 0.0)) < 1e-31);
     }
 }

@@ -104,11 +104,13 @@ def test_each_cor_carries_its_error_estimate():
     short = bwc.cor("shccm", hc, solver={**loose, "e_tol": 1e-18, "max_steps": limit})
     assert short["check"][0] == "unmet" and short["tighter_out_of_steps"][0]
     assert short["tighter_failed_rtol"][0] == 1e-7
-    # A target double precision cannot check is met in double-double arithmetic.
+    # A target double precision cannot check is met in double-double arithmetic (the default).
     assert not checked["double_double"][0]
-    precise = bwc.cor("shccm", hc, solver={"series": False, "e_tol": 1e-15, "double_double": True})
+    precise = bwc.cor("shccm", hc, solver={"series": False, "e_tol": 1e-15})
     assert precise["double_double"][0] and precise["check"][0] == "met"
     assert abs(precise["e"][0] - want) < 2e-15  # the reference's own xtol is 1e-15
+    double = bwc.cor("shccm", hc, solver={"series": False, "e_tol": 1e-15, "double_double": False})
+    assert not double["double_double"][0] and double["check"][0] == "unmet"
 
 
 def test_a_long_sweep_is_interpolated_to_the_closed_form():

@@ -222,8 +222,8 @@ fn e_tol_checks_each_cor() {
     assert_eq!(run["tighter_failed"]["out_of_steps"], true, "{run}");
     assert_eq!(run["tighter_failed"]["rtol"].as_f64(), Some(1e-7), "{run}");
     assert_eq!(checked["arithmetic"], "double", "{checked}");
-    // A target double precision cannot check is met in double-double, where switched on.
-    let precise = run_of("e_tol = 1e-15\ndouble_double = true\n");
+    // A target double precision cannot check is met in double-double (the default).
+    let precise = run_of("e_tol = 1e-15\n");
     assert_eq!(
         (&precise["arithmetic"], &precise["check"]),
         (&"double-double".into(), &"met".into()),
@@ -234,7 +234,7 @@ fn e_tol_checks_each_cor() {
         (precise["e"].as_f64().unwrap() - e_exact).abs() <= 1e-15,
         "{precise}"
     );
-    let double = run_of("e_tol = 1e-15\n");
+    let double = run_of("e_tol = 1e-15\ndouble_double = false\n");
     assert_eq!(double["arithmetic"], "double", "{double}");
     assert!(double["rtol"].as_f64().unwrap() >= 1e-14, "{double}");
 }
@@ -594,4 +594,32 @@ fn help_shows_examples() {
     assert!(out.status.success());
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("Examples") && text.contains("bwc-simulate run"));
+}
+
+/// The double-double path under the paper's two-body scene (SI BWMCM, gravity plus the arctan
+/// ramp): a target double precision cannot check is met there, and agrees with the
+/// double-precision run.
+#[test]
+fn two_balls_meet_a_tight_target_in_double_double() {
+    let dir = scratch("two-balls-dd");
+    let fixture = std::fs::read_to_string(fixtures().join("two_balls_mcm.toml")).unwrap();
+    let body = &fixture[..fixture.find("[output]").unwrap()];
+    let scene = dir.join("scene.toml");
+    let run_of = |extra: &str| {
+        std::fs::write(&scene, format!("{body}[solver]\ne_tol = 1e-15\n{extra}")).unwrap();
+        json(&simulate(&["run", scene.to_str().unwrap(), "--json"]))["runs"][0].clone()
+    };
+    let precise = run_of("");
+    assert_eq!(
+        (&precise["arithmetic"], &precise["check"]),
+        (&"double-double".into(), &"met".into()),
+        "{precise}"
+    );
+    let double = run_of("double_double = false\n");
+    assert_eq!(double["arithmetic"], "double", "{double}");
+    let (a, b) = (
+        precise["e"].as_f64().unwrap(),
+        double["e"].as_f64().unwrap(),
+    );
+    assert!((a - b).abs() < 1e-12, "e {a} vs {b}");
 }

@@ -83,8 +83,8 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     the check stopped at the run before it; NaN where none did), ``tighter_out_of_steps``
     (bool: that run needed more than ``solver["max_steps"]`` steps, and a larger value lets it
     finish), ``double_double`` (bool: where double precision could not meet ``e_tol``, the CoR
-    was computed again in double-double arithmetic and that run is reported, with
-    ``solver["double_double"] = True``; off by default), ``rhs_evals`` (int, of every run behind a
+    was computed again in double-double arithmetic and that run is reported; on by default,
+    ``solver["double_double"] = False`` turns it off), ``rhs_evals`` (int, of every run behind a
     CoR), ``interpolated`` (bool), ``outcome``
     (strings ``"separated"``, ``"settled"``, ``"horizon"``).
 
