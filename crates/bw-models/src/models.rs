@@ -615,12 +615,15 @@ impl<I: Input> CollisionModel<3> for Bwshccm<I> {
         ext: bwc_ode::Extrapolation,
         settings: &Settings,
     ) -> Option<Result<crate::Impact<3>, crate::precise::DdFailure>> {
-        let (u, scale) = (scaled_input(&self.input, &self.scales), self.state_scale());
-        let model = (ModelKind::Shccm, *self.nd.get(), &u);
-        let run = crate::precise::run_model(model, ext, settings, |y| {
-            State::<3>::new(y[1], y[2], y[3]).component_mul(&scale)
-        })?;
-        Some(run.map(|out| dd_in_si(out, self.scales.t_c)))
+        let scale = self.state_scale();
+        let state_of = |y: [f64; 4]| State::<3>::new(y[1], y[2], y[3]).component_mul(&scale);
+        dd_in_si(
+            (ModelKind::Shccm, &self.nd, &self.input),
+            &self.scales,
+            ext,
+            settings,
+            state_of,
+        )
     }
 }
 
@@ -717,12 +720,15 @@ impl<I: Input> CollisionModel<4> for Bwmcm<I> {
         ext: bwc_ode::Extrapolation,
         settings: &Settings,
     ) -> Option<Result<crate::Impact<4>, crate::precise::DdFailure>> {
-        let (u, scale) = (scaled_input(&self.input, &self.scales), self.state_scale());
-        let model = (ModelKind::Mcm, *self.nd.get(), &u);
-        let run = crate::precise::run_model(model, ext, settings, |y| {
-            State::<4>::from(y).component_mul(&scale)
-        })?;
-        Some(run.map(|out| dd_in_si(out, self.scales.t_c)))
+        let scale = self.state_scale();
+        let state_of = |y: [f64; 4]| State::<4>::from(y).component_mul(&scale);
+        dd_in_si(
+            (ModelKind::Mcm, &self.nd, &self.input),
+            &self.scales,
+            ext,
+            settings,
+            state_of,
+        )
     }
 }
 
@@ -734,23 +740,26 @@ fn nondimensional_input<I: Input>(input: &I, scales: &crate::Scales) -> Option<C
         .then(|| Constant(input.at(0.0) * scales.u_factor))
 }
 
-/// The input `u(t)` (N) as the nondimensional models' `U(T) = u(T T_c) T_c² / (m X_c)`
-/// (Table 1), for any input.
-fn scaled_input<'a, I: Input>(input: &'a I, scales: &crate::Scales) -> Scaled<&'a I> {
-    Scaled {
+/// The double-double run of an SI model: its nondimensional model `kind` with parameters `nd`
+/// under the input `u(t)` (N) as `U(T) = u(T T_c) T_c² / (m X_c)` (Table 1), with the state
+/// `state_of` the run's `(R, Y, Z, V)` and the times in seconds.
+fn dd_in_si<I: Input, const N: usize>(
+    (kind, nd, input): (ModelKind, &NondimParams, &I),
+    scales: &crate::Scales,
+    ext: bwc_ode::Extrapolation,
+    settings: &Settings,
+    state_of: impl Fn([f64; 4]) -> State<N>,
+) -> Option<Result<crate::Impact<N>, crate::precise::DdFailure>> {
+    let u = Scaled {
         inner: input,
         factor: scales.u_factor,
         time_scale: scales.t_c,
-    }
-}
-
-/// A double-double run of the nondimensional model with the SI model's state: its times in
-/// seconds.
-fn dd_in_si<const N: usize>(out: crate::Impact<N>, t_c: f64) -> crate::Impact<N> {
-    crate::Impact {
-        t_s: out.t_s.map(|t| t * t_c),
+    };
+    let run = crate::precise::run_model((kind, *nd.get(), &u), ext, settings, state_of)?;
+    Some(run.map(|out| crate::Impact {
+        t_s: out.t_s.map(|t| t * scales.t_c),
         ..out
-    }
+    }))
 }
 
 /// A series run of the nondimensional model in the SI model's units: times times `T_c`, each

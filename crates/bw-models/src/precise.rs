@@ -343,31 +343,39 @@ impl<I: Input> Run<'_, '_, I> {
             }
             // Accurate values at both ends of the interval, each checked against the last
             // accurate value before it.
-            let mut points = vec![exact_at];
             if !exact {
-                points.push((a, self.events_after((t, y, f0), a)));
+                let at_a = (a, self.events_after((t, y, f0), a));
+                if let Some(c) = self.first_between((t, y, f0), exact_at, at_a) {
+                    return Some(c);
+                }
+                exact_at = at_a;
             }
             let gb = if last {
                 gb
             } else {
                 self.events_after((t, y, f0), b)
             };
-            points.push((b, gb));
-            for pair in points.windows(2) {
-                let ((lo, g_lo), (hi, g_hi)) = (pair[0], pair[1]);
-                let m = self.m;
-                let found = m
-                    .changes(&g_lo, &g_hi)
-                    .filter_map(|w| self.event((t, y, f0), (lo, &g_lo), (hi, &g_hi), w))
-                    .min_by(|p, q| p.tau.partial_cmp(&q.tau).expect("finite times"));
-                if found.is_some() {
-                    return found;
-                }
+            if let Some(c) = self.first_between((t, y, f0), exact_at, (b, gb)) {
+                return Some(c);
             }
             exact_at = (b, gb);
             (a, ga, exact) = (b, gb, true);
         }
         None
+    }
+
+    /// The first event between the accurate values at `lo` and `hi` (times from the step's
+    /// start), if any.
+    fn first_between(
+        &mut self,
+        at: (Dd, &DdState, &DdState),
+        lo: (Dd, Events),
+        hi: (Dd, Events),
+    ) -> Option<Crossing> {
+        let m = self.m;
+        m.changes(&lo.1, &hi.1)
+            .filter_map(|w| self.event(at, (lo.0, &lo.1), (hi.0, &hi.1), w))
+            .min_by(|p, q| p.tau.partial_cmp(&q.tau).expect("finite times"))
     }
 
     /// A kink inside a rejected step `[t, t + h]`: the first sign change of a kink function

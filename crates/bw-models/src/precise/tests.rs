@@ -19,6 +19,23 @@ fn shccm(sigma: f64, p: f64) -> Model<'static, Zero> {
     }
 }
 
+/// The first event of one step of size `h` from `(t, y)` at rtol 1e-24, with the trial's
+/// samples passed through `edit` first.
+fn first_event_of<I: Input>(
+    m: &Model<'_, I>,
+    (t, y): (Dd, DdState),
+    h: f64,
+    edit: impl FnOnce(&mut DdTrial<4>),
+) -> Option<Crossing> {
+    let (f0, h) = (m.rhs(t, &y), Dd::from(h));
+    let ext = Extrapolation::new(1e-24, 1e-26);
+    let mut trial = ext.step(m, t, &y, &f0, h);
+    assert!(trial.err <= 1.0);
+    edit(&mut trial);
+    let mut run = Run { m, ext, evals: 0 };
+    run.first_event((t, &y, &f0), h, &trial, [None; 2])
+}
+
 fn rel(a: Dd, b: Dd) -> f64 {
     ((a - b) / b).hi().abs()
 }
@@ -80,31 +97,16 @@ fn a_sign_change_misplaced_by_the_samples_is_found() {
     let mut m = shccm(0.0, 1.0);
     m.k.kappa = 1.0;
     let t = Dd::from(1.5);
-    let y = [
-        Dd::from(0.0),
-        -dd::sin(t),
-        Dd::from(0.5),
-        -dd::sin(t + dd::dd(std::f64::consts::FRAC_PI_2, 6.123233995736766e-17)),
-    ];
-    let f0 = m.rhs(t, &y);
-    let ext = Extrapolation::new(1e-24, 1e-26);
-    let mut run = Run {
-        m: &m,
-        ext,
-        evals: 0,
-    };
-    let h = Dd::from(0.1);
-    let mut trial = ext.step(&m, t, &y, &f0, h);
-    assert!(trial.err <= 1.0);
+    let y = [Dd::from(0.0), -dd::sin(t), Dd::from(0.5), -dd::cos(t)];
     // The root is 0.0708 into the step, between samples 11 and 12; samples 12 to 15 are
     // put back on the side before it, so that they show the change at the step's end.
-    for s in &mut trial.samples[11..] {
-        s[3] = Dd::from(-1e-3);
-    }
-    let c = run
-        .first_event((t, &y, &f0), h, &trial, [None; 2])
-        .expect("the rate's sign change");
-    let root = dd::dd(std::f64::consts::FRAC_PI_2, 6.123233995736766e-17) - t;
+    let c = first_event_of(&m, (t, y), 0.1, |trial| {
+        for s in &mut trial.samples[11..] {
+            s[3] = Dd::from(-1e-3);
+        }
+    })
+    .expect("the rate's sign change");
+    let root = dd::frac_pi_2() - t;
     assert_eq!(c.which, 0);
     assert!((c.tau - root).hi().abs() < 1e-24, "tau = {:?}", c.tau);
     assert_eq!(c.sign_after, 1.0);
@@ -176,20 +178,7 @@ fn a_separation_shorter_than_a_sample_interval_is_found() {
     let (c, si) = (dd::cos(s), dd::sin(s));
     let y0 = (Dd::from(1.0) - c) * u + si * v_s;
     let y = [Dd::from(0.0), y0, y0, si * u + c * v_s];
-    let t = Dd::from(0.0);
-    let f0 = m.rhs(t, &y);
-    let ext = Extrapolation::new(1e-24, 1e-26);
-    let mut run = Run {
-        m: &m,
-        ext,
-        evals: 0,
-    };
-    let h = Dd::from(0.1);
-    let trial = ext.step(&m, t, &y, &f0, h);
-    assert!(trial.err <= 1.0);
-    let c = run
-        .first_event((t, &y, &f0), h, &trial, [None; 2])
-        .expect("the separation");
+    let c = first_event_of(&m, (Dd::from(0.0), y), 0.1, |_| {}).expect("the separation");
     assert_eq!(c.which, SEPARATED);
     assert!((c.tau - s0).hi().abs() < 1e-24, "tau = {:?}", c.tau);
     assert!((c.y[3] - v_s).hi().abs() < 1e-24, "V = {:?}", c.y[3]);
