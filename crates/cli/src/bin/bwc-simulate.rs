@@ -270,6 +270,19 @@ fn table(runs: &[simulate::Run]) {
             evals
         );
     }
+    let precise: Vec<&str> = runs
+        .iter()
+        .zip(&labels)
+        .filter(|(r, _)| r.double_double)
+        .map(|(_, l)| l.as_str())
+        .collect();
+    if !precise.is_empty() {
+        bwc_cli::out!(
+            "double-double arithmetic ([solver] double_double), where double precision could not \
+             meet [solver].e_tol: {}",
+            precise.join("; ")
+        );
+    }
 }
 
 /// The contacts of a sequence, with the unit of every column.
