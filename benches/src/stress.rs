@@ -3,7 +3,7 @@
 
 use bw_models::input::{Constant, Sine};
 use bw_models::{
-    impact_at, BaseMap, BaseParams, Check, FailedRun, ModelError, ModelKind, Settings,
+    impact_at, BaseMap, BaseParams, Check, DdDeclined, FailedRun, ModelError, ModelKind, Settings,
 };
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
@@ -84,6 +84,8 @@ pub struct Outcome {
     pub tighter_failed: Option<FailedRun>,
     /// Whether the result is the double-double run's (`Settings::double_double`).
     pub double_double: bool,
+    /// Why the double-double retry of an unmet check reported nothing, where it was due.
+    pub double_double_declined: Option<DdDeclined>,
 }
 
 fn log_uniform(rng: &mut impl Rng, lo: f64, hi: f64) -> f64 {
@@ -211,6 +213,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
     let mut check = None;
     let mut tighter_failed = None;
     let mut double_double = false;
+    let mut double_double_declined = None;
     let (class, evals) = match BaseMap::new(case.kind, case.base)
         .and_then(|map| {
             let (_, s) = map.at(case.v0)?;
@@ -228,6 +231,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
             check = Some(out.check);
             tighter_failed = out.tighter_failed;
             double_double = out.double_double;
+            double_double_declined = out.double_double_declined;
         }) {
         Ok(out) if out.separated() && out.e.is_finite() && out.e >= 0.0 => {
             if unforced && out.e > 1.0 + 1e-9 {
@@ -266,6 +270,7 @@ pub fn run_with(case: &Case, settings: &Settings) -> Outcome {
         check,
         tighter_failed,
         double_double,
+        double_double_declined,
     }
 }
 

@@ -91,12 +91,13 @@ fn report(seed: u64, i: u64, rtols: &[f64]) -> String {
             _ => "-".into(),
         };
         lines.push(format!(
-            "# {name}: e {:?}, estimate {:?}, check {:?}, double-double {}, {:.1} s; off the \
-             last reference by {off}",
+            "# {name}: e {:?}, estimate {:?}, check {:?}, double-double {}, stiff {}, {:.1} s; \
+             off the last reference by {off}",
             d.result.map(|r| r.0),
             d.e_error,
             d.check,
             d.double_double,
+            d.switched,
             d.seconds
         ));
     }

@@ -152,23 +152,35 @@ fn tally(name: &str, runs: &[Outcome], references: &References, list: (bool, boo
     let mut t = Tally::default();
     let pairs = references.fine.iter().zip(&references.check);
     for (i, (run, (f, c))) in runs.iter().zip(pairs).enumerate() {
+        // Runs without `e_tol` are `Check::Off`: never flagged.
+        let flagged = matches!(run.check, Some(Check::Unmet | Check::Unverified));
+        let retry = run
+            .double_double_declined
+            .map_or(String::new(), |d| format!(": the retry {d}"));
         let (Some(e), Some(ef), Some(ec)) = (separated_e(run), separated_e(f), separated_e(c))
         else {
+            if flagged && list.1 {
+                bwc_cli::out!(
+                    "# {name} case {i}: flagged, {:?}, e {:?}, no reference (not counted) \
+                     estimate {:?}{retry}",
+                    run.check,
+                    separated_e(run),
+                    run.e_error
+                );
+            }
             continue;
         };
         t.separated += 1;
-        // Runs without `e_tol` are `Check::Off`: never flagged.
-        let flagged = matches!(run.check, Some(Check::Unmet | Check::Unverified));
         t.flagged += usize::from(flagged);
         t.unverified += usize::from(run.check == Some(Check::Unverified));
         let miss = (e - ef).abs();
         if flagged && list.1 {
             bwc_cli::out!(
                 "# {name} case {i}: flagged, {:?}, e {e} reference {ef} ({miss:.1e} off) estimate \
-                 {:?} double-double {}",
+                 {:?} double-double {}{retry}",
                 run.check,
                 run.e_error,
-                run.double_double
+                run.double_double,
             );
         }
         if miss > MISS && (ec - ef).abs() < 0.1 * miss {

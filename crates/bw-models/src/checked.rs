@@ -125,14 +125,21 @@ pub fn impact<M: CollisionModel<N>, const N: usize>(
         estimate(&mut next, &out);
         out = next;
     }
-    out.stats = work;
     out.tighter_failed = failed;
     out.check = verdict(out.e_error, e_tol);
     if out.check == Check::Unmet && settings.double_double {
-        if let Some(precise) = double_double(model, settings, e_tol, work) {
-            return Ok(precise);
+        // Where even the tightest run went stiff: the double-double path is explicit. (A
+        // looser run can switch where the tightest does not: case 3373 of seed 2.)
+        let retry = match out.stiff_from {
+            Some(from) => Err(DdDeclined::Stiff { from }),
+            None => double_double(model, settings, e_tol, &mut work),
+        };
+        match retry {
+            Ok(precise) => return Ok(precise),
+            Err(why) => out.double_double_declined = Some(why),
         }
     }
+    out.stats = work;
     Ok(out)
 }
 
@@ -145,11 +152,108 @@ fn verdict(e_error: Option<f64>, e_tol: f64) -> Check {
     }
 }
 
-/// The tolerances of the double-double runs ([`Settings::double_double`]): the second is
-/// reported, checked against the first. On the stress sweep's runs that double precision
-/// cannot settle, rtol 1e-16 gets `e` to about 1e-13 and 1e-18 to about 1e-15; at 1e-14 the
-/// steps can pass over a pair of kinks and miss `e` by 7e-9 (STABILITY.md, "Session 23").
-pub const DOUBLE_DOUBLE_RTOLS: [f64; 2] = [1e-16, 1e-18];
+/// The tolerances of the double-double runs ([`Settings::double_double`]), in turn until one
+/// agrees with the run before it to `e_tol`; that one is reported. On the stress sweep's runs
+/// that double precision cannot settle, rtol 1e-16 gets `e` to about 1e-13 and 1e-18 to about
+/// 1e-15, except on a few long forced contacts where 1e-16 is off by 1e-10 and the third run
+/// settles it; at 1e-14 the steps can pass over a pair of kinks and miss `e` by 7e-9
+/// (STABILITY.md, "Session 23" and "Session 25").
+pub const DOUBLE_DOUBLE_RTOLS: [f64; 3] = [1e-16, 1e-18, 1e-20];
+
+/// A double-double run after the first may take at most this many times the accepted steps of
+/// the run before it (plus [`DD_STEP_SLACK`]). An extrapolation of order 16 needs about
+/// `100^(1/16)` = 1.33 times the steps at a hundredth of the tolerance, and the stress sweep's
+/// runs take 1.1 to 1.6 times; a run that needs far more is not in that regime, and its
+/// result would be refused after a long wait (case 5523 of seed 3: 257 steps at rtol 1e-16,
+/// 326,460 and 45 s at 1e-18; STABILITY.md, "Session 25").
+pub const DD_STEP_GROWTH: u64 = 8;
+
+/// The steps a double-double run after the first may take beyond [`DD_STEP_GROWTH`] times
+/// the run before it, so that short runs are not held to a few steps.
+pub const DD_STEP_SLACK: u64 = 1_000;
+
+/// Why the double-double retry ([`Settings::double_double`]) of a CoR whose check stayed
+/// [`Check::Unmet`] reported nothing ([`Impact::double_double_declined`]); the reported `e` is
+/// then the double-precision one, flagged.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DdDeclined {
+    /// The reported double-precision run (the tightest) switched to RODAS4 at `from` (model
+    /// time units; [`Impact::stiff_from`]): the double-double path is explicit, and on such
+    /// runs its error estimate does not hold (on three seeds of the stress sweep it settled
+    /// none of the five, after up to 139 s; STABILITY.md, "Session 25"). Not tried.
+    Stiff {
+        /// When the run switched.
+        from: f64,
+    },
+    /// The model, or its input, has no double-double form ([`impact_double_double`]).
+    NoPath,
+    /// The run at `rtol` stopped short of the separation.
+    Failed {
+        /// Its relative tolerance.
+        rtol: f64,
+        /// Why.
+        failure: DdFailure,
+    },
+    /// The run at `rtol` needed more than [`DD_STEP_GROWTH`] times the steps of the run before
+    /// it (`steps_before`, plus [`DD_STEP_SLACK`]): it is not in the regime where a tighter
+    /// tolerance costs a few more steps, and its result would not be trusted.
+    StepsGrew {
+        /// Its relative tolerance.
+        rtol: f64,
+        /// The accepted steps of the run before it.
+        steps_before: u64,
+    },
+    /// The last two runs (the tightest at rtol 1e-20) still differ by `e_error`, more than
+    /// `e_tol`.
+    Disagreed {
+        /// Their difference in `e`.
+        e_error: f64,
+    },
+}
+
+impl DdDeclined {
+    /// The name in outputs: `"stiff"`, `"no-path"`, `"failed"`, `"steps-grew"` or
+    /// `"disagreed"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            DdDeclined::Stiff { .. } => "stiff",
+            DdDeclined::NoPath => "no-path",
+            DdDeclined::Failed { .. } => "failed",
+            DdDeclined::StepsGrew { .. } => "steps-grew",
+            DdDeclined::Disagreed { .. } => "disagreed",
+        }
+    }
+}
+
+/// A predicate of "the double-double retry", as the command-line tools print it.
+impl std::fmt::Display for DdDeclined {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            DdDeclined::Stiff { .. } => write!(
+                f,
+                "was not tried: the tightest double-precision run went stiff (it switched to \
+                 RODAS4), where the explicit double-double steps are not reliable"
+            ),
+            DdDeclined::NoPath => write!(
+                f,
+                "is not possible: the model or its input has no double-double form"
+            ),
+            DdDeclined::Failed { rtol, failure } => {
+                write!(f, "failed at rtol {rtol:e}: {failure}")
+            }
+            DdDeclined::StepsGrew { rtol, steps_before } => write!(
+                f,
+                "was stopped: its run at rtol {rtol:e} needed more than {DD_STEP_GROWTH} times \
+                 the {steps_before} steps of the run before it"
+            ),
+            DdDeclined::Disagreed { e_error } => write!(
+                f,
+                "did not settle it: its runs down to rtol {:e} still differ by {e_error:.1e} in e",
+                DOUBLE_DOUBLE_RTOLS[DOUBLE_DOUBLE_RTOLS.len() - 1]
+            ),
+        }
+    }
+}
 
 /// One run of the double-double path ([`Settings::double_double`]) at `rtol` (`atol` scaled
 /// as `settings.atol / settings.rtol`), with `settings.max_steps` and `settings.t_max`; `None`
@@ -168,27 +272,49 @@ pub fn impact_double_double<M: CollisionModel<N>, const N: usize>(
     model.double_double_impact(Private(()), ext, settings)
 }
 
-/// The impact in double-double arithmetic, where the model has that path and both runs reach
-/// the separation and agree to `e_tol`; `work` is the double-precision runs' cost, added to
-/// the statistics.
+/// The impact in double-double arithmetic: runs at [`DOUBLE_DOUBLE_RTOLS`] in turn until one
+/// agrees with the one before it to `e_tol`, each after the first held to
+/// [`DD_STEP_GROWTH`] times its predecessor's steps. `work` (the double-precision runs' cost)
+/// gains every finished run's statistics, and is the reported run's.
 fn double_double<M: CollisionModel<N>, const N: usize>(
     model: &M,
     settings: &Settings,
     e_tol: f64,
-    work: bwc_ode::Stats,
-) -> Option<Impact<N>> {
-    let run = |rtol: f64| impact_double_double(model, rtol, settings);
-    let [loose, fine] = DOUBLE_DOUBLE_RTOLS;
-    let loose = run(loose)?.ok()?;
-    let mut out = run(fine)?.ok()?;
-    estimate(&mut out, &loose);
-    // The reported `e` is rounded to double precision: its error is at least that rounding,
-    // even where both runs round to the same double.
-    out.e_error = out.e_error.map(|d| d.max(0.5 * f64::EPSILON * out.e.abs()));
-    out.check = verdict(out.e_error, e_tol);
-    out.stats += work;
-    out.stats += loose.stats;
-    (out.check == Check::Met).then_some(out)
+    work: &mut bwc_ode::Stats,
+) -> Result<Impact<N>, DdDeclined> {
+    let mut before: Option<Impact<N>> = None;
+    for rtol in DOUBLE_DOUBLE_RTOLS {
+        let limit = before
+            .as_ref()
+            .map(|b| DD_STEP_GROWTH * b.stats.accepted + DD_STEP_SLACK);
+        let at = Settings {
+            max_steps: limit.map_or(settings.max_steps, |l| l.min(settings.max_steps)),
+            ..*settings
+        };
+        let mut out = match impact_double_double(model, rtol, &at).ok_or(DdDeclined::NoPath)? {
+            Ok(out) => out,
+            Err(DdFailure::TooManySteps) if at.max_steps < settings.max_steps => {
+                let steps_before = before.map_or(0, |b| b.stats.accepted);
+                return Err(DdDeclined::StepsGrew { rtol, steps_before });
+            }
+            Err(failure) => return Err(DdDeclined::Failed { rtol, failure }),
+        };
+        *work += out.stats;
+        if let Some(b) = &before {
+            estimate(&mut out, b);
+            // The reported `e` is rounded to double precision: its error is at least that
+            // rounding, even where both runs round to the same double.
+            out.e_error = out.e_error.map(|d| d.max(0.5 * f64::EPSILON * out.e.abs()));
+            out.check = verdict(out.e_error, e_tol);
+            if out.check == Check::Met {
+                out.stats = *work;
+                return Ok(out);
+            }
+        }
+        before = Some(out);
+    }
+    let e_error = before.and_then(|b| b.e_error).unwrap_or(f64::NAN);
+    Err(DdDeclined::Disagreed { e_error })
 }
 
 /// Whether `err` is a run that needed more than [`Settings::max_steps`] steps.
@@ -220,252 +346,4 @@ fn estimate<const N: usize>(out: &mut Impact<N>, before: &Impact<N>) {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::input::Zero;
-    use crate::series::SeriesRun;
-    use crate::{ModelKind, Ndbwshccm, Nondim, NondimParams, State};
-    use bwc_ode::System;
-    use std::cell::Cell;
-
-    /// The Hunt-Crossley limit (`B = Γ = 0`) whose runs at the tolerances in `failing` fail
-    /// (a non-finite right-hand side): it reads each run's rtol where the crate hands it its
-    /// settings, and keeps the Runge-Kutta path.
-    struct Failing {
-        inner: Ndbwshccm<Zero>,
-        failing: Vec<f64>,
-        rtol: Cell<f64>,
-        /// Every run's rtol and method, in order.
-        runs: std::cell::RefCell<Vec<(f64, &'static str)>>,
-    }
-
-    impl Failing {
-        fn new(failing: &[f64]) -> Self {
-            let nd = Nondim {
-                b: 0.0,
-                gamma: 0.0,
-                kappa: 0.5,
-                sigma: 0.2,
-                n: 1.5,
-                p: 1.5,
-            };
-            Self {
-                inner: Ndbwshccm::new(&NondimParams::new(ModelKind::Shccm, nd).unwrap(), Zero)
-                    .unwrap(),
-                failing: failing.to_vec(),
-                rtol: Cell::new(0.0),
-                runs: Default::default(),
-            }
-        }
-    }
-
-    impl System<3> for Failing {
-        fn rhs(&self, t: f64, y: &State<3>) -> State<3> {
-            let r = self.rtol.get();
-            let fails = self.failing.iter().any(|f| (r / f - 1.0).abs() < 1e-9);
-            self.inner.rhs(t, y) * if fails { f64::NAN } else { 1.0 }
-        }
-    }
-
-    impl CollisionModel<3> for Failing {
-        fn initial_state(&self) -> State<3> {
-            self.inner.initial_state()
-        }
-        fn force(&self, y: &State<3>) -> f64 {
-            self.inner.force(y)
-        }
-        fn displacement(&self, y: &State<3>) -> f64 {
-            self.inner.displacement(y)
-        }
-        fn velocity(&self, y: &State<3>) -> f64 {
-            self.inner.velocity(y)
-        }
-        fn input(&self, t: f64) -> f64 {
-            self.inner.input(t)
-        }
-        fn input_constant_after(&self) -> Option<f64> {
-            self.inner.input_constant_after()
-        }
-        fn series_impact(
-            &self,
-            _: crate::series::Private,
-            settings: &Settings,
-        ) -> Option<SeriesRun<3>> {
-            self.rtol.set(settings.rtol);
-            self.runs
-                .borrow_mut()
-                .push((settings.rtol, settings.method.name));
-            None
-        }
-        fn impact_speed(&self) -> f64 {
-            1.0
-        }
-        fn state_scale(&self) -> State<3> {
-            State::<3>::repeat(1.0)
-        }
-        fn time_scale(&self) -> f64 {
-            1.0
-        }
-        fn kinks(&self, t: f64, y: &State<3>) -> [f64; 2] {
-            self.inner.kinks(t, y)
-        }
-    }
-
-    fn checked(rtol: f64) -> Settings {
-        Settings {
-            rtol,
-            atol: rtol / 100.0,
-            e_tol: Some(1e-10),
-            ..Settings::default()
-        }
-    }
-
-    #[test]
-    fn a_cor_no_other_run_could_check_says_so() {
-        // The check at 100 rtol and the tighter run at rtol / 100 both fail.
-        let out = impact(&Failing::new(&[1e-6, 1e-10]), &checked(1e-8)).unwrap();
-        assert_eq!(
-            (out.check, out.e_error, out.rtol),
-            (Check::Unverified, None, 1e-8)
-        );
-        assert!(out.separated());
-        let failed = out.tighter_failed.unwrap();
-        assert!((failed.rtol / 1e-10 - 1.0).abs() < 1e-9 && !failed.out_of_steps);
-        // At the floor there is no tighter run to try.
-        let out = impact(&Failing::new(&[1e-12]), &checked(1e-14)).unwrap();
-        assert_eq!(
-            (out.check, out.e_error, out.tighter_failed),
-            (Check::Unverified, None, None)
-        );
-    }
-
-    #[test]
-    fn a_tighter_run_out_of_steps_says_that_more_steps_would_help() {
-        // Single runs' steps: the run at rtol 1e-5 and Verner's 7(6) at 1e-7 after it.
-        let steps = |method: &'static Tableau, rtol: f64| {
-            let single = Settings {
-                method,
-                e_tol: None,
-                ..checked(rtol)
-            };
-            let out = impact(&Failing::new(&[]), &single).unwrap();
-            out.stats.accepted + out.stats.rejected
-        };
-        let (at_rtol, tighter) = (steps(&bwc_ode::DOP853, 1e-5), steps(TIGHTER_METHOD, 1e-7));
-        assert!(tighter > at_rtol, "{tighter} {at_rtol}");
-        let settings = Settings {
-            e_tol: Some(1e-30),
-            max_steps: at_rtol,
-            ..checked(1e-5)
-        };
-        let out = impact(&Failing::new(&[]), &settings).unwrap();
-        let failed = out.tighter_failed.unwrap();
-        assert!(
-            (failed.rtol / 1e-7 - 1.0).abs() < 1e-9 && failed.out_of_steps,
-            "{failed:?}"
-        );
-        assert_eq!((out.check, out.rtol), (Check::Unmet, 1e-5));
-        // Met, or down to the floor: nothing failed.
-        let out = impact(&Failing::new(&[]), &checked(1e-8)).unwrap();
-        assert_eq!((out.check, out.tighter_failed), (Check::Met, None));
-    }
-
-    #[test]
-    fn the_check_and_the_tighter_runs_take_other_methods_down_to_the_floor() {
-        // A target no run meets: the check at 100 rtol by Verner's 9(8), then every tighter run
-        // by Verner's 7(6), down to the floor from an rtol that no power of 100 takes there.
-        let model = Failing::new(&[]);
-        let settings = Settings {
-            e_tol: Some(1e-30),
-            ..checked(1e-5)
-        };
-        let out = impact(&model, &settings).unwrap();
-        let want = [
-            (1e-3, "Vern9"),
-            (1e-5, "DOP853"),
-            (1e-7, "Vern7"),
-            (1e-9, "Vern7"),
-            (1e-11, "Vern7"),
-            (1e-13, "Vern7"),
-            (1e-14, "Vern7"),
-        ];
-        let runs = model.runs.take();
-        assert_eq!(runs.len(), want.len(), "{runs:?}");
-        for ((rtol, method), (want_rtol, want_method)) in runs.iter().zip(want) {
-            assert!(
-                (rtol / want_rtol - 1.0).abs() < 1e-9 && *method == want_method,
-                "{runs:?}"
-            );
-        }
-        assert_eq!((out.rtol, out.check), (FLOOR_RTOL, Check::Unmet));
-    }
-
-    #[test]
-    fn a_check_says_whether_it_met_e_tol() {
-        // Only the check fails: the tighter run checks the run at rtol instead.
-        let out = impact(&Failing::new(&[1e-6]), &checked(1e-8)).unwrap();
-        assert_eq!(out.check, Check::Met);
-        assert!(out.rtol < 1e-8 && out.e_error.unwrap() <= 1e-11, "{out:?}");
-        // A run that differs from its check by more than e_tol, with no tighter run possible.
-        let out = impact(&Failing::new(&[1e-6]), &checked(1e-4)).unwrap();
-        let (estimate, check) = (out.e_error.unwrap(), out.check);
-        assert!(
-            estimate > 1e-10 && check == Check::Unmet,
-            "{estimate:e} {check:?}"
-        );
-        let single = impact(
-            &Failing::new(&[]),
-            &Settings {
-                e_tol: None,
-                ..checked(1e-8)
-            },
-        );
-        assert_eq!(single.unwrap().check, Check::Off);
-    }
-
-    /// Case 7221 of the stress sweep's seed 1 (STABILITY.md, "Session 23"): an NDBWMCM
-    /// contact 50 time units long under a sinusoid, whose `e` double precision gets only to
-    /// about 1e-9. Its reference, 0.017492850063003707, is the double-double path at rtol 1e-20
-    /// and 1e-24 (agreeing to 1e-17); that path meets the closed forms to 1e-25
-    /// (`precise.rs`).
-    #[test]
-    fn double_double_settles_what_double_precision_cannot() {
-        use crate::input::Sine;
-        use crate::{impact_at, BaseMap, BaseParams};
-        let base = BaseParams {
-            b_b: 0.12910110765342317,
-            gamma_b: -0.06155493494432533,
-            kappa: 0.9999002987721985,
-            sigma_b: 395.136288272385,
-            n: 8.183188614474556,
-            p: 10.0,
-            u_b: 1.0,
-            t_b: 1.0,
-        };
-        let v0 = 0.0030045141757612365;
-        let map = BaseMap::new(ModelKind::Mcm, base).unwrap();
-        let factor = map.at(v0).unwrap().1.factor;
-        let u = Sine {
-            a: 0.0,
-            b: 2.737817997146834 / factor,
-            omega: 2.911951122767874,
-        };
-        let reference = 0.017492850063003707;
-        let double = Settings {
-            double_double: false,
-            ..Settings::default()
-        };
-        let out = impact_at(&map, u, v0, &double).unwrap();
-        assert_eq!((out.check, out.double_double), (Check::Unmet, false));
-        assert!((out.e - reference).abs() > 1e-10, "{out:?}");
-        let precise = Settings {
-            double_double: true,
-            ..Settings::default()
-        };
-        let out = impact_at(&map, u, v0, &precise).unwrap();
-        assert_eq!((out.check, out.double_double), (Check::Met, true));
-        assert_eq!(out.rtol, DOUBLE_DOUBLE_RTOLS[1]);
-        assert!((out.e - reference).abs() < 1e-12, "{out:?}");
-        assert!(out.e_error.unwrap() < 1e-10);
-    }
-}
+mod tests;

@@ -3,7 +3,7 @@
 
 #[cfg(doc)]
 use crate::checked::{impact, tighter, CHECK_METHOD, TIGHTER_METHOD};
-use crate::checked::{Check, FailedRun};
+use crate::checked::{Check, DdDeclined, FailedRun};
 use crate::models::CollisionModel;
 use crate::params::check;
 use crate::series::SeriesRun;
@@ -58,15 +58,18 @@ pub struct Settings {
     pub e_tol: Option<f64>,
     /// Under [`Settings::e_tol`], where the check stays [`Check::Unmet`] after the tightest
     /// double-precision run: compute the impact again in double-double arithmetic
-    /// ([`bwc_ode::Extrapolation`] at rtol 1e-16 and 1e-18, the second checked against the
-    /// first), and report that where the two agree to `e_tol`
-    /// ([`Impact::double_double`]). For the few long, forced, stiff contacts whose `e` double
-    /// precision cannot pin down below about 1e-9 (STABILITY.md, "Session 23"); seconds to a
-    /// minute per impact, and nothing where the check is met. Every model of the crate but the
+    /// ([`bwc_ode::Extrapolation`] at rtol 1e-16, 1e-18 and 1e-20 in turn,
+    /// [`crate::DOUBLE_DOUBLE_RTOLS`], each checked against the one before it), and report the
+    /// first that agrees to `e_tol` ([`Impact::double_double`]). For the few long, forced
+    /// contacts whose `e` double precision cannot pin down below about 1e-9 (STABILITY.md,
+    /// "Session 23"); seconds to half a minute per impact, and nothing where the check is met.
+    /// Not tried where the tightest double-precision run went stiff (the path is explicit),
+    /// and stopped where a run's steps grow far past its predecessor's; where it reports
+    /// nothing, [`Impact::double_double_declined`] says why. Every model of the crate but the
     /// earlier BWMCM form has this path, under inputs with a double-double form
     /// ([`crate::input::Input::at_dd`]: all of the crate's but closures). On by default: on
-    /// three seeds of the stress sweep (90,000 cases) it leaves no run off by more than 1e-10
-    /// and none flagged (STABILITY.md, "Session 24").
+    /// three seeds of the stress sweep (90,000 cases) it settles every unmet run that did not
+    /// go stiff, and leaves no run off by more than 1e-10 (STABILITY.md, "Session 25").
     pub double_double: bool,
 }
 
@@ -216,6 +219,10 @@ pub struct Impact<const N: usize> {
     /// Whether the reported run is the double-double one ([`Settings::double_double`]); its
     /// `rtol` is then the double-double run's.
     pub double_double: bool,
+    /// Where the check stayed [`Check::Unmet`] under [`Settings::double_double`]: why the
+    /// double-double retry reported nothing (`e` is then the double-precision one). `None`
+    /// otherwise.
+    pub double_double_declined: Option<DdDeclined>,
 }
 
 impl<const N: usize> Impact<N> {
@@ -244,6 +251,7 @@ impl<const N: usize> Impact<N> {
             check: self.check,
             tighter_failed: self.tighter_failed,
             double_double: self.double_double,
+            double_double_declined: self.double_double_declined,
         }
     }
 }
@@ -276,6 +284,8 @@ pub struct Cor {
     pub tighter_failed: Option<FailedRun>,
     /// Whether the reported run is the double-double one.
     pub double_double: bool,
+    /// Why the double-double retry reported nothing, where it was due.
+    pub double_double_declined: Option<DdDeclined>,
 }
 
 impl Cor {
@@ -420,6 +430,7 @@ fn by_runge_kutta<M: CollisionModel<N>, const N: usize>(
             check: Check::Off,
             tighter_failed: None,
             double_double: false,
+            double_double_declined: None,
         }
     };
     let mut locator = Locator::new(

@@ -54,8 +54,8 @@ pub mod sweep;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use checked::{
-    impact, impact_double_double, tighter, Check, FailedRun, CHECK_METHOD, DOUBLE_DOUBLE_RTOLS,
-    FLOOR_RTOL, TIGHTEN, TIGHTER_METHOD,
+    impact, impact_double_double, tighter, Check, DdDeclined, FailedRun, CHECK_METHOD,
+    DD_STEP_GROWTH, DD_STEP_SLACK, DOUBLE_DOUBLE_RTOLS, FLOOR_RTOL, TIGHTEN, TIGHTER_METHOD,
 };
 pub use impact::{simulate, Cor, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES};
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};

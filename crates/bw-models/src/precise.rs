@@ -262,6 +262,7 @@ pub(crate) fn run_model<I: Input, const N: usize>(
             check: Check::Off,
             tighter_failed: None,
             double_double: true,
+            double_double_declined: None,
         }),
     )
 }

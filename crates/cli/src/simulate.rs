@@ -5,7 +5,7 @@ use bw_models::input::{Constant, Input, Scaled};
 use bw_models::sweep::{self, Row, SweepSettings, Values};
 use bw_models::{
     impact, nondimensionalize, simulate as sim, BodyMotion, Bwmcm, Bwshccm, Check, CollisionModel,
-    Cor, FailedRun, ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Nondim, NondimParams,
+    Cor, DdDeclined, FailedRun, ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Nondim, NondimParams,
     PhysicalParams, Sampling, Settings,
 };
 use bwc_ode::Stats;
@@ -59,6 +59,8 @@ pub struct Run {
     pub tighter_failed: Option<FailedRun>,
     /// Whether the reported run is the double-double one (`bw_models::Settings::double_double`).
     pub double_double: bool,
+    /// Why the double-double retry of an unmet check reported nothing, where it was due.
+    pub double_double_declined: Option<DdDeclined>,
     /// Sampled trajectory (only when an output asks for it).
     pub trajectory: Vec<Sample>,
     /// The contacts of a `[sequence]` scene with the displacement (m) at each separation.
@@ -163,6 +165,7 @@ impl Run {
             check: None,
             tighter_failed: None,
             double_double: false,
+            double_double_declined: None,
             trajectory: Vec::new(),
             bounces: Vec::new(),
             interpolation: None,
@@ -514,6 +517,7 @@ fn record(
         check: Some(impact.check),
         tighter_failed: impact.tighter_failed,
         double_double: impact.double_double,
+        double_double_declined: impact.double_double_declined,
         trajectory,
         bounces: Vec::new(),
         interpolation: None,

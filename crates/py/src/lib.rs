@@ -75,13 +75,25 @@ const OUTCOMES: [&str; 4] = ["separated", "settled", "horizon", "failed"];
 /// (`"none"`: nothing simulated, an interpolated speed).
 const CHECKS: [&str; 5] = ["off", "met", "unmet", "unverified", "none"];
 
+/// Why the double-double retry of an unmet check reported nothing
+/// (`bw_models::DdDeclined::name`), in the order of the codes `cor` returns (`"none"`: it
+/// was not due, or it settled the CoR).
+const DECLINED: [&str; 6] = [
+    "none",
+    "stiff",
+    "no-path",
+    "failed",
+    "steps-grew",
+    "disagreed",
+];
+
 /// `bwc.cor`: one impact per speed (or the one nondimensional impact) of the scene given as
 /// JSON text; a dict of numpy arrays `e`, `t_s`, `t_d` (NaN where absent), `separated`,
 /// `e_error` (a checked CoR's estimate of its error in `e`, `[solver] e_tol`; NaN where none),
 /// `check` (codes into `CHECKS`), `tighter_failed_rtol` (the rtol of a tighter run under
 /// `e_tol` that failed; NaN where none did), `tighter_out_of_steps` (whether it ran out of
 /// `max_steps`), `double_double` (whether the reported run is the double-double one,
-/// `[solver] double_double`), `rhs_evals`, `interpolated` (whether `e` and `t_s` came from
+/// `[solver] double_double`), `double_double_declined` (codes into `DECLINED`), `rhs_evals`, `interpolated` (whether `e` and `t_s` came from
 /// a sweep's interpolant) and `outcome` (codes into `"separated"`, `"settled"`, `"horizon"`,
 /// `"failed"`).
 #[pyfunction]
@@ -139,6 +151,12 @@ fn cor<'py>(
     out.set_item("tighter_out_of_steps", PyArray1::from_vec(py, out_of_steps))?;
     let double_double: Vec<bool> = runs.iter().map(|r| r.double_double).collect();
     out.set_item("double_double", PyArray1::from_vec(py, double_double))?;
+    let declined = |r: &simulate::Run| {
+        let name = r.double_double_declined.map_or("none", |d| d.name());
+        DECLINED.iter().position(|n| *n == name).unwrap_or(0) as u8
+    };
+    let declined: Vec<u8> = runs.iter().map(declined).collect();
+    out.set_item("double_double_declined", declined.into_pyarray(py))?;
     let evals: Vec<u64> = runs.iter().map(|r| r.stats.rhs_evals).collect();
     out.set_item("rhs_evals", evals.into_pyarray(py))?;
     let interpolated: Vec<bool> = runs.iter().map(|r| r.interpolation.is_some()).collect();

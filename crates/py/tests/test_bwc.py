@@ -111,6 +111,19 @@ def test_each_cor_carries_its_error_estimate():
     assert abs(precise["e"][0] - want) < 2e-15  # the reference's own xtol is 1e-15
     double = bwc.cor("shccm", hc, solver={"series": False, "e_tol": 1e-15, "double_double": False})
     assert not double["double_double"][0] and double["check"][0] == "unmet"
+    assert precise["double_double_declined"][0] == double["double_double_declined"][0] == "none"
+
+
+def test_a_stiff_unmet_cor_says_why_double_double_was_not_tried():
+    # Case 5523 of the stress sweep's seed 3 (STABILITY.md, "Session 25"); the reference
+    # 0.127578645362 is Verner's 9(8), Verner's 7(6) and DOP853 at rtol 3e-15.
+    base = {"B_b": 35.85524463149488, "Gamma_b": -35.85524463149488,
+            "kappa": 0.2754451940192927, "sigma_b": 0.012827185718774515, "n": 10,
+            "p": 5.367702693104487}
+    out = bwc.cor("mcm", base, [506.91324093318553, 1.0])
+    assert list(out["check"]) == ["unmet", "met"]
+    assert list(out["double_double_declined"]) == ["stiff", "none"]
+    assert abs(out["e"][0] - 0.127578645362) < out["e_error"][0]
 
 
 def test_a_long_sweep_is_interpolated_to_the_closed_form():

@@ -194,6 +194,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
                 check: crate::Check::Off,
                 tighter_failed: None,
                 double_double: false,
+                double_double_declined: None,
             }));
         }
         let limit = self.series_steps >= MAX_SERIES_STEPS
@@ -303,6 +304,7 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
                 check: crate::Check::Off,
                 tighter_failed: None,
                 double_double: false,
+                double_double_declined: None,
             }));
         }
         self.series_steps += 1;

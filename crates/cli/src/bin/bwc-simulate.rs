@@ -194,12 +194,19 @@ fn unmet_e_tol(scene: &Scene, label: &str, r: &simulate::Run) {
         None => format!("rtol {FLOOR_RTOL:e} is the tightest"),
     };
     match (check, r.e_error) {
-        (Check::Unmet, Some(estimate)) => eprintln!(
-            "bwc-simulate: warning: {label}: e at rtol {:e} differs by {estimate:.1e} from the \
-             same impact at a looser rtol, more than [solver].e_tol = {e_tol:e}, and no tighter \
-             run was possible ({stop}): take e as known to about {estimate:.0e}",
-            tidy(rtol)
-        ),
+        (Check::Unmet, Some(estimate)) => {
+            let retry = match r.double_double_declined {
+                Some(why) => format!("; the double-double retry ([solver] double_double) {why}"),
+                None => String::new(),
+            };
+            eprintln!(
+                "bwc-simulate: warning: {label}: e at rtol {:e} differs by {estimate:.1e} from \
+                 the same impact at a looser rtol, more than [solver].e_tol = {e_tol:e}, and no \
+                 tighter run was possible ({stop}){retry}: take e as known to about \
+                 {estimate:.0e}",
+                tidy(rtol)
+            )
+        }
         (Check::Unverified, _) => {
             let tighter = if rtol > FLOOR_RTOL {
                 format!("so did the tighter one ({stop})")

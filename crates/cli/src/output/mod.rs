@@ -31,6 +31,10 @@ pub struct RunSummary {
     /// at another tolerance finished: `e` is one unchecked run) or `"off"` (one run: no `e_tol`,
     /// or a trajectory); null for an interpolated row or a failed run.
     pub check: Option<&'static str>,
+    /// Where `check` is `"unmet"` under `[solver] double_double`: why the double-double retry
+    /// reported nothing (`e` is then the double-precision one), as the predicate the warning
+    /// prints after "the double-double retry" (`"was not tried: ..."`); null otherwise.
+    pub double_double_declined: Option<String>,
     /// Coefficient of restitution.
     pub e: f64,
     /// The estimate of the error in `e` of a CoR checked against a run at another tolerance
@@ -216,6 +220,7 @@ impl Summary {
                         rtol: crate::tidy(f.rtol),
                         out_of_steps: f.out_of_steps,
                     }),
+                    double_double_declined: r.double_double_declined.map(|d| d.to_string()),
                     arithmetic: if r.double_double {
                         "double-double"
                     } else {
@@ -324,7 +329,7 @@ pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
             "jacobians": "count", "series_steps": "count", "source": "text",
             "rtol": "1", "e_error": "1", "t_s_error": t, "check": "text",
             "tighter_failed": {"rtol": "1", "out_of_steps": "true/false"}, "arithmetic": "text",
-            "interpolation": {"degree": "count", "estimate": "1", "from": "m/s", "to": "m/s"}},
+            "double_double_declined": "text", "interpolation": {"degree": "count", "estimate": "1", "from": "m/s", "to": "m/s"}},
         "sweep.csv": {"v_0": "m/s", "e": "1", "t_d": "s", "t_s": t, "separated": "true/false",
             "name": "text", "outcome": "text", "source": "text"},
         "trajectory.csv": {"v_0": "m/s", "name": "text", "t": t, "x": m, "v": ms, "u": n,

@@ -630,3 +630,51 @@ fn two_balls_meet_a_tight_target_in_double_double() {
         "{text}"
     );
 }
+
+/// Case 5523 of the stress sweep's seed 3 (STABILITY.md, "Session 25"): its double-precision
+/// runs go stiff and agree to only 1.2e-10, and the double-double retry is not tried there.
+/// The output says so, and `e` is within the estimate of the reference 0.127578645362
+/// (Verner's 9(8), Verner's 7(6) and DOP853 at rtol 3e-15).
+#[test]
+fn a_stiff_unmet_cor_says_why_double_double_was_not_tried() {
+    let dir = scratch("stiff-unmet");
+    let scene = dir.join("scene.toml");
+    std::fs::write(
+        &scene,
+        "model = \"mcm\"\nv0 = [506.91324093318553]\n[base]\nB_b = 35.85524463149488\n\
+         Gamma_b = -35.85524463149488\nkappa = 0.2754451940192927\n\
+         sigma_b = 0.012827185718774515\nn = 10\np = 5.367702693104487\n",
+    )
+    .unwrap();
+    let out = simulate(&["run", scene.to_str().unwrap(), "--json"]);
+    let run = json(&out)["runs"][0].clone();
+    assert_eq!(
+        (&run["check"], &run["arithmetic"]),
+        (&"unmet".into(), &"double".into()),
+        "{run}"
+    );
+    let why = run["double_double_declined"].as_str().unwrap();
+    assert!(
+        why.starts_with("was not tried") && why.contains("RODAS4"),
+        "{why}"
+    );
+    let (e, estimate) = (run["e"].as_f64().unwrap(), run["e_error"].as_f64().unwrap());
+    assert!((e - 0.127578645362).abs() < estimate, "{run}");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("the double-double retry ([solver] double_double) was not tried"),
+        "{err}"
+    );
+    // Where the check is met, the key is null.
+    let settled = dir.join("settled.toml");
+    std::fs::write(
+        &settled,
+        std::fs::read_to_string(&scene)
+            .unwrap()
+            .replace("506.91324093318553", "1"),
+    )
+    .unwrap();
+    let run = json(&simulate(&["run", settled.to_str().unwrap(), "--json"]))["runs"][0].clone();
+    assert_eq!(run["check"], "met", "{run}");
+    assert!(run["double_double_declined"].is_null(), "{run}");
+}

@@ -25,6 +25,8 @@ __all__ = ["BwcError", "cor", "simulate", "identify", "coverage"]
 _OUTCOMES = np.array(["separated", "settled", "horizon", "failed"])
 # What each CoR's check against ``e_tol`` found, indexed by the codes the native sweep returns.
 _CHECKS = np.array(["off", "met", "unmet", "unverified", "none"])
+# Why the double-double retry of an unmet check reported nothing, indexed the same way.
+_DECLINED = np.array(["none", "stiff", "no-path", "failed", "steps-grew", "disagreed"])
 
 _NONDIMENSIONAL = {"B", "Gamma", "kappa", "sigma", "n", "p", "U"}
 _BASE = {"B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "U_b", "T_b"}
@@ -84,7 +86,11 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     (bool: that run needed more than ``solver["max_steps"]`` steps, and a larger value lets it
     finish), ``double_double`` (bool: where double precision could not meet ``e_tol``, the CoR
     was computed again in double-double arithmetic and that run is reported; on by default,
-    ``solver["double_double"] = False`` turns it off), ``rhs_evals`` (int, of every run behind a
+    ``solver["double_double"] = False`` turns it off), ``double_double_declined`` (where the
+    check stayed ``"unmet"``, why that retry reported nothing: ``"stiff"`` (not tried: a run
+    switched to RODAS4, and the double-double path is explicit), ``"no-path"``, ``"failed"``,
+    ``"steps-grew"`` (a tighter run needed far more steps than the one before it) or
+    ``"disagreed"``; ``"none"`` otherwise), ``rhs_evals`` (int, of every run behind a
     CoR), ``interpolated`` (bool), ``outcome``
     (strings ``"separated"``, ``"settled"``, ``"horizon"``).
 
@@ -111,6 +117,7 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     out = _cor(json.dumps(scene), threads)
     out["outcome"] = _OUTCOMES[out["outcome"]]
     out["check"] = _CHECKS[out["check"]]
+    out["double_double_declined"] = _DECLINED[out["double_double_declined"]]
     return out
 
 
