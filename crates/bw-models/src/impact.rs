@@ -62,13 +62,13 @@ pub struct Settings {
     /// [`crate::DOUBLE_DOUBLE_RTOLS`], each checked against the one before it), and report the
     /// first that agrees to `e_tol` ([`Impact::double_double`]). For the few long, forced
     /// contacts whose `e` double precision cannot pin down below about 1e-9 (STABILITY.md,
-    /// "Session 23"); seconds to half a minute per impact, and nothing where the check is met.
+    /// "Session 23"); seconds to a minute per impact, and nothing where the check is met.
     /// Not tried where the tightest double-precision run went stiff (the path is explicit),
     /// and stopped where a run's steps grow far past its predecessor's; where it reports
     /// nothing, [`Impact::double_double_declined`] says why. Every model of the crate but the
     /// earlier BWMCM form has this path, under inputs with a double-double form
     /// ([`crate::input::Input::at_dd`]: all of the crate's but closures). On by default: on
-    /// three seeds of the stress sweep (90,000 cases) it settles every unmet run that did not
+    /// five seeds of the stress sweep (150,000 cases) it settles every unmet run that did not
     /// go stiff, and leaves no run off by more than 1e-10 (STABILITY.md, "Session 25").
     pub double_double: bool,
 }
