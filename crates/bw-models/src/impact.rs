@@ -226,6 +226,33 @@ pub struct Impact<const N: usize> {
 }
 
 impl<const N: usize> Impact<N> {
+    /// One run's outcome, unchecked ([`Check::Off`]): separated at `t_s` (or not) with `e`,
+    /// ending in `state`, at `rtol`, in double precision, neither settled nor stiff, without
+    /// series steps. Each path sets what differs by struct update, so that a field added to
+    /// the check is added here once.
+    pub(crate) fn unchecked(
+        (t_s, e, state): (Option<f64>, f64, State<N>),
+        stats: Stats,
+        rtol: f64,
+    ) -> Self {
+        Impact {
+            t_s,
+            e,
+            state,
+            settled_at: None,
+            stiff_from: None,
+            series_steps: 0,
+            stats,
+            rtol,
+            e_error: None,
+            t_s_error: None,
+            check: Check::Off,
+            tighter_failed: None,
+            double_double: false,
+            double_double_declined: None,
+        }
+    }
+
     /// Whether the bodies separated.
     pub fn separated(&self) -> bool {
         self.t_s.is_some()
@@ -417,20 +444,10 @@ fn by_runge_kutta<M: CollisionModel<N>, const N: usize>(
             model.velocity(&state).max(0.0) / model.impact_speed()
         });
         Impact {
-            t_s,
-            e,
-            state,
-            stats,
             settled_at,
             stiff_from: it.switched_at(),
             series_steps: start.series_steps,
-            rtol: settings.rtol,
-            e_error: None,
-            t_s_error: None,
-            check: Check::Off,
-            tighter_failed: None,
-            double_double: false,
-            double_double_declined: None,
+            ..Impact::unchecked((t_s, e, state), stats, settings.rtol)
         }
     };
     let mut locator = Locator::new(

@@ -27,7 +27,7 @@
 use crate::impact::{Impact, Settings};
 use crate::input::Input;
 use crate::params::{ModelKind, Nondim};
-use crate::{Check, State};
+use crate::State;
 use bwc_ode::dd::{copysign, ln_abs, pow_abs_ln, Dd};
 use bwc_ode::{DdSystem, DdTrial, Extrapolation, Stats};
 
@@ -242,27 +242,23 @@ pub(crate) fn run_model<I: Input, const N: usize>(
     input.at_dd(Dd::from(0.0))?;
     let m = Model { kind, k, u: input };
     Some(
-        impact(&m, ext, settings.max_steps, settings.t_max).map(|r| Impact {
-            t_s: Some(r.t_s.hi()),
-            e: r.y[3].hi().max(0.0),
-            state: state_of(r.y.map(|v| v.hi())),
-            settled_at: None,
-            stiff_from: None,
-            series_steps: 0,
-            stats: Stats {
+        impact(&m, ext, settings.max_steps, settings.t_max).map(|r| {
+            let stats = Stats {
                 rhs_evals: r.evals,
                 accepted: r.steps,
                 rejected: r.rejected,
                 events: r.kinks + 1,
                 jacobians: 0,
-            },
-            rtol: ext.rtol,
-            e_error: None,
-            t_s_error: None,
-            check: Check::Off,
-            tighter_failed: None,
-            double_double: true,
-            double_double_declined: None,
+            };
+            let end = (
+                Some(r.t_s.hi()),
+                r.y[3].hi().max(0.0),
+                state_of(r.y.map(|v| v.hi())),
+            );
+            Impact {
+                double_double: true,
+                ..Impact::unchecked(end, stats, ext.rtol)
+            }
         }),
     )
 }

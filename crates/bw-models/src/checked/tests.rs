@@ -76,24 +76,15 @@ impl CollisionModel<3> for Failing {
         let mut runs = self.dd_runs.borrow_mut();
         let run = *self.dd.get(runs.len())?;
         runs.push((ext.rtol, settings.max_steps));
-        Some(run.map(|(e, accepted)| Impact {
-            t_s: Some(1.0),
-            e,
-            state: State::<3>::zeros(),
-            settled_at: None,
-            stiff_from: None,
-            series_steps: 0,
-            stats: bwc_ode::Stats {
+        Some(run.map(|(e, accepted)| {
+            let stats = bwc_ode::Stats {
                 accepted,
                 ..Default::default()
-            },
-            rtol: ext.rtol,
-            e_error: None,
-            t_s_error: None,
-            check: Check::Off,
-            tighter_failed: None,
-            double_double: true,
-            double_double_declined: None,
+            };
+            Impact {
+                double_double: true,
+                ..Impact::unchecked((Some(1.0), e, State::<3>::zeros()), stats, ext.rtol)
+            }
         }))
     }
     fn initial_state(&self) -> State<3> {

@@ -180,21 +180,10 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
         if self.t > 0.0 && separated(force, velocity) {
             // The separation, reached at the end of the last step or at its event.
             self.stats.events += 1;
+            let e = velocity.max(0.0) / model.impact_speed();
             return Err(SeriesRun::Done(Impact {
-                t_s: Some(self.t),
-                e: velocity.max(0.0) / model.impact_speed(),
-                state: self.y,
-                settled_at: None,
-                stiff_from: None,
                 series_steps: self.series_steps,
-                stats: self.stats,
-                rtol: settings.rtol,
-                e_error: None,
-                t_s_error: None,
-                check: crate::Check::Off,
-                tighter_failed: None,
-                double_double: false,
-                double_double_declined: None,
+                ..Impact::unchecked((Some(self.t), e, self.y), self.stats, settings.rtol)
             }));
         }
         let limit = self.series_steps >= MAX_SERIES_STEPS
@@ -291,20 +280,9 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
         let rate_of_change = State::<N>::from_fn(|i, _| self.jet.state[i][1]);
         if at_rest(model, &rate_of_change, settings.atol) {
             return Next::Finish(SeriesRun::Done(Impact {
-                t_s: None,
-                e: 0.0,
-                state: self.y,
                 settled_at: Some(self.t),
-                stiff_from: None,
                 series_steps: self.series_steps,
-                stats: self.stats,
-                rtol: settings.rtol,
-                e_error: None,
-                t_s_error: None,
-                check: crate::Check::Off,
-                tighter_failed: None,
-                double_double: false,
-                double_double_declined: None,
+                ..Impact::unchecked((None, 0.0, self.y), self.stats, settings.rtol)
             }));
         }
         self.series_steps += 1;
