@@ -1,0 +1,413 @@
+//! The nondimensional models (eq:EBWSHCCM_nd, eq:EBWMCM_nd, and the earlier NDBWMCM form
+//! eq:BWMCM_nd): Table 1's scales, `V(0) = -1`, the right-hand sides the series and
+//! double-double paths expand.
+
+use super::{expect_nd, CollisionModel};
+use crate::clearance::shccm_clearance;
+use crate::input::Input;
+use crate::laws::hysteresis;
+use crate::params::{ModelKind, NondimParams};
+use crate::power::{Pow, Powers};
+use crate::series::SeriesRun;
+use crate::{ModelError, Nondim, Settings, State};
+use bwc_ode::{Matrix, System};
+
+/// The nondimensional parameters both ND models use, with the exponents classified once.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct NdCoefficients {
+    pub(crate) b: f64,
+    pub(crate) gamma: f64,
+    pub(crate) kappa: f64,
+    pub(crate) sigma: f64,
+    pub(crate) n: Pow,
+    pub(crate) p: Pow,
+    /// `n - 1` and `p - 1`, for the Jacobians.
+    nm1: Pow,
+    pm1: Pow,
+}
+
+impl NdCoefficients {
+    /// The parameters as given.
+    fn nondim(&self) -> Nondim {
+        Nondim {
+            b: self.b,
+            gamma: self.gamma,
+            kappa: self.kappa,
+            sigma: self.sigma,
+            n: self.n.exponent(),
+            p: self.p.exponent(),
+        }
+    }
+
+    /// `(d/ds |s|^(p-1) s, d/dz ż)` pieces: `p |s|^(p-1)`.
+    #[inline]
+    pub(crate) fn dpow_p(&self, s: f64) -> f64 {
+        self.p.exponent() * self.pm1.of_abs(s.abs())
+    }
+
+    /// `∂ż/∂w` and `∂ż/∂z` of `ż = w - |z|^n (B sgn(z) |w| + Γ w)` for the driving rate `w`.
+    #[inline]
+    fn dhysteresis(&self, z: f64, w: f64) -> (f64, f64) {
+        let zn = self.n.of_abs(z.abs());
+        let sz = if z == 0.0 { 0.0 } else { z.signum() };
+        let sw = if w == 0.0 { 0.0 } else { w.signum() };
+        let d_w = 1.0 - zn * (self.gamma + self.b * sz * sw);
+        let d_z = -self.n.exponent()
+            * self.nm1.of_abs(z.abs())
+            * (self.b * w.abs() + self.gamma * w * sz);
+        (d_w, d_z)
+    }
+
+    fn new(params: &NondimParams, kind: ModelKind) -> Result<Self, ModelError> {
+        expect_nd(params, kind)?;
+        let p = params.get();
+        Ok(Self {
+            b: p.b,
+            gamma: p.gamma,
+            kappa: p.kappa,
+            sigma: p.sigma,
+            n: Pow::new(p.n),
+            p: Pow::new(p.p),
+            nm1: Pow::new(p.n - 1.0),
+            pm1: Pow::new(p.p - 1.0),
+        })
+    }
+}
+
+/// NDBWSHCCM (eq:EBWSHCCM_nd), states `(X, Z, V)`:
+/// `X' = V`, `Z' = V - B|Z|^(n-1) Z |V| - Γ|Z|^n V`,
+/// `V' = -κ|X|^(p-1) X - (1-κ)|Z|^(p-1) Z - σ|X|^p V + U(T)`.
+/// Units and signs: nondimensional (Table 1's scales); `X < 0` in compression, `V(0) = -1`,
+/// `F > 0` pushes the bodies apart, `U > 0` pulls them apart.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ndbwshccm<I> {
+    pub(crate) k: NdCoefficients,
+    input: I,
+}
+
+impl<I: Input> Ndbwshccm<I> {
+    /// The model with validated parameters and input `U(T)`.
+    ///
+    /// # Errors
+    /// [`ModelError::WrongModel`] for NDBWMCM parameters.
+    pub fn new(params: &NondimParams, input: I) -> Result<Self, ModelError> {
+        Ok(Self {
+            k: NdCoefficients::new(params, ModelKind::Shccm)?,
+            input,
+        })
+    }
+
+    /// Force `F` and the powers of `|Z|` (for `|Z|^n` when the hysteresis needs it). While
+    /// `|Z| = |X|` (loading with `Γ = -B`, where `Z' = X'` exactly) `|Z|^p` is `|X|^p`.
+    #[inline]
+    fn parts(&self, y: &State<3>) -> (f64, Powers) {
+        let (x, z, v) = (y[0], y[1], y[2]);
+        let xp = self.k.p.of_abs(x.abs());
+        let mut zpow = Powers::of(z.abs());
+        let zp = if z.abs() == x.abs() {
+            xp
+        } else {
+            zpow.get(self.k.p)
+        };
+        let f = -self.k.kappa * xp.copysign(x)
+            - (1.0 - self.k.kappa) * zp.copysign(z)
+            - self.k.sigma * xp * v;
+        (f, zpow)
+    }
+}
+
+impl<I: Input> System<3> for Ndbwshccm<I> {
+    #[inline]
+    fn rhs(&self, t: f64, y: &State<3>) -> State<3> {
+        let (f, mut zpow) = self.parts(y);
+        let v = y[2];
+        let n = self.k.n;
+        State::<3>::new(
+            v,
+            hysteresis(1.0, self.k.b, self.k.gamma, y[1], v, || zpow.get(n)),
+            f + self.input.at(t),
+        )
+    }
+}
+
+impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
+    fn double_double_impact(
+        &self,
+        _: crate::series::Private,
+        ext: bwc_ode::Extrapolation,
+        settings: &Settings,
+    ) -> Option<Result<crate::Impact<3>, crate::precise::DdFailure>> {
+        let model = (ModelKind::Shccm, self.k.nondim(), &self.input);
+        crate::precise::run_model(model, ext, settings, |y| State::<3>::new(y[1], y[2], y[3]))
+    }
+    fn initial_state(&self) -> State<3> {
+        State::<3>::new(0.0, 0.0, -1.0)
+    }
+    fn force(&self, y: &State<3>) -> f64 {
+        self.parts(y).0
+    }
+    fn displacement(&self, y: &State<3>) -> f64 {
+        y[0]
+    }
+    fn velocity(&self, y: &State<3>) -> f64 {
+        y[2]
+    }
+    fn input(&self, t: f64) -> f64 {
+        self.input.at(t)
+    }
+    fn input_constant_after(&self) -> Option<f64> {
+        self.input.constant_after()
+    }
+    fn impact_speed(&self) -> f64 {
+        1.0
+    }
+    fn state_scale(&self) -> State<3> {
+        State::<3>::repeat(1.0)
+    }
+    fn time_scale(&self) -> f64 {
+        1.0
+    }
+    fn kinks(&self, _t: f64, y: &State<3>) -> [f64; 2] {
+        [y[2], y[1]]
+    }
+    fn clearance(&self, y: &State<3>, f: &State<3>, rtol: f64) -> f64 {
+        shccm_clearance(&self.k.nondim(), (*y).into(), (*f).into(), rtol)
+    }
+    fn series_impact(
+        &self,
+        _: crate::series::Private,
+        settings: &Settings,
+    ) -> Option<SeriesRun<3>> {
+        crate::series::impact(self, settings)
+    }
+    fn jacobian(&self, _t: f64, y: &State<3>) -> Matrix<3> {
+        let k = &self.k;
+        let (x, z, v) = (y[0], y[1], y[2]);
+        let (dz_dv, dz_dz) = k.dhysteresis(z, v);
+        let sx = if x == 0.0 { 0.0 } else { x.signum() };
+        let dxp = k.dpow_p(x);
+        Matrix::<3>::new(
+            0.0,
+            0.0,
+            1.0,
+            0.0,
+            dz_dz,
+            dz_dv,
+            -k.kappa * dxp - k.sigma * dxp * sx * v,
+            -(1.0 - k.kappa) * k.dpow_p(z),
+            -k.sigma * k.p.of_abs(x.abs()),
+        )
+    }
+}
+
+/// NDBWMCM in the Lipschitz form (eq:EBWMCM_nd), states `(R, Y, Z, V)`:
+/// `R' = σ(κ|Y|^(p-1) Y + (1-κ)|Z|^(p-1) Z)`, `Y' = V - R'`,
+/// `Z' = Y' - B|Z|^(n-1) Z |Y'| - Γ|Z|^n Y'`, `V' = -κ|Y|^(p-1) Y - (1-κ)|Z|^(p-1) Z + U(T)`;
+/// `X = R + Y`, `F = -κ|Y|^(p-1) Y - (1-κ)|Z|^(p-1) Z`.
+/// Units and signs: nondimensional (Table 1's scales); `X < 0` in compression, `V(0) = -1`,
+/// `F > 0` pushes the bodies apart, `U > 0` pulls them apart.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ndbwmcm<I> {
+    pub(crate) k: NdCoefficients,
+    input: I,
+}
+
+impl<I: Input> Ndbwmcm<I> {
+    /// The model with validated parameters and input `U(T)`.
+    ///
+    /// # Errors
+    /// [`ModelError::WrongModel`] for NDBWSHCCM parameters.
+    pub fn new(params: &NondimParams, input: I) -> Result<Self, ModelError> {
+        Ok(Self {
+            k: NdCoefficients::new(params, ModelKind::Mcm)?,
+            input,
+        })
+    }
+
+    /// Force `F` and the powers of `|Z|` (for `|Z|^n` when the hysteresis needs it). While
+    /// `|Z| = |Y|` (loading with `Γ = -B`, where `Z' = Y'` exactly) `|Z|^p` is `|Y|^p`.
+    #[inline]
+    fn parts(&self, y: &State<4>) -> (f64, Powers) {
+        let (yy, z) = (y[1], y[2]);
+        let yp = self.k.p.of_abs(yy.abs());
+        let mut zpow = Powers::of(z.abs());
+        let zp = if z.abs() == yy.abs() {
+            yp
+        } else {
+            zpow.get(self.k.p)
+        };
+        let f = -self.k.kappa * yp.copysign(yy) - (1.0 - self.k.kappa) * zp.copysign(z);
+        (f, zpow)
+    }
+
+    #[inline]
+    fn force_of(&self, y: &State<4>) -> f64 {
+        self.parts(y).0
+    }
+}
+
+impl<I: Input> System<4> for Ndbwmcm<I> {
+    #[inline]
+    fn rhs(&self, t: f64, y: &State<4>) -> State<4> {
+        let (f, mut zpow) = self.parts(y);
+        let rdot = -self.k.sigma * f;
+        let ydot = y[3] - rdot;
+        let n = self.k.n;
+        State::<4>::new(
+            rdot,
+            ydot,
+            hysteresis(1.0, self.k.b, self.k.gamma, y[2], ydot, || zpow.get(n)),
+            f + self.input.at(t),
+        )
+    }
+}
+
+impl<I: Input> CollisionModel<4> for Ndbwmcm<I> {
+    fn double_double_impact(
+        &self,
+        _: crate::series::Private,
+        ext: bwc_ode::Extrapolation,
+        settings: &Settings,
+    ) -> Option<Result<crate::Impact<4>, crate::precise::DdFailure>> {
+        let model = (ModelKind::Mcm, self.k.nondim(), &self.input);
+        crate::precise::run_model(model, ext, settings, State::<4>::from)
+    }
+    fn initial_state(&self) -> State<4> {
+        State::<4>::new(0.0, 0.0, 0.0, -1.0)
+    }
+    fn force(&self, y: &State<4>) -> f64 {
+        self.force_of(y)
+    }
+    fn displacement(&self, y: &State<4>) -> f64 {
+        y[0] + y[1]
+    }
+    fn velocity(&self, y: &State<4>) -> f64 {
+        y[3]
+    }
+    fn input(&self, t: f64) -> f64 {
+        self.input.at(t)
+    }
+    fn input_constant_after(&self) -> Option<f64> {
+        self.input.constant_after()
+    }
+    fn impact_speed(&self) -> f64 {
+        1.0
+    }
+    fn state_scale(&self) -> State<4> {
+        State::<4>::repeat(1.0)
+    }
+    fn time_scale(&self) -> f64 {
+        1.0
+    }
+    fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
+        [y[3] + self.k.sigma * self.force_of(y), y[2]]
+    }
+    fn series_impact(
+        &self,
+        _: crate::series::Private,
+        settings: &Settings,
+    ) -> Option<SeriesRun<4>> {
+        crate::series::impact(self, settings)
+    }
+    fn jacobian(&self, _t: f64, y: &State<4>) -> Matrix<4> {
+        let k = &self.k;
+        // F = -κ|Y|^(p-1)Y - (1-κ)|Z|^(p-1)Z; R' = -σF; Y' = V + σF; Z' = h(Z, Y'); V' = F + U.
+        let (f_y, f_z) = (-k.kappa * k.dpow_p(y[1]), -(1.0 - k.kappa) * k.dpow_p(y[2]));
+        let ydot = y[3] + k.sigma * self.force_of(y);
+        let (dz_dw, dz_dz) = k.dhysteresis(y[2], ydot);
+        Matrix::<4>::new(
+            0.0,
+            -k.sigma * f_y,
+            -k.sigma * f_z,
+            0.0,
+            0.0,
+            k.sigma * f_y,
+            k.sigma * f_z,
+            1.0,
+            0.0,
+            dz_dw * k.sigma * f_y,
+            dz_dw * k.sigma * f_z + dz_dz,
+            dz_dw,
+            0.0,
+            f_y,
+            f_z,
+            0.0,
+        )
+    }
+}
+
+/// The earlier NDBWMCM form (eq:BWMCM_nd, no input), states `(R, Y, Z, W)`:
+/// `R' = κσ|Y|^(p-1) Y + (1-κ)σ|Z|^(p-1) Z`, `Y' = W`, `Z' = W - B|Z|^(n-1) Z |W| - Γ|Z|^n W`,
+/// `W' = -R'/σ - κ p σ |Y|^(p-1) Y' - (1-κ) p σ |Z|^(p-1) Z'`; outputs `X = R + Y`,
+/// `V = R' + Y'`. Well posed for `p = 1` or `p >= 2`; kept for the equivalence with
+/// [`Ndbwmcm`] at `u = 0` that the paper states.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NdbwmcmEarlier {
+    inner: Ndbwmcm<crate::input::Zero>,
+    pm1: Pow,
+}
+
+impl NdbwmcmEarlier {
+    /// The model with validated NDBWMCM parameters.
+    ///
+    /// # Errors
+    /// [`ModelError::WrongModel`] for NDBWSHCCM parameters.
+    pub fn new(params: &NondimParams) -> Result<Self, ModelError> {
+        let inner = Ndbwmcm::new(params, crate::input::Zero)?;
+        Ok(Self {
+            inner,
+            pm1: Pow::new(params.get().p - 1.0),
+        })
+    }
+
+    fn rdot(&self, y: &State<4>) -> f64 {
+        -self.inner.k.sigma * self.inner.force_of(y)
+    }
+}
+
+impl System<4> for NdbwmcmEarlier {
+    fn rhs(&self, _t: f64, y: &State<4>) -> State<4> {
+        let m = &self.inner.k;
+        let (yy, z, w) = (y[1], y[2], y[3]);
+        let rdot = self.rdot(y);
+        let zdot = hysteresis(1.0, m.b, m.gamma, z, w, || m.n.of_abs(z.abs()));
+        let p = m.p.exponent();
+        let wdot = -rdot / m.sigma
+            - m.kappa * p * m.sigma * self.pm1.of_abs(yy.abs()) * w
+            - (1.0 - m.kappa) * p * m.sigma * self.pm1.of_abs(z.abs()) * zdot;
+        State::<4>::new(rdot, w, zdot, wdot)
+    }
+}
+
+impl CollisionModel<4> for NdbwmcmEarlier {
+    fn initial_state(&self) -> State<4> {
+        State::<4>::new(0.0, 0.0, 0.0, -1.0)
+    }
+    fn force(&self, y: &State<4>) -> f64 {
+        self.inner.force_of(y)
+    }
+    fn displacement(&self, y: &State<4>) -> f64 {
+        y[0] + y[1]
+    }
+    fn velocity(&self, y: &State<4>) -> f64 {
+        self.rdot(y) + y[3]
+    }
+    fn input(&self, _t: f64) -> f64 {
+        0.0
+    }
+    fn input_constant_after(&self) -> Option<f64> {
+        Some(f64::NEG_INFINITY)
+    }
+    fn impact_speed(&self) -> f64 {
+        1.0
+    }
+    fn state_scale(&self) -> State<4> {
+        State::<4>::repeat(1.0)
+    }
+    fn time_scale(&self) -> f64 {
+        1.0
+    }
+    fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
+        [y[3], y[2]]
+    }
+}
