@@ -19,6 +19,10 @@
 //!   crate), everything else by DOP853 with stops at the kinks, switching to RODAS4 with the model's Jacobian ([`CollisionModel::jacobian`])
 //!   when the run turns stiff ([`Stiffness`]), and stopping early once a contact under a
 //!   constant input has settled ([`Impact::settled_at`]);
+//! * by default every CoR checked to [`Settings::e_tol`]: runs at other tolerances estimate the
+//!   error in `e` ([`Impact::e_error`], [`Impact::check`]), and one whose check stays unmet is
+//!   computed again in double-double arithmetic ([`Settings::double_double`],
+//!   [`Impact::double_double`]; [`Impact::double_double_declined`] says why not, where not);
 //! * sweeps of many impact speeds served by verified Chebyshev interpolants in `ln v0`
 //!   ([`sweep`]).
 //!
