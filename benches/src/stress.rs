@@ -1,10 +1,12 @@
 //! Stress sweep: random admissible parameter sets of both models, including the edges of the
 //! admissible sets, each run classified (issue 7, STABILITY.md).
 
-use bw_models::input::{Constant, Sine};
+use bw_models::input::{Constant, Scaled, Sine};
 use bw_models::{
-    impact_at, BaseMap, BaseParams, Check, DdDeclined, FailedRun, ModelError, ModelKind, Settings,
+    impact_at, impact_double_double, BaseMap, BaseParams, Check, DdDeclined, DdFailure, FailedRun,
+    Impact, ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Settings,
 };
+use bwc_ode::Stats;
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -200,6 +202,35 @@ pub fn input(case: &Case, factor: f64) -> Sine {
         b: b / factor,
         omega: w,
     }
+}
+
+/// `(e, T_s, statistics)` of the case by the library's double-double path at `rtol`
+/// ([`impact_double_double`], `settings` for its limits), `None` where the case is
+/// inadmissible or its model has no such path.
+pub fn double_double_reference(
+    case: &Case,
+    rtol: f64,
+    settings: &Settings,
+) -> Option<Result<(f64, f64, Stats), DdFailure>> {
+    let map = BaseMap::new(case.kind, case.base).ok()?;
+    let (nd, scales) = map.at(case.v0).ok()?;
+    // The sweep's input as `impact_at` scales it.
+    let u = Scaled {
+        inner: input(case, scales.factor),
+        factor: scales.factor,
+        time_scale: scales.time_scale,
+    };
+    fn parts<const N: usize>(i: Impact<N>) -> (f64, f64, Stats) {
+        (i.e, i.t_s.unwrap_or(f64::NAN), i.stats)
+    }
+    Some(match case.kind {
+        ModelKind::Shccm => {
+            impact_double_double(&Ndbwshccm::new(&nd, u).ok()?, rtol, settings)?.map(parts)
+        }
+        ModelKind::Mcm => {
+            impact_double_double(&Ndbwmcm::new(&nd, u).ok()?, rtol, settings)?.map(parts)
+        }
+    })
 }
 
 /// Runs one case with `settings`.

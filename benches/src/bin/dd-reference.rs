@@ -7,12 +7,8 @@
 //!
 //! `cargo run --release -p bwc-benches --bin dd-reference -- SEED RTOL[,RTOL...] CASE [CASE...]`
 
-use bw_models::input::Scaled;
-use bw_models::{
-    impact_double_double, BaseMap, DdFailure, Impact, ModelKind, Ndbwmcm, Ndbwshccm, Settings,
-};
-use bwc_benches::stress::{cases_args, input, run_with, sample, settings, Case};
-use bwc_ode::Stats;
+use bw_models::Settings;
+use bwc_benches::stress::{cases_args, double_double_reference, run_with, sample, settings};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -22,28 +18,6 @@ fn main() {
     for r in reports {
         bwc_cli::out!("{r}");
     }
-}
-
-/// `(e, T_s, statistics)` of the double-double run of `case` at `rtol`, `None` where the case
-/// is inadmissible.
-fn reference(case: &Case, rtol: f64, s: &Settings) -> Option<Result<(f64, f64, Stats), DdFailure>> {
-    let map = BaseMap::new(case.kind, case.base).ok()?;
-    let (nd, scales) = map.at(case.v0).ok()?;
-    // The sweep's input as `impact_at` scales it.
-    let u = Scaled {
-        inner: input(case, scales.factor),
-        factor: scales.factor,
-        time_scale: scales.time_scale,
-    };
-    fn parts<const N: usize>(i: Impact<N>) -> (f64, f64, Stats) {
-        (i.e, i.t_s.unwrap_or(f64::NAN), i.stats)
-    }
-    Some(match case.kind {
-        ModelKind::Shccm => {
-            impact_double_double(&Ndbwshccm::new(&nd, u).ok()?, rtol, s)?.map(parts)
-        }
-        ModelKind::Mcm => impact_double_double(&Ndbwmcm::new(&nd, u).ok()?, rtol, s)?.map(parts),
-    })
 }
 
 /// Everything printed for case `i`.
@@ -61,7 +35,7 @@ fn report(seed: u64, i: u64, rtols: &[f64]) -> String {
     let mut last = None;
     for &rtol in rtols {
         let clock = Instant::now();
-        let out = reference(&case, rtol, &library);
+        let out = double_double_reference(&case, rtol, &library);
         let seconds = clock.elapsed().as_secs_f64();
         lines.push(match out {
             None => format!("{rtol:e}\tno double-double path (inadmissible)"),
