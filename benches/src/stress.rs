@@ -165,6 +165,15 @@ pub fn settings() -> Settings {
     }
 }
 
+/// The sweep's [`settings`] with the library's step limit (`Settings::default().max_steps`) in
+/// place of the sweep's 200,000: what a user of the defaults gets.
+pub fn library_settings() -> Settings {
+    Settings {
+        max_steps: Settings::default().max_steps,
+        ..settings()
+    }
+}
+
 /// The arguments `SEED RTOL[,RTOL...] CASE [CASE...]` of the single-case tools (`tool` names
 /// the tool in the usage message, printed with exit status 2 where they do not parse).
 pub fn cases_args(tool: &str) -> (u64, Vec<f64>, Vec<u64>) {

@@ -8,7 +8,9 @@
 //! `cargo run --release -p bwc-benches --bin dd-reference -- SEED RTOL[,RTOL...] CASE [CASE...]`
 
 use bw_models::Settings;
-use bwc_benches::stress::{cases_args, double_double_reference, run_with, sample, settings};
+use bwc_benches::stress::{
+    cases_args, double_double_reference, library_settings, run_with, sample,
+};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -27,10 +29,7 @@ fn report(seed: u64, i: u64, rtols: &[f64]) -> String {
         "# case {i} of seed {seed}: {:?}, v0 {}, input {:?}, {:?}",
         case.kind, case.v0, case.input, case.base
     )];
-    let library = Settings {
-        max_steps: Settings::default().max_steps,
-        ..settings()
-    };
+    let library = library_settings();
     lines.push("rtol\te\tt_s\tsteps\trejected\tevals\tevents\tseconds".into());
     let mut last = None;
     for &rtol in rtols {

@@ -25,7 +25,9 @@
 //! prints each miss, and each flagged run of a setting with `double_double` on.
 
 use bw_models::{Check, Settings};
-use bwc_benches::stress::{double_double_reference, settings, sweep_with, Case, Outcome};
+use bwc_benches::stress::{
+    double_double_reference, library_settings, settings, sweep_with, Case, Outcome,
+};
 use bwc_ode::{VERN7, VERN9};
 use std::time::Instant;
 
@@ -107,27 +109,19 @@ fn settings_from(args: &[String]) -> Vec<(String, Settings)> {
         .iter()
         .filter_map(|a| match a.as_str() {
             "default" => Some(("default".to_string(), settings())),
-            "library" => Some((
-                "library".to_string(),
-                Settings {
-                    max_steps: Settings::default().max_steps,
-                    ..settings()
-                },
-            )),
+            "library" => Some(("library".to_string(), library_settings())),
             "double-double" => Some((
                 "double-double".to_string(),
                 Settings {
-                    max_steps: Settings::default().max_steps,
                     double_double: true,
-                    ..settings()
+                    ..library_settings()
                 },
             )),
             "double" => Some((
                 "double".to_string(),
                 Settings {
-                    max_steps: Settings::default().max_steps,
                     double_double: false,
-                    ..settings()
+                    ..library_settings()
                 },
             )),
             _ => match a.strip_prefix("e_tol=").and_then(|t| t.parse().ok()) {
@@ -236,12 +230,8 @@ fn tally(name: &str, runs: &[Outcome], references: &References, list: (bool, boo
 /// where both runs finish and agree to a tenth of [`MISS`]; `None` otherwise (no such path for
 /// the model, a failure, or runs that disagree).
 fn referee(case: &Case) -> Option<f64> {
-    let library = Settings {
-        max_steps: Settings::default().max_steps,
-        ..settings()
-    };
     let [a, b] = REFEREE_RTOLS.map(|rtol| {
-        double_double_reference(case, rtol, &library)
+        double_double_reference(case, rtol, &library_settings())
             .and_then(Result::ok)
             .map(|(e, _, _)| e)
     });

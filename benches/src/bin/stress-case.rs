@@ -8,7 +8,7 @@
 
 use bw_models::input::Constant;
 use bw_models::{impact_at, BaseMap, Settings};
-use bwc_benches::stress::{cases_args, input, run_with, sample, settings, Case};
+use bwc_benches::stress::{cases_args, input, library_settings, run_with, sample, settings, Case};
 use bwc_ode::{Tableau, DOP853, VERN7, VERN9};
 
 /// A reference may take this many steps: the hardest cases take a few hundred thousand at rtol
@@ -27,10 +27,7 @@ fn main() {
             case.base
         );
         // The sweep caps a run at 200,000 steps; the library's default allows more.
-        let library = Settings {
-            max_steps: Settings::default().max_steps,
-            ..settings()
-        };
+        let library = library_settings();
         for (name, s) in [
             ("the sweep's settings", settings()),
             ("the defaults", library),
