@@ -213,11 +213,7 @@ pub fn run(scene: &Scene, progress: Option<&(dyn Fn() + Sync)>) -> Vec<Run> {
     } else {
         scene.speeds.iter().copied().map(Some).collect()
     };
-    let interpolate =
-        scene.sweep.interpolate && sampling.is_none() && scene.speeds.len() >= sweep::MIN_SPEEDS;
-    let served: Vec<bool> = (scene.systems.iter())
-        .map(|spec| interpolate && smooth_in_speed(spec))
-        .collect();
+    let served = sweep_served(scene);
     // Every simulated run of every other system in one parallel pass (a scene of many systems
     // with a speed each keeps its parallelism).
     let jobs: Vec<(&SystemSpec, Option<f64>)> = (scene.systems.iter().zip(&served))
@@ -242,6 +238,19 @@ pub fn run(scene: &Scene, progress: Option<&(dyn Fn() + Sync)>) -> Vec<Run> {
         }
     }
     runs
+}
+
+/// For each system of `scene`, whether its speeds go through the sweep's plan (verified
+/// interpolants): `[sweep] interpolate`, at least `sweep::MIN_SPEEDS` speeds, no trajectories
+/// or loops, no impact sequence, and runs smooth in the speed.
+pub fn sweep_served(scene: &Scene) -> Vec<bool> {
+    let interpolate = scene.sweep.interpolate
+        && scene.sequence.is_none()
+        && !(scene.output.trajectory || scene.output.loops)
+        && scene.speeds.len() >= sweep::MIN_SPEEDS;
+    (scene.systems.iter())
+        .map(|spec| interpolate && smooth_in_speed(spec))
+        .collect()
 }
 
 /// Whether a system's runs are smooth in the impact speed wherever the outcome holds: a

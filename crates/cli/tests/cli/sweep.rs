@@ -148,3 +148,43 @@ fn bad_sweep_tables_are_clear_errors() {
     assert_eq!(out.status.code(), Some(1), "{err}");
     assert!(err.contains("nd.toml:9: `[sweep]`: not used here"), "{err}");
 }
+
+/// DSS (1)'s NDBWSHCCM at 300 speeds on plain DOP853, one run per CoR, with `extra` appended.
+fn plain_dss(extra: &str) -> String {
+    format!(
+        "model = \"shccm\"\nv0 = {{ from = 0.5, to = 5.0, count = 300 }}\n[base]\nB_b = 2.38\n\
+         Gamma_b = -2.38\nkappa = 0.677\nsigma_b = 0.0348\nn = 2.93\np = 2.62\n[solver]\n\
+         series = false\nstop_at_kinks = false\nmethod = \"dop853\"\ne_tol = 0\nrtol = 1e-8\n\
+         atol = 1e-10\n{extra}"
+    )
+}
+
+#[test]
+fn a_sweep_too_noisy_for_its_tolerance_says_which_setting_lets_it_interpolate() {
+    let run = |scene: &str| {
+        let dir = scratch(&format!("sweep-noisy-{:x}", scene.len()));
+        let path = dir.join("scene.toml");
+        std::fs::write(&path, scene).unwrap();
+        let out = simulate(&["run", path.to_str().unwrap(), "--json"]);
+        let stderr = String::from_utf8(out.stderr.clone()).unwrap();
+        let v = json(&out);
+        let interpolated = (v["runs"].as_array().unwrap().iter())
+            .filter(|r| r["source"] == "interpolated")
+            .count();
+        (interpolated, stderr)
+    };
+    // Without the stops at kinks plain DOP853's `e` is about 4e-7 off at rtol 1e-8, and as
+    // noisy in v0: no interpolant holds to the default tolerance (the rtol, e_tol being off).
+    let (interpolated, stderr) = run(&plain_dss(""));
+    assert_eq!(interpolated, 0, "{stderr}");
+    assert!(
+        stderr.contains("no interpolant held to [sweep].tolerance 1e-8, so all 300 speeds")
+            && stderr.contains("with series = false, up to 1000 times rtol")
+            && stderr.contains("[sweep] interpolate = false skips the trials"),
+        "{stderr}"
+    );
+    // The setting it names works.
+    let (interpolated, stderr) = run(&plain_dss("[sweep]\ntolerance = 1e-5\n"));
+    assert!(interpolated > 250, "{interpolated}: {stderr}");
+    assert!(!stderr.contains("no interpolant"), "{stderr}");
+}
