@@ -8,10 +8,11 @@
 //! double-double path referees it (rtol 1e-21 and 1e-23, where the model has that path and the
 //! two agree to a tenth of the miss threshold): the references themselves can be off by about
 //! 1e-10 where rounding decides, and a run within 1e-10 of the referee is not a miss
-//! (`refereed`, the last column; STABILITY.md, "Session 26").
+//! (`refereed`; STABILITY.md, "Session 26"). The last column counts the runs reported by the
+//! double-double retry.
 //!
 //! `cargo run --release -p bwc-benches --bin stress-accuracy -- [COUNT] [SEED] [RTOL | default |
-//! library | double-double | double | e_tol=TOL ...] [fine=RTOL] [check=RTOL] [list]` (default 30000, 1, `default` and
+//! library | double-double | double | e_tol=TOL ...] [fine=RTOL] [check=RTOL] [list] [audit=K]` (default 30000, 1, `default` and
 //! rtol 1e-11 1e-12 1e-13, references at rtol 3e-15: with compensated summation the references
 //! agree to about 1e-11 there, STABILITY.md, "Session 21"). An RTOL is one run at that tolerance
 //! (`e_tol` off, atol = rtol / 100); `default` is the sweep's settings, the defaults, whose CoRs
@@ -23,12 +24,21 @@
 //! session 24) and `double` is `library` with it off (double precision only);
 //! `e_tol=TOL` is the defaults with that target (the misses still counted above 1e-10). `list`
 //! prints each miss, and each flagged run of a setting with `double_double` on.
+//!
+//! `audit=K` also referees K separated runs of each setting that did not go stiff, drawn at
+//! random (seeded) whether or not the references agree with them, by the double-double path as
+//! above (at most 100,000 steps a run): a line per setting with how many had a referee, the
+//! largest distance of a run and of the Runge-Kutta reference from it, and how many runs were
+//! more than 1e-10 off (each listed with `list`). The misses above can only show where a run
+//! and the references differ; the audit also sees an error they share.
 
 use bw_models::{Check, Settings};
 use bwc_benches::stress::{
     double_double_reference, library_settings, settings, sweep_with, Case, Outcome,
 };
 use bwc_ode::{VERN7, VERN9};
+use rand::SeedableRng;
+use rayon::prelude::*;
 use std::time::Instant;
 
 /// A miss in `e` that counts.
@@ -42,6 +52,10 @@ const REFERENCE_MAX_STEPS: u64 = 20_000_000;
 /// (`bw_models::DOUBLE_DOUBLE_RTOLS`), so that it does not repeat a run reported in
 /// double-double.
 const REFEREE_RTOLS: [f64; 2] = [1e-21, 1e-23];
+
+/// The audit's step limit for each double-double run: a few seconds at most, so that a few
+/// hard cases do not hold up the audit (they count as without a referee).
+const AUDIT_MAX_STEPS: u64 = 100_000;
 
 /// `e` of a run that separated.
 fn separated_e(o: &Outcome) -> Option<f64> {
@@ -62,6 +76,9 @@ fn main() {
     };
     let (fine_rtol, check_rtol) = (reference("fine=", 3e-15), reference("check=", 3e-15));
     let list = args.iter().any(|a| a == "list");
+    let audit: Option<usize> = args
+        .iter()
+        .find_map(|a| a.strip_prefix("audit=").and_then(|k| k.parse().ok()));
     let on_runge_kutta = |method, rtol| Settings {
         method,
         max_steps: REFERENCE_MAX_STEPS,
@@ -76,7 +93,7 @@ fn main() {
          (checked against Vern7 at {check_rtol:e})"
     );
     bwc_cli::out!(
-        "settings\tseparated\toff\toff_series\tlargest\tflagged\tsilent\tunverified\twall_s\trefereed"
+        "settings\tseparated\toff\toff_series\tlargest\tflagged\tsilent\tunverified\twall_s\trefereed\tdouble_double"
     );
     for (name, s) in settings_from(&args[args.len().min(2)..]) {
         let clock = Instant::now();
@@ -92,14 +109,70 @@ fn main() {
             None => ("-".to_string(), "-".to_string(), "-".to_string()),
         };
         bwc_cli::out!(
-            "{name}\t{}\t{}\t{}\t{:.1e}\t{flagged}\t{silent}\t{unverified}\t{wall:.1}\t{}",
+            "{name}\t{}\t{}\t{}\t{:.1e}\t{flagged}\t{silent}\t{unverified}\t{wall:.1}\t{}\t{}",
             t.separated,
             t.off,
             t.off_series,
             t.largest,
-            t.refereed
+            t.refereed,
+            runs.iter().filter(|r| r.double_double).count()
         );
+        if let Some(k) = audit {
+            audit_runs(&name, &runs, &references.fine, (seed, k), list);
+        }
     }
+}
+
+/// Referees `k` separated runs of setting `name`, drawn with `seed`, in double-double against
+/// both the runs and the reference `fine`, and prints what it found.
+fn audit_runs(name: &str, runs: &[Outcome], fine: &[Outcome], (seed, k): (u64, usize), list: bool) {
+    // Runs that went stiff are left out: the explicit double-double steps are not reliable
+    // there, which is why the library's retry skips them too.
+    let separated: Vec<usize> = (0..runs.len())
+        .filter(|&i| separated_e(&runs[i]).is_some() && !runs[i].switched)
+        .collect();
+    // Its own stream: the draw does not depend on the sweep's cases.
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed ^ 0xA0D1_7A0D_17A0_D17A);
+    let mut drawn: Vec<usize> =
+        rand::seq::index::sample(&mut rng, separated.len(), k.min(separated.len()))
+            .into_iter()
+            .map(|j| separated[j])
+            .collect();
+    drawn.sort_unstable();
+    let clock = Instant::now();
+    let refereed: Vec<(usize, f64)> = drawn
+        .par_iter()
+        .filter_map(|&i| referee(&runs[i].case, AUDIT_MAX_STEPS).map(|e_dd| (i, e_dd)))
+        .collect();
+    let (mut largest, mut largest_reference, mut off) = ((0.0, 0), 0.0_f64, 0);
+    for &(i, e_dd) in &refereed {
+        let miss = (separated_e(&runs[i]).unwrap_or(f64::NAN) - e_dd).abs();
+        if miss > largest.0 {
+            largest = (miss, i);
+        }
+        if let Some(ef) = separated_e(&fine[i]) {
+            largest_reference = largest_reference.max((ef - e_dd).abs());
+        }
+        if miss > MISS || miss.is_nan() {
+            off += 1;
+            if list {
+                bwc_cli::out!(
+                    "# audit of {name}, case {i}: {miss:.1e} off the double-double referee"
+                );
+            }
+        }
+    }
+    bwc_cli::out!(
+        "# audit of {name}: {} of {} separated runs drawn, {} with a referee ({:.0} s): \
+         largest distance {:.1e} (case {}), the reference's {:.1e}; more than {MISS:e} off: {off}",
+        drawn.len(),
+        separated.len(),
+        refereed.len(),
+        clock.elapsed().as_secs_f64(),
+        largest.0,
+        largest.1,
+        largest_reference
+    );
 }
 
 /// The settings named on the command line (after COUNT and SEED), or `default` and rtol 1e-11,
@@ -188,7 +261,7 @@ fn tally(name: &str, runs: &[Outcome], references: &References, list: (bool, boo
             );
         }
         if miss > MISS && (ec - ef).abs() < 0.1 * miss {
-            let (miss, ef) = match referee(&run.case) {
+            let (miss, ef) = match referee(&run.case, library_settings().max_steps) {
                 Some(e_dd) if (e - e_dd).abs() <= MISS => {
                     t.refereed += 1;
                     if list.0 {
@@ -226,12 +299,16 @@ fn tally(name: &str, runs: &[Outcome], references: &References, list: (bool, boo
     t
 }
 
-/// `e` of `case` by the double-double path at [`REFEREE_RTOLS`] with the library's step limit,
+/// `e` of `case` by the double-double path at [`REFEREE_RTOLS`] with at most `max_steps` steps,
 /// where both runs finish and agree to a tenth of [`MISS`]; `None` otherwise (no such path for
 /// the model, a failure, or runs that disagree).
-fn referee(case: &Case) -> Option<f64> {
+fn referee(case: &Case, max_steps: u64) -> Option<f64> {
+    let settings = Settings {
+        max_steps,
+        ..library_settings()
+    };
     let [a, b] = REFEREE_RTOLS.map(|rtol| {
-        double_double_reference(case, rtol, &library_settings())
+        double_double_reference(case, rtol, &settings)
             .and_then(Result::ok)
             .map(|(e, _, _)| e)
     });

@@ -57,7 +57,9 @@ pub struct Settings {
     /// way.
     pub e_tol: Option<f64>,
     /// Under [`Settings::e_tol`], where the check stays [`Check::Unmet`] after the tightest
-    /// double-precision run: compute the impact again in double-double arithmetic
+    /// double-precision run, or is met only by an estimate above `e_tol / 10` there (where
+    /// rounding decides the runs' last digits, their difference does not bound their error):
+    /// compute the impact again in double-double arithmetic
     /// ([`bwc_ode::Extrapolation`] at rtol 1e-16, 1e-18 and 1e-20 in turn,
     /// [`crate::DOUBLE_DOUBLE_RTOLS`], each checked against the one before it), and report the
     /// first that agrees to `e_tol` ([`Impact::double_double`]). For the few long, forced

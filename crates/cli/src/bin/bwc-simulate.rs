@@ -177,8 +177,6 @@ fn report(scene: &Scene, runs: &[simulate::Run]) {
     }
 }
 
-/// Warns where a checked CoR's own error estimate stayed above `[solver].e_tol`, or where no
-/// run at another tolerance could check it.
 /// Says which systems' sweeps went through the plan but found no interpolant (every speed
 /// simulated, on top of the plan's trials), and the setting that would let them interpolate.
 fn no_interpolant(scene: &Scene, runs: &[simulate::Run]) {
@@ -210,6 +208,8 @@ fn no_interpolant(scene: &Scene, runs: &[simulate::Run]) {
     }
 }
 
+/// Warns where a checked CoR's own error estimate stayed above `[solver].e_tol`, or where no
+/// run at another tolerance could check it.
 fn unmet_e_tol(scene: &Scene, label: &str, r: &simulate::Run) {
     let (Some(e_tol), Some(check), Some(rtol)) = (scene.settings.e_tol, r.check, r.rtol) else {
         return;
