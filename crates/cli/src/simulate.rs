@@ -253,6 +253,38 @@ pub fn sweep_served(scene: &Scene) -> Vec<bool> {
         .collect()
 }
 
+/// For each system whose sweep went through the plan but found no interpolant (every speed
+/// simulated, on top of the plan's trials), a note naming the system, what it cost and the
+/// setting that would let it interpolate (`bwc-simulate` prints these on stderr, `bwc.cor`
+/// and `bwc.simulate` issue them as warnings). `runs` are [`run`]'s, in its order.
+pub fn no_interpolant_notes(scene: &Scene, runs: &[Run]) -> Vec<String> {
+    let n = scene.speeds.len();
+    let served = sweep_served(scene);
+    if n == 0 || !served.contains(&true) {
+        return Vec::new();
+    }
+    // Without the stops at kinks and the series, the error in `e` is far above rtol.
+    let error = if scene.settings.series {
+        ""
+    } else {
+        " (with series = false, up to 1000 times rtol)"
+    };
+    (scene.systems.iter().zip(served.iter().zip(runs.chunks(n))))
+        .filter(|(_, (&served, runs))| served && runs.iter().all(|r| r.interpolation.is_none()))
+        .map(|(spec, _)| {
+            format!(
+                "{}: no interpolant held to [sweep].tolerance {:e}, so all {n} speeds were \
+                 simulated, after up to {} trial simulations; e(v0) is smooth only to the \
+                 simulations' own error{error}: a [sweep].tolerance above that error lets the \
+                 sweep interpolate, and [sweep] interpolate = false skips the trials",
+                spec.name.as_deref().unwrap_or("the sweep"),
+                scene.sweep.tolerance,
+                n / 4
+            )
+        })
+        .collect()
+}
+
 /// Whether a system's runs are smooth in the impact speed wherever the outcome holds: a
 /// `[base]` or `[physical]` system under a constant input. A time-varying input can make
 /// narrow windows of speeds end differently (a grazing contact, an input's peak), which

@@ -25,7 +25,7 @@ use bwc_cli::simulate::{self, Outcome};
 use bwc_cli::CliError;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::create_exception;
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyUserWarning, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::{Path, PathBuf};
@@ -36,6 +36,26 @@ create_exception!(
     PyValueError,
     "A bad description or a failed run."
 );
+
+create_exception!(
+    _native,
+    BwcWarning,
+    PyUserWarning,
+    "A finished result that cost more, or says less, than the description let it (the \
+     command-line tools print these on stderr)."
+);
+
+/// Issues the notes `bwc-simulate` prints on stderr about a scene's runs as `BwcWarning`s,
+/// attributed to the caller of the package's Python function (`stacklevel` 2: the native
+/// call has no frame of its own).
+fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[simulate::Run]) -> PyResult<()> {
+    let category = py.get_type::<BwcWarning>();
+    for note in simulate::no_interpolant_notes(scene, runs) {
+        let text = std::ffi::CString::new(note).map_err(|e| BwcError::new_err(e.to_string()))?;
+        PyErr::warn(py, &category, &text, 2)?;
+    }
+    Ok(())
+}
 
 /// The CLI's error as a `BwcError` (several mistakes one per line, as the CLI prints them).
 fn error(e: CliError) -> PyErr {
@@ -114,6 +134,7 @@ fn cor<'py>(
             failed.error.as_deref().unwrap_or("failed")
         )));
     }
+    warn_notes(py, &scene, &runs)?;
     let column = |f: &dyn Fn(&simulate::Run) -> f64| runs.iter().map(f).collect::<Vec<f64>>();
     let out = PyDict::new(py);
     out.set_item("e", column(&|r| r.e).into_pyarray(py))?;
@@ -184,6 +205,7 @@ fn simulate_json<'py>(
     let runs = py
         .allow_threads(|| bwc_cli::with_threads(threads, || Ok(simulate::run(&scene, None))))
         .map_err(error)?;
+    warn_notes(py, &scene, &runs)?;
     let summary = bwc_cli::output::Summary::new(&runs, scene.sequence.is_some());
     let text = summary.provenance_json(&scene, &runs);
     let sampled = scene.output.trajectory || scene.output.loops;
@@ -283,6 +305,7 @@ fn config_of(path: Option<PathBuf>, json: Option<&str>) -> PyResult<(PathBuf, Co
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("BwcError", m.py().get_type::<BwcError>())?;
+    m.add("BwcWarning", m.py().get_type::<BwcWarning>())?;
     m.add_function(wrap_pyfunction!(cor, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_json, m)?)?;
     m.add_function(wrap_pyfunction!(identify_json, m)?)?;

@@ -125,7 +125,9 @@ fn report(scene: &Scene, runs: &[simulate::Run]) {
             scene.sweep.tolerance
         );
     }
-    no_interpolant(scene, runs);
+    for note in simulate::no_interpolant_notes(scene, runs) {
+        eprintln!("bwc-simulate: {note}");
+    }
     let t_max = scene.settings.t_max;
     for r in runs {
         let label = match r.label().as_str() {
@@ -174,37 +176,6 @@ fn report(scene: &Scene, runs: &[simulate::Run]) {
                 }
             }
         }
-    }
-}
-
-/// Says which systems' sweeps went through the plan but found no interpolant (every speed
-/// simulated, on top of the plan's trials), and the setting that would let them interpolate.
-fn no_interpolant(scene: &Scene, runs: &[simulate::Run]) {
-    let n = scene.speeds.len();
-    let served = simulate::sweep_served(scene);
-    if !served.contains(&true) {
-        // Also where there are no speeds to chunk the runs by.
-        return;
-    }
-    for (spec, (served, runs)) in scene.systems.iter().zip(served.iter().zip(runs.chunks(n))) {
-        if !served || runs.iter().any(|r| r.interpolation.is_some()) {
-            continue;
-        }
-        let who = spec.name.as_deref().unwrap_or("the sweep");
-        // Without the stops at kinks and the series, the error in `e` is far above rtol.
-        let error = if scene.settings.series {
-            ""
-        } else {
-            " (with series = false, up to 1000 times rtol)"
-        };
-        eprintln!(
-            "bwc-simulate: {who}: no interpolant held to [sweep].tolerance {:e}, so all {n} \
-             speeds were simulated, after up to {} trial simulations; e(v0) is smooth only to \
-             the simulations' own error{error}: a [sweep].tolerance above that error lets the \
-             sweep interpolate, and [sweep] interpolate = false skips the trials",
-            scene.sweep.tolerance,
-            n / 4
-        );
     }
 }
 

@@ -15,10 +15,10 @@ import os
 
 import numpy as np
 
-from ._native import BwcError, cor as _cor, coverage_json as _coverage, identify_json as _identify
+from ._native import BwcError, BwcWarning, cor as _cor, coverage_json as _coverage, identify_json as _identify
 from ._native import simulate_json as _simulate
 
-__all__ = ["BwcError", "cor", "simulate", "identify", "coverage"]
+__all__ = ["BwcError", "BwcWarning", "cor", "simulate", "identify", "coverage"]
 
 # The outcome of each run, indexed by the codes the native sweep returns (a numpy string array
 # without a Python object per speed).
@@ -99,6 +99,9 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     ``sweep["tolerance"]`` (default a tenth of ``solver["e_tol"]``, 1e-11: absolute in ``e``,
     relative in ``t_s``); ``interpolated`` marks those
     speeds, whose ``rhs_evals`` are 0. ``sweep={"interpolate": False}`` simulates every speed.
+    Where no interpolant held (values noisier than the tolerance: every speed simulated, on top
+    of the trials), a ``BwcWarning`` says so and names the setting that lets the sweep
+    interpolate, as ``bwc-simulate`` does on stderr.
 
     Raises ``BwcError`` (a ``ValueError``) for a bad description or a failed run, with the
     message the command-line tools give.
@@ -135,7 +138,8 @@ def simulate(scene, *, threads=None):
     ``bwc-simulate run --json`` prints: ``{"runs": [...], "units", "scene", ...}``. Where the
     scene asks for trajectories (``[output] trajectory`` or ``loops``), each run also has
     ``"trajectory"``: numpy arrays ``t, x, v, u, F`` and the model's states (``z``, or
-    ``r, y, z``), in the units of ``"units"``."""
+    ``r, y, z``), in the units of ``"units"``. A sweep that found no interpolant is reported as
+    a ``BwcWarning``, as in ``cor``."""
     text, trajectories = _simulate(threads=threads, **_source(scene, "scene"))
     value = json.loads(text)
     for run, samples in zip(value["runs"], trajectories):

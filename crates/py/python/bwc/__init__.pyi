@@ -4,6 +4,7 @@ import numpy as np
 import numpy.typing as npt
 
 class BwcError(ValueError): ...
+class BwcWarning(UserWarning): ...
 
 def cor(
     model: str,
