@@ -21,6 +21,9 @@
 //!   its speeds are simulated one by one; and the evaluations never exceed a quarter of the
 //!   sweep's speeds (the pieces still being fitted then are simulated instead), so at worst a
 //!   sweep costs 1.25 times its speeds' simulations.
+//! * Each range left to simulation after trials is recorded with the reason ([`GivenUp`]:
+//!   noise, too few speeds for the pieces a kink needs, values that are not smooth, or the
+//!   budget), so that a caller can say which setting would help.
 //!
 //! The error estimate is the interpolant's distance from the simulations, not from the exact
 //! solution: an interpolated value carries the simulations' own error as well (measured on
@@ -101,6 +104,34 @@ pub struct Piece {
     pub estimate: f64,
 }
 
+/// Why [`plan`] left speeds it tried to interpolate to be simulated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum GaveUp {
+    /// Doubling the degree no longer halved an error within a thousand tolerances: the values
+    /// are smooth only to about the tolerance (the simulations' own error).
+    Noise,
+    /// The values change too sharply somewhere (a kink, a steep stretch) for the pieces the
+    /// speeds pay for: halving would leave pieces of fewer than [`MIN_SPEEDS`] speeds.
+    TooFewSpeeds,
+    /// Points without smooth values (no separation, a failure) split the range into pieces too
+    /// short to pay for their points.
+    NotSmooth,
+    /// The evaluations reached a quarter of the sweep's speeds first.
+    Budget,
+}
+
+/// A range of speeds that [`plan`] tried and left to be simulated (wholly or in part: the
+/// pieces it gave way to, if any, are among [`Sweep::pieces`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GivenUp {
+    /// Lowest and highest speed of the range.
+    pub from: f64,
+    /// See `from`.
+    pub to: f64,
+    /// Why.
+    pub why: GaveUp,
+}
+
 /// What [`plan`] decided.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sweep {
@@ -110,6 +141,8 @@ pub struct Sweep {
     pub pieces: Vec<Piece>,
     /// Evaluations made (points and checks, including those of pieces later halved).
     pub evaluations: usize,
+    /// The ranges tried and given up, in the order they were given up.
+    pub given_up: Vec<GivenUp>,
 }
 
 /// Decides, for every speed in `speeds` (any order, repeats allowed; a speed that is not finite
@@ -134,6 +167,7 @@ where
         rows: vec![Row::Simulate; speeds.len()],
         pieces: Vec::new(),
         evaluations: 0,
+        given_up: Vec::new(),
     };
     let budget = speeds.len() / 4;
     // Sweep speeds that were evaluated (piece ends and checks): their rows are simulations.
@@ -148,6 +182,8 @@ where
             .map(|r| r.sweep_index.map_or(r.u.exp(), |i| v[i]))
             .collect();
         if sweep.evaluations + batch.len() > budget {
+            let why = GaveUp::Budget;
+            (sweep.given_up).extend(active.iter().map(|p| p.given_up(&v, why)));
             break;
         }
         simulated.extend(
@@ -167,7 +203,12 @@ where
                     sweep.pieces.push(piece.summary(&v));
                     fitted.push(piece);
                 }
-                Step::Replace(pieces) => next.extend(pieces),
+                Step::Replace(pieces, why) => {
+                    if pieces.iter().map(|p| p.hi - p.lo).sum::<usize>() < piece.hi - piece.lo {
+                        sweep.given_up.push(piece.given_up(&v, why));
+                    }
+                    next.extend(pieces);
+                }
             }
         }
         active = next;
@@ -207,8 +248,9 @@ const fn pays(degree: usize) -> usize {
 enum Step {
     More,
     Done,
-    /// Give way to these pieces (halves, or the runs of smooth points and the gaps).
-    Replace(Vec<Active>),
+    /// Give way to these pieces (halves, or the runs of smooth points and the gaps); what they
+    /// do not cover is simulated, for this reason.
+    Replace(Vec<Active>, GaveUp),
 }
 
 /// A piece being fitted: the interval `[a, b]` of `u = ln v0` holding the sorted speeds
@@ -306,11 +348,11 @@ impl Active {
             return if miss <= tolerance {
                 Step::Done
             } else {
-                Step::Replace(self.halves(u))
+                Step::Replace(self.halves(u), GaveUp::TooFewSpeeds)
             };
         }
         let Some(got) = got.iter().copied().collect::<Option<Vec<Values>>>() else {
-            return Step::Replace(self.smooth_runs(u, asked, &got));
+            return Step::Replace(self.smooth_runs(u, asked, &got), GaveUp::NotSmooth);
         };
         if self.degree == 0 {
             self.degree = DEGREES[0];
@@ -341,9 +383,9 @@ impl Active {
             // A doubling that did not halve an error this near the tolerance has met the
             // simulations' own noise: smaller pieces would not do better. (A larger error that
             // does not halve is a kink or a jump between the points, which halving isolates.)
-            Step::Replace(Vec::new())
+            Step::Replace(Vec::new(), GaveUp::Noise)
         } else {
-            Step::Replace(self.halves(u))
+            Step::Replace(self.halves(u), GaveUp::TooFewSpeeds)
         }
     }
 
@@ -459,6 +501,15 @@ impl Active {
         self.a <= u && u <= self.b
     }
 
+    /// The record of giving the piece up, its ends the speeds themselves (`v`, sorted).
+    fn given_up(&self, v: &[f64], why: GaveUp) -> GivenUp {
+        GivenUp {
+            from: v[self.lo],
+            to: v[self.hi - 1],
+            why,
+        }
+    }
+
     /// The piece's record, its ends the speeds themselves (`v`, sorted).
     fn summary(&self, v: &[f64]) -> Piece {
         Piece {
@@ -527,6 +578,7 @@ mod tests {
         let s = checked(&vs, 1e-12, f);
         assert!(s.evaluations <= 3 * 65 + 3, "{}", s.evaluations);
         assert!(interpolated(&s) >= 19_900, "{}", interpolated(&s));
+        assert_eq!(s.given_up, []);
     }
 
     #[test]
@@ -538,6 +590,30 @@ mod tests {
         assert_eq!(s.rows[near], Row::Simulate);
         assert!(interpolated(&s) > 4_000, "{}", interpolated(&s));
         assert!(s.evaluations < 1_250, "{}", s.evaluations);
+        // The pieces given up hold the kink, and were given up for want of speeds.
+        assert!(s.given_up.iter().all(|g| g.why == GaveUp::TooFewSpeeds));
+        assert!(s.given_up.iter().any(|g| g.from < 1.3 && 1.3 < g.to));
+    }
+
+    #[test]
+    fn a_kink_in_a_short_sweep_is_given_up_for_want_of_speeds() {
+        // 200 speeds hold one piece of degree 32, and only one half: the kink leaves all to
+        // simulation, and the plan says why.
+        let vs = speeds(200, 0.5, 10.0);
+        let f = |v: f64| Some([(v - 2.97f64).abs().powf(2.1) + v, 2.0 + v]);
+        let s = checked(&vs, 1e-11, f);
+        assert_eq!(interpolated(&s), 0);
+        assert_eq!(s.evaluations, 50);
+        // The whole range, for want of speeds to halve it; its upper half (163 speeds) was
+        // tried on until the budget ran out.
+        let whole = GivenUp {
+            from: 0.5,
+            to: 10.0,
+            why: GaveUp::TooFewSpeeds,
+        };
+        assert_eq!(s.given_up[0], whole);
+        assert_eq!(s.given_up[1].why, GaveUp::Budget);
+        assert_eq!(s.given_up.len(), 2);
     }
 
     #[test]
@@ -551,6 +627,7 @@ mod tests {
             }
         }
         assert!(interpolated(&s) > 2_000, "{}", interpolated(&s));
+        assert!(s.given_up.iter().any(|g| g.why == GaveUp::NotSmooth));
     }
 
     #[test]
@@ -579,6 +656,12 @@ mod tests {
         let s = checked(&vs, 1e-12, f);
         assert_eq!(interpolated(&s), 0);
         assert_eq!(s.evaluations, 65);
+        let whole = GivenUp {
+            from: 0.1,
+            to: 6.0,
+            why: GaveUp::Noise,
+        };
+        assert_eq!(s.given_up, [whole]);
         // Noise far above the tolerance, or growing with the speed, is halved; the budget
         // bounds the cost.
         for f in [
@@ -588,6 +671,7 @@ mod tests {
             let s = checked(&vs, 1e-12, f);
             assert_eq!(interpolated(&s), 0);
             assert!(s.evaluations <= 20_000 / 4, "{}", s.evaluations);
+            assert!(!s.given_up.is_empty());
         }
     }
 

@@ -2,7 +2,7 @@
 
 use crate::scene::{Scene, System, SystemSpec};
 use bw_models::input::{Constant, Input, Scaled};
-use bw_models::sweep::{self, Row, SweepSettings, Values};
+use bw_models::sweep::{self, GaveUp, Row, SweepSettings, Values};
 use bw_models::{
     impact, nondimensionalize, simulate as sim, BodyMotion, Bwmcm, Bwshccm, Check, CollisionModel,
     Cor, DdDeclined, FailedRun, ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Nondim, NondimParams,
@@ -68,6 +68,9 @@ pub struct Run {
     /// For a run of a sweep served by an interpolant (`[sweep] interpolate`): which one; its
     /// solver statistics are then zero. `None` for a simulated run.
     pub interpolation: Option<Interpolation>,
+    /// For a simulated run of a sweep that went through the plan: why the plan gave up
+    /// interpolating at its speed, where it tried (`bw_models::sweep::GivenUp`).
+    pub sweep_gave_up: Option<GaveUp>,
 }
 
 /// The interpolant a run's `e` and `t_s` came from (`bw_models::sweep`).
@@ -169,6 +172,7 @@ impl Run {
             trajectory: Vec::new(),
             bounces: Vec::new(),
             interpolation: None,
+            sweep_gave_up: None,
         }
     }
 
@@ -254,35 +258,71 @@ pub fn sweep_served(scene: &Scene) -> Vec<bool> {
 }
 
 /// For each system whose sweep went through the plan but found no interpolant (every speed
-/// simulated, on top of the plan's trials), a note naming the system, what it cost and the
-/// setting that would let it interpolate (`bwc-simulate` prints these on stderr, `bwc.cor`
-/// and `bwc.simulate` issue them as warnings). `runs` are [`run`]'s, in its order.
+/// simulated, on top of the plan's trials), a note naming the system, why the plan gave up
+/// and the setting that would let it interpolate (`bwc-simulate` prints these on stderr,
+/// `bwc.cor` and `bwc.simulate` issue them as warnings). `runs` are [`run`]'s, in its order.
 pub fn no_interpolant_notes(scene: &Scene, runs: &[Run]) -> Vec<String> {
     let n = scene.speeds.len();
     let served = sweep_served(scene);
     if n == 0 || !served.contains(&true) {
         return Vec::new();
     }
-    // Without the stops at kinks and the series, the error in `e` is far above rtol.
-    let error = if scene.settings.series {
-        ""
-    } else {
-        " (with series = false, up to 1000 times rtol)"
-    };
     (scene.systems.iter().zip(served.iter().zip(runs.chunks(n))))
         .filter(|(_, (&served, runs))| served && runs.iter().all(|r| r.interpolation.is_none()))
-        .map(|(spec, _)| {
+        .map(|(spec, (_, runs))| {
+            let causes = [
+                GaveUp::Noise,
+                GaveUp::TooFewSpeeds,
+                GaveUp::NotSmooth,
+                GaveUp::Budget,
+            ]
+            .iter()
+            .filter_map(|&why| gave_up_because(scene, runs, why))
+            .collect::<Vec<_>>()
+            .join("; ");
             format!(
                 "{}: no interpolant held to [sweep].tolerance {:e}, so all {n} speeds were \
-                 simulated, after up to {} trial simulations; e(v0) is smooth only to the \
-                 simulations' own error{error}: a [sweep].tolerance above that error lets the \
-                 sweep interpolate, and [sweep] interpolate = false skips the trials",
+                 simulated, after up to {} trial simulations: {causes}; [sweep] interpolate = \
+                 false skips the trials",
                 spec.name.as_deref().unwrap_or("the sweep"),
                 scene.sweep.tolerance,
                 n / 4
             )
         })
         .collect()
+}
+
+/// What giving up for `why` means for the runs of one system's sweep, and the setting that
+/// helps, where some of its runs were given up for it.
+fn gave_up_because(scene: &Scene, runs: &[Run], why: GaveUp) -> Option<String> {
+    if !runs.iter().any(|r| r.sweep_gave_up == Some(why)) {
+        return None;
+    }
+    Some(match why {
+        GaveUp::Noise => {
+            // Without the stops at kinks and the series, the error in `e` is far above rtol.
+            let error = if scene.settings.series {
+                ""
+            } else {
+                " (with series = false, up to 1000 times rtol)"
+            };
+            format!(
+                "e(v0) is smooth only to the simulations' own error{error}: a \
+                 [sweep].tolerance above that error lets the sweep interpolate"
+            )
+        }
+        GaveUp::TooFewSpeeds => format!(
+            "e(v0) or t_s(v0) changes too sharply (a kink, such as where the order of the \
+             impact's events changes with v0) for the pieces {} speeds pay for (at least {} \
+             speeds each): more speeds let the sweep isolate the change",
+            runs.len(),
+            sweep::MIN_SPEEDS
+        ),
+        GaveUp::NotSmooth => "runs without separation split the speeds into pieces too short \
+                              to interpolate"
+            .to_string(),
+        GaveUp::Budget => "the trials reached their budget, a quarter of the speeds".to_string(),
+    })
 }
 
 /// Whether a system's runs are smooth in the impact speed wherever the outcome holds: a
@@ -343,10 +383,18 @@ fn interpolated(spec: &SystemSpec, scene: &Scene, tick: &(dyn Fn() + Sync)) -> V
                     };
                     from_interpolant(spec, v, values, how, settings)
                 }
-                Row::Simulate => match done.get(&v.to_bits()) {
-                    Some(r) => r.clone(),
-                    None => simulated(spec, Some(v), settings, None),
-                },
+                Row::Simulate => {
+                    let mut run = match done.get(&v.to_bits()) {
+                        Some(r) => r.clone(),
+                        None => simulated(spec, Some(v), settings, None),
+                    };
+                    // The innermost range holding the speed: ranges given up later lie
+                    // within those given up before them.
+                    run.sweep_gave_up = (plan.given_up.iter().rev())
+                        .find(|g| g.from <= v && v <= g.to)
+                        .map(|g| g.why);
+                    run
+                }
             };
             tick();
             run
@@ -562,6 +610,7 @@ fn record(
         trajectory,
         bounces: Vec::new(),
         interpolation: None,
+        sweep_gave_up: None,
     }
 }
 

@@ -19,6 +19,7 @@
 //! ```
 #![deny(missing_docs)]
 
+use bw_models::Check;
 use bwc_cli::config::Config;
 use bwc_cli::scene::Scene;
 use bwc_cli::simulate::{self, Outcome};
@@ -41,20 +42,52 @@ create_exception!(
     _native,
     BwcWarning,
     PyUserWarning,
-    "A finished result that cost more, or says less, than the description let it (the \
-     command-line tools print these on stderr)."
+    "What the command-line tools warn of on stderr about finished runs: a horizon before \
+     separation, a CoR that did not meet e_tol, a sweep that found no interpolant."
 );
 
-/// Issues the notes `bwc-simulate` prints on stderr about a scene's runs as `BwcWarning`s,
-/// attributed to the caller of the package's Python function (`stacklevel` 2: the native
-/// call has no frame of its own).
+/// Issues what `bwc-simulate` warns of on stderr as `BwcWarning`s, attributed to the caller of
+/// the package's Python function (`stacklevel` 2: the native call has no frame of its own):
+/// a sweep that found no interpolant, and, one warning a kind for all runs (a sweep may have
+/// thousands), runs that met the horizon and CoRs whose check against `e_tol` was not met.
 fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[simulate::Run]) -> PyResult<()> {
+    let mut notes = simulate::no_interpolant_notes(scene, runs);
+    let n = runs.len();
+    let (k, labels) = labels_of(runs, |r| r.outcome == Outcome::Horizon);
+    if k > 0 {
+        notes.push(format!(
+            "{k} of {n} runs did not separate by [solver].t_max = {} (outcome \"horizon\", e = \
+             0: {labels}): the horizon came first; raise [solver].t_max",
+            scene.settings.t_max
+        ));
+    }
+    let (k, labels) = labels_of(runs, |r| {
+        r.outcome == Outcome::Separated && matches!(r.check, Some(Check::Unmet | Check::Unverified))
+    });
+    if k > 0 {
+        notes.push(format!(
+            "{k} of {n} CoRs did not meet [solver].e_tol = {:e} (check \"unmet\" or \
+             \"unverified\": {labels}): e_error says how well each e is known (NaN where \
+             unverified), and bwc-simulate on the same scene says why for each",
+            scene.settings.e_tol.unwrap_or(0.0)
+        ));
+    }
     let category = py.get_type::<BwcWarning>();
-    for note in simulate::no_interpolant_notes(scene, runs) {
+    for note in notes {
         let text = std::ffi::CString::new(note).map_err(|e| BwcError::new_err(e.to_string()))?;
         PyErr::warn(py, &category, &text, 2)?;
     }
     Ok(())
+}
+
+/// How many runs `keep` picks, and the labels of the first three.
+fn labels_of(runs: &[simulate::Run], keep: impl Fn(&simulate::Run) -> bool) -> (usize, String) {
+    let picked: Vec<String> = runs.iter().filter(|r| keep(r)).map(|r| r.label()).collect();
+    let more = if picked.len() > 3 { "; ..." } else { "" };
+    (
+        picked.len(),
+        format!("{}{more}", picked[..picked.len().min(3)].join("; ")),
+    )
 }
 
 /// The CLI's error as a `BwcError` (several mistakes one per line, as the CLI prints them).

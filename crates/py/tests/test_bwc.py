@@ -69,6 +69,7 @@ def test_the_package_docstring_example_runs():
     assert result.attempted >= 2 and result.failed == 0, result
 
 
+@pytest.mark.filterwarnings("error::bwc.BwcWarning")  # checked separations: nothing to warn of
 def test_cor_meets_the_closed_forms():
     for sigma in (0.05, 0.5, 0.9):
         out = bwc.cor("shccm", {"B": 0, "Gamma": 0, "kappa": 0.3, "sigma": sigma, "n": 1.5, "p": 1.5})
@@ -102,7 +103,8 @@ def test_each_cor_carries_its_error_estimate():
     run = bwc.simulate({"model": "shccm", "nondimensional": hc,
                         "solver": {**loose, "e_tol": 0}})["runs"][0]
     limit = run["accepted"] + run["rejected"]
-    short = bwc.cor("shccm", hc, solver={**loose, "e_tol": 1e-18, "max_steps": limit})
+    with pytest.warns(bwc.BwcWarning, match=r"1 of 1 CoRs did not meet \[solver\]\.e_tol = 1e-18"):
+        short = bwc.cor("shccm", hc, solver={**loose, "e_tol": 1e-18, "max_steps": limit})
     assert short["check"][0] == "unmet" and short["tighter_out_of_steps"][0]
     assert short["tighter_failed_rtol"][0] == 1e-7
     # A target double precision cannot check is met in double-double arithmetic (the default).
@@ -110,7 +112,8 @@ def test_each_cor_carries_its_error_estimate():
     precise = bwc.cor("shccm", hc, solver={"series": False, "e_tol": 1e-15})
     assert precise["double_double"][0] and precise["check"][0] == "met"
     assert abs(precise["e"][0] - want) < 2e-15  # the reference's own xtol is 1e-15
-    double = bwc.cor("shccm", hc, solver={"series": False, "e_tol": 1e-15, "double_double": False})
+    with pytest.warns(bwc.BwcWarning, match="did not meet"):
+        double = bwc.cor("shccm", hc, solver={"series": False, "e_tol": 1e-15, "double_double": False})
     assert not double["double_double"][0] and double["check"][0] == "unmet"
     assert precise["double_double_declined"][0] == double["double_double_declined"][0] == "none"
 
@@ -121,10 +124,24 @@ def test_a_stiff_unmet_cor_says_why_double_double_was_not_tried():
     base = {"B_b": 35.85524463149488, "Gamma_b": -35.85524463149488,
             "kappa": 0.2754451940192927, "sigma_b": 0.012827185718774515, "n": 10,
             "p": 5.367702693104487}
-    out = bwc.cor("mcm", base, [506.91324093318553, 1.0])
+    with pytest.warns(bwc.BwcWarning, match=r"1 of 2 CoRs did not meet .*: v0 = 506\.9132 m/s\)") as caught:
+        out = bwc.cor("mcm", base, [506.91324093318553, 1.0])
+    assert len(caught) == 1
     assert list(out["check"]) == ["unmet", "met"]
     assert list(out["double_double_declined"]) == ["stiff", "none"]
     assert abs(out["e"][0] - 0.127578645362) < out["e_error"][0]
+
+
+def test_a_run_that_meets_its_horizon_warns_and_names_the_setting():
+    hc = {"B": 0, "Gamma": 0, "kappa": 0.3, "sigma": 0.5, "n": 1.5, "p": 1.5}
+    with pytest.warns(bwc.BwcWarning, match=r"1 of 1 runs did not separate by \[solver\]\.t_max = 0\.5 "
+                      r"\(outcome \"horizon\", e = 0: run\): the horizon came first; raise \[solver\]\.t_max"):
+        out = bwc.cor("shccm", hc, solver={"t_max": 0.5})
+    assert out["outcome"].tolist() == ["horizon"] and out["e"][0] == 0
+    # The setting it names works: the contact lasts about 3.4 (nondimensional).
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", bwc.BwcWarning)
+        assert bwc.cor("shccm", hc, solver={"t_max": 5.0})["outcome"].tolist() == ["separated"]
 
 
 def test_a_long_sweep_is_interpolated_to_the_closed_form():
@@ -161,6 +178,24 @@ def test_a_sweep_too_noisy_to_interpolate_warns_and_names_the_setting():
         warnings.simplefilter("error", bwc.BwcWarning)
         loose = bwc.cor("shccm", dss1, speeds, solver=plain, sweep={"tolerance": 1e-5})
     assert loose["interpolated"].sum() > 250
+
+
+def test_a_kink_in_e_needs_more_speeds_and_the_warning_says_so():
+    # Table 4's baseball law (the README's example): e(v0) has a kink near 2.97 m/s. 200 speeds
+    # over 0.5-10 m/s cannot pay for pieces around it; 2,000 can, and then nothing is said.
+    law = {"m": 0.145, "k": 117080063.0, "c": 5854003.0, "n": 1.1, "p": 1.7, "alpha": 0.1,
+           "beta": 981.05, "gamma": -961.4, "A": 0.925}
+    with pytest.warns(bwc.BwcWarning, match="changes too sharply .* more speeds let the sweep isolate"):
+        few = bwc.cor("shccm", law, np.linspace(0.5, 10.0, 200))
+    assert not few["interpolated"].any()
+    speeds = np.linspace(0.5, 10.0, 2000)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", bwc.BwcWarning)
+        many = bwc.cor("shccm", law, speeds)
+    assert many["interpolated"].sum() > 1500
+    # The interpolated rows agree with simulations at the same speeds (every tenth speed).
+    every = bwc.cor("shccm", law, speeds[::10], sweep={"interpolate": False})
+    assert np.abs(many["e"][::10] - every["e"]).max() < 1e-11
 
 
 def test_cor_matches_an_independent_scipy_model():

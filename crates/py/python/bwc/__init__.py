@@ -99,9 +99,12 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     ``sweep["tolerance"]`` (default a tenth of ``solver["e_tol"]``, 1e-11: absolute in ``e``,
     relative in ``t_s``); ``interpolated`` marks those
     speeds, whose ``rhs_evals`` are 0. ``sweep={"interpolate": False}`` simulates every speed.
-    Where no interpolant held (values noisier than the tolerance: every speed simulated, on top
-    of the trials), a ``BwcWarning`` says so and names the setting that lets the sweep
-    interpolate, as ``bwc-simulate`` does on stderr.
+
+    A ``BwcWarning`` (a ``UserWarning``, one per kind for all speeds) says what ``bwc-simulate``
+    warns of on stderr, with the setting that helps: runs that met ``solver["t_max"]`` before
+    separating (``e`` is then 0), CoRs that did not meet ``solver["e_tol"]``, and a sweep for
+    which no interpolant held (every speed simulated, on top of the trials: values too noisy for
+    ``sweep["tolerance"]``, or a kink in ``e(v0)`` that wants more speeds).
 
     Raises ``BwcError`` (a ``ValueError``) for a bad description or a failed run, with the
     message the command-line tools give.
@@ -138,8 +141,8 @@ def simulate(scene, *, threads=None):
     ``bwc-simulate run --json`` prints: ``{"runs": [...], "units", "scene", ...}``. Where the
     scene asks for trajectories (``[output] trajectory`` or ``loops``), each run also has
     ``"trajectory"``: numpy arrays ``t, x, v, u, F`` and the model's states (``z``, or
-    ``r, y, z``), in the units of ``"units"``. A sweep that found no interpolant is reported as
-    a ``BwcWarning``, as in ``cor``."""
+    ``r, y, z``), in the units of ``"units"``. The warnings of ``cor`` come as
+    ``BwcWarning``s here too."""
     text, trajectories = _simulate(threads=threads, **_source(scene, "scene"))
     value = json.loads(text)
     for run, samples in zip(value["runs"], trajectories):
