@@ -34,6 +34,16 @@ def test_cor_sweeps_on_workers_equal_local_runs(client):
         assert np.array_equal(local["e"], r["e"]) and np.array_equal(local["rhs_evals"], r["rhs_evals"])
 
 
+def test_the_workers_warnings_reach_the_client(client):
+    import bwc.dask
+
+    hc = {"B": 0, "Gamma": 0, "kappa": 0.3, "sigma": 0.5, "n": 1.5, "p": 1.5}
+    with pytest.warns(bwc.BwcWarning, match=r"^params_list\[[01]\]: 1 of 1 runs did not separate") as caught:
+        remote = bwc.dask.cor_sweep("shccm", [hc, {**hc, "sigma": 0.9}], None, client, solver={"t_max": 1.0})
+    assert [str(w.message)[:16] for w in caught] == ["params_list[0]: ", "params_list[1]: "]
+    assert [r["outcome"].tolist() for r in remote] == [["horizon"], ["horizon"]]
+
+
 def test_fits_on_workers_equal_local_fits(client):
     import bwc.dask
 

@@ -9,11 +9,18 @@ identical to local runs whatever the number of workers. Point ``client`` at any 
     sweeps = bwc.dask.cor_sweep("shccm", params_list, v0, client)
 """
 
+import warnings
+
 import bwc
 
 
 def _cor_task(model, params, v0, input, solver, sweep):
-    return bwc.cor(model, params, v0, input=input, solver=solver, sweep=sweep, threads=1)
+    """The sweep, and the messages of the ``BwcWarning``s it issued (a worker's warnings would
+    otherwise stay in its log)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", bwc.BwcWarning)
+        out = bwc.cor(model, params, v0, input=input, solver=solver, sweep=sweep, threads=1)
+    return out, [str(w.message) for w in caught if issubclass(w.category, bwc.BwcWarning)]
 
 
 def _identify_task(config, seed):
@@ -22,13 +29,19 @@ def _identify_task(config, seed):
 
 def cor_sweep(model, params_list, v0, client, *, input=None, solver=None, sweep=None):
     """``bwc.cor(model, params, v0)`` for every ``params`` of ``params_list``, one task each on
-    ``client``; the list of result dicts in the order of ``params_list``."""
+    ``client``; the list of result dicts in the order of ``params_list``. The ``BwcWarning``s
+    of the tasks are issued again here, each prefixed with its ``params_list[i]``."""
     params_list = list(params_list)
     n = len(params_list)
     futures = client.map(
         _cor_task, [model] * n, params_list, [v0] * n, [input] * n, [solver] * n, [sweep] * n, pure=False
     )
-    return client.gather(futures)
+    results = []
+    for i, (out, messages) in enumerate(client.gather(futures)):
+        for message in messages:
+            warnings.warn("params_list[%d]: %s" % (i, message), bwc.BwcWarning, stacklevel=2)
+        results.append(out)
+    return results
 
 
 def identify_many(configs, client, seeds=None):
