@@ -106,7 +106,7 @@ def step(kind, t, tol):
 def main():
     print(f"maximum compression at T = {T_M:.4f}, root of Z at T = {T_ROOT:.4f}")
     print("tolerance\tapproximant\tsteps\tfirst steps")
-    for tol in (1e-6, 1e-8, 1e-10):
+    for tol in (1e-6, 1e-8, 1e-10, 1e-11):
         for kind in ("taylor", "pade"):
             t, steps = T_M, []
             while t < T_ROOT - 1e-12:
