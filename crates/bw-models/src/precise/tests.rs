@@ -183,3 +183,62 @@ fn a_separation_shorter_than_a_sample_interval_is_found() {
     assert!((c.tau - s0).hi().abs() < 1e-24, "tau = {:?}", c.tau);
     assert!((c.y[3] - v_s).hi().abs() < 1e-24, "V = {:?}", c.y[3]);
 }
+
+/// Elastic power-law contact under a constant input (`B = Γ = 0`, so `Z = X`; `σ = 0`):
+/// `V²/2 + |X|^(p+1)/(p+1) - U X` is conserved, so where `F = -|X|^(p-1) X` vanishes, at
+/// `X = 0`, `V` is 1 again: `e = 1` whatever `U`. With `p = 9.6` the root of `F` has that
+/// multiplicity in `T` (Newton's steps cover a tenth of the distance each), and a separation
+/// located late by `d` is off by `U d` in `e`.
+#[test]
+fn a_flat_root_of_the_force_is_located_to_its_width() {
+    use crate::input::Constant;
+    let m = Model {
+        kind: ModelKind::Shccm,
+        k: Nondim {
+            b: 0.0,
+            gamma: 0.0,
+            kappa: 0.5,
+            sigma: 0.0,
+            n: 2.0,
+            p: 9.6,
+        },
+        u: &Constant(9.8),
+    };
+    let out = impact(&m, Extrapolation::new(1e-24, 1e-26), 100_000, 100.0).unwrap();
+    assert!((out.y[3] - 1.0).hi().abs() < 1e-20, "e = {:?}", out.y[3]);
+}
+
+/// Case 15700 of the stress sweep's seed 4 (NDBWSHCCM, `n = 10`, `p = 9.6`, `U = 9.78`):
+/// `Z` nears 0 about 3e-12 ahead of `X`, so `F` changes sign where `|Z| = 0.948 |X|`, at
+/// `X = -5.9e-11`, 5.7e-11 in `T` before the root of `Z`. A root search that stopped short
+/// of the flat root of `F` took the root of `Z` for the separation, 5.6e-10 off in `e`. The
+/// reference is Verner's 9(8) at rtol 3e-15 (`stress-case 4 3e-15 15700`); SciPy's DOP853 at
+/// rtol 1e-13 on the same equations agrees with it to 9e-12.
+#[test]
+fn the_separation_before_a_nearby_root_of_z_is_found() {
+    use crate::input::Constant;
+    let m = Model {
+        kind: ModelKind::Shccm,
+        k: Nondim {
+            b: 2768.4029852756894,
+            gamma: -825.169330607853,
+            kappa: 0.006925484378069118,
+            sigma: 0.6022578824088056,
+            n: 10.0,
+            p: 9.607687674902698,
+        },
+        u: &Constant(9.784019236328966),
+    };
+    for rtol in [1e-19, 1e-21, 1e-23] {
+        let out = impact(&m, Extrapolation::new(rtol, rtol * 1e-2), 100_000, 100.0).unwrap();
+        assert_eq!(
+            out.kinks, 1,
+            "rtol {rtol}: only the maximum compression is crossed"
+        );
+        let e = out.y[3].hi();
+        assert!(
+            (e - 0.9999999994104822).abs() < 1e-13,
+            "rtol {rtol}: e = {e}"
+        );
+    }
+}
