@@ -182,8 +182,7 @@ where
             .map(|r| r.sweep_index.map_or(r.u.exp(), |i| v[i]))
             .collect();
         if sweep.evaluations + batch.len() > budget {
-            let why = GaveUp::Budget;
-            (sweep.given_up).extend(active.iter().map(|p| p.given_up(&v, why)));
+            (sweep.given_up).extend(active.iter().map(|p| p.given_up(&v, GaveUp::Budget)));
             break;
         }
         simulated.extend(

@@ -247,10 +247,26 @@ fn a_check_says_whether_it_met_e_tol() {
 /// about 1e-9. Its reference, 0.017492850063003707, is the double-double path at rtol 1e-20
 /// and 1e-24 (agreeing to 1e-17); that path meets the closed forms to 1e-25
 /// (`precise.rs`).
+/// A stress case's NDBWMCM map and its input `b sin(ω t)` (`(b, ω)`, the sweep's input
+/// amplitude divided by the base map's `U_factor` at `v0`, as the stress sweep scales it).
+fn mcm_under_sine(
+    base: crate::BaseParams,
+    v0: f64,
+    (b, omega): (f64, f64),
+) -> (crate::BaseMap, crate::input::Sine) {
+    let map = crate::BaseMap::new(ModelKind::Mcm, base).unwrap();
+    let factor = map.at(v0).unwrap().1.factor;
+    let u = crate::input::Sine {
+        a: 0.0,
+        b: b / factor,
+        omega,
+    };
+    (map, u)
+}
+
 #[test]
 fn double_double_settles_what_double_precision_cannot() {
-    use crate::input::Sine;
-    use crate::{impact_at, BaseMap, BaseParams};
+    use crate::{impact_at, BaseParams};
     let base = BaseParams {
         b_b: 0.12910110765342317,
         gamma_b: -0.06155493494432533,
@@ -262,13 +278,7 @@ fn double_double_settles_what_double_precision_cannot() {
         t_b: 1.0,
     };
     let v0 = 0.0030045141757612365;
-    let map = BaseMap::new(ModelKind::Mcm, base).unwrap();
-    let factor = map.at(v0).unwrap().1.factor;
-    let u = Sine {
-        a: 0.0,
-        b: 2.737817997146834 / factor,
-        omega: 2.911951122767874,
-    };
+    let (map, u) = mcm_under_sine(base, v0, (2.737817997146834, 2.911951122767874));
     let reference = 0.017492850063003707;
     let double = Settings {
         double_double: false,
@@ -305,8 +315,7 @@ fn double_double_settles_what_double_precision_cannot() {
 /// 1.5e-15 off).
 #[test]
 fn a_check_met_only_at_the_floor_is_retried_in_double_double() {
-    use crate::input::Sine;
-    use crate::{impact_at, BaseMap, BaseParams};
+    use crate::{impact_at, BaseParams};
     let base = BaseParams {
         b_b: 0.017400971288875945,
         gamma_b: 0.017400971288875945,
@@ -318,13 +327,7 @@ fn a_check_met_only_at_the_floor_is_retried_in_double_double() {
         t_b: 1.0,
     };
     let v0 = 0.01179940078399802;
-    let map = BaseMap::new(ModelKind::Mcm, base).unwrap();
-    let factor = map.at(v0).unwrap().1.factor;
-    let u = Sine {
-        a: 0.0,
-        b: 5.108090199670192 / factor,
-        omega: 6.707517508526101,
-    };
+    let (map, u) = mcm_under_sine(base, v0, (5.108090199670192, 6.707517508526101));
     let reference = 0.035_487_332_510_208_13;
     let double = Settings {
         double_double: false,
