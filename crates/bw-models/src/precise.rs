@@ -519,12 +519,10 @@ impl<I: Input> Run<'_, '_, I> {
                 break;
             }
             let slow = span > 0.5 * spans[1];
-            spans = [span, spans[0]];
+            // After a bisection the next two iterations are judged afresh.
+            spans = [span, if slow { f64::INFINITY } else { spans[0] }];
             let c = match newton {
-                _ if slow => {
-                    spans = [span, f64::INFINITY];
-                    (a + b) * 0.5
-                }
+                _ if slow => (a + b) * 0.5,
                 Some(c) => c,
                 None => {
                     let c = (a * fb - b * fa) / (fb - fa);
