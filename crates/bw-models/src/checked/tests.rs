@@ -242,11 +242,6 @@ fn a_check_says_whether_it_met_e_tol() {
     assert_eq!(single.unwrap().check, Check::Off);
 }
 
-/// Case 7221 of the stress sweep's seed 1 (STABILITY.md, "Session 23"): an NDBWMCM
-/// contact 50 time units long under a sinusoid, whose `e` double precision gets only to
-/// about 1e-9. Its reference, 0.017492850063003707, is the double-double path at rtol 1e-20
-/// and 1e-24 (agreeing to 1e-17); that path meets the closed forms to 1e-25
-/// (`precise.rs`).
 /// A stress case's NDBWMCM map and its input `b sin(ω t)` (`(b, ω)`, the sweep's input
 /// amplitude divided by the base map's `U_factor` at `v0`, as the stress sweep scales it).
 fn mcm_under_sine(
@@ -264,6 +259,11 @@ fn mcm_under_sine(
     (map, u)
 }
 
+/// Case 7221 of the stress sweep's seed 1 (STABILITY.md, "Session 23"): an NDBWMCM
+/// contact 50 time units long under a sinusoid, whose `e` double precision gets only to
+/// about 1e-9. Its reference, 0.017492850063003707, is the double-double path at rtol 1e-20
+/// and 1e-24 (agreeing to 1e-17); that path meets the closed forms to 1e-25
+/// (`precise.rs`).
 #[test]
 fn double_double_settles_what_double_precision_cannot() {
     use crate::{impact_at, BaseParams};
