@@ -10,6 +10,20 @@
 //! double-double, so the method is exact to 32 digits where a Runge-Kutta tableau would be
 //! limited to its coefficients' 16.
 //!
+//! A step whose midpoint rule is unstable is rejected whatever its error estimate says: where,
+//! in the second sequence (`n = 4`), the derivative at the first Euler point differs from
+//! `f(t, y)` by more than twice `f(t, y)`'s size (each scaled by the tolerance, root mean
+//! square). This is ODEX's stability check (Hairer, Nørsett & Wanner I, Sec. II.9). For
+//! `y' = λ y` it trips at `|λ H| = 8`, just past the extrapolated method's own stability
+//! boundary at order 16 (`|T_88(λ H)| > 1` from `λ H = -7.3` on the negative real axis). ODEX
+//! also checks the first sequence, which trips at `|λ H| = 4`: right for its lower orders
+//! (the boundary is 2.8 at `k = 2` and 4.3 at `k = 4`), it would hold order 16's steps to half
+//! their size. Without the check a step across a stiff component's fast transient can
+//! overshoot in every sequence alike, and the extrapolants agree on a wrong state (case 22932
+//! of the stress sweep's seed 10: `Z` from -0.3 to 2870 in one step, estimated at a third of
+//! the tolerance). [`Extrapolation::try_step`] abandons such a step after its first
+//! evaluations; [`Extrapolation::step`] completes it and reports its error as infinite.
+//!
 //! The driver (step size control, events) is the caller's: [`Extrapolation::step`] takes one
 //! step and [`Extrapolation::factor`] says how to scale the next. A step also returns the
 //! finest midpoint sequence's states at `t + i H / 2k` (second order), for a caller looking
@@ -48,11 +62,15 @@ pub struct DdTrial<const N: usize> {
     /// The finest midpoint sequence's states at `t + i H / 2k`, `i = 1, ..., 2k - 1` (second
     /// order).
     pub samples: Vec<[Dd; N]>,
-    /// The error estimate in units of the tolerance: the step is accepted at `<= 1`.
+    /// The error estimate in units of the tolerance: the step is accepted at `<= 1`. Infinite
+    /// where the stability check failed.
     pub err: f64,
     /// Right-hand-side evaluations spent (not counting `f0`).
     pub evals: u64,
 }
+
+/// The sequence (from 0) whose first midpoint step is checked for stability (`n = 4`).
+const STABILITY_SEQUENCE: usize = 1;
 
 /// `y + h f`.
 fn axpy<const N: usize>(y: &[Dd; N], h: Dd, f: &[Dd; N]) -> [Dd; N] {
@@ -65,7 +83,8 @@ impl Extrapolation {
         Self { k: 8, rtol, atol }
     }
 
-    /// One step of size `h` from `(t, y)`, with `f0 = f(t, y)`.
+    /// One step of size `h` from `(t, y)`, with `f0 = f(t, y)`, completed even where the
+    /// stability check fails (its `err` is then infinite).
     ///
     /// # Panics
     /// If `k < 2` (there is no error estimate).
@@ -77,15 +96,54 @@ impl Extrapolation {
         f0: &[Dd; N],
         h: Dd,
     ) -> DdTrial<N> {
+        self.run(sys, (t, y, f0), h, false)
+            .expect("a step that is not abandoned completes")
+    }
+
+    /// One step of size `h` from `(t, y)`, with `f0 = f(t, y)`; `Err` with the evaluations spent
+    /// where the stability check fails: the step is abandoned there, and a caller shrinks it
+    /// (ODEX halves it).
+    ///
+    /// # Errors
+    /// The evaluations spent, where the midpoint rule is unstable at this step size.
+    ///
+    /// # Panics
+    /// If `k < 2` (there is no error estimate).
+    pub fn try_step<const N: usize, S: DdSystem<N>>(
+        &self,
+        sys: &S,
+        t: Dd,
+        y: &[Dd; N],
+        f0: &[Dd; N],
+        h: Dd,
+    ) -> Result<DdTrial<N>, u64> {
+        self.run(sys, (t, y, f0), h, true)
+    }
+
+    /// A step; `abandon`: stop where the stability check fails.
+    fn run<const N: usize, S: DdSystem<N>>(
+        &self,
+        sys: &S,
+        (t, y, f0): (Dd, &[Dd; N], &[Dd; N]),
+        h: Dd,
+        abandon: bool,
+    ) -> Result<DdTrial<N>, u64> {
         assert!(self.k >= 2, "extrapolation needs k >= 2 sequences");
         let mut prev: Vec<[Dd; N]> = Vec::with_capacity(self.k);
         let (mut samples, mut err, mut evals) = (Vec::new(), 0.0, 0);
+        let mut stable = true;
         for j in 0..self.k {
             let n = 2 * (j + 1);
             let hs = h / n as f64;
             let (mut z0, mut z1) = (*y, axpy(y, hs, f0));
             for i in 1..n {
                 let f = sys.rhs(t + hs * i as f64, &z1);
+                if i == 1 && j == STABILITY_SEQUENCE && !self.stable(y, f0, &f) {
+                    if abandon {
+                        return Err(evals + 1);
+                    }
+                    stable = false;
+                }
                 (z0, z1) = (z1, axpy(&z0, hs * 2.0, &f));
                 if j + 1 == self.k {
                     samples.push(z0);
@@ -105,12 +163,26 @@ impl Extrapolation {
             }
             prev = row;
         }
-        DdTrial {
+        Ok(DdTrial {
             y: prev[self.k - 1],
             samples,
-            err,
+            err: if stable { err } else { f64::INFINITY },
             evals,
+        })
+    }
+
+    /// ODEX's stability check: whether `f1`, the derivative at an Euler point, differs
+    /// from `f0 = f(t, y)` by at most twice `f0`'s size, both scaled by `atol + rtol |y_i|`
+    /// (root mean square; `f0`'s squared size taken as at least `f64::EPSILON`). A NaN is left
+    /// to the error estimate.
+    fn stable<const N: usize>(&self, y: &[Dd; N], f0: &[Dd; N], f1: &[Dd; N]) -> bool {
+        let (mut del0, mut del1) = (0.0, 0.0);
+        for i in 0..N {
+            let scale = self.atol + self.rtol * y[i].hi().abs();
+            del0 += (f0[i].hi() / scale).powi(2);
+            del1 += ((f1[i] - f0[i]).hi() / scale).powi(2);
         }
+        del1.is_nan() || del1 <= 4.0 * del0.max(f64::EPSILON)
     }
 
     /// The factor for the next step size after a step with error `err`: `0.9 err^(-1/(2k-1))`
@@ -195,5 +267,40 @@ mod tests {
         let ratio = err(0.2) / err(0.1);
         // 2^9 = 512 for order 8; the leading term's constant varies a little with h.
         assert!((400.0..650.0).contains(&ratio), "ratio {ratio}");
+    }
+
+    /// For `y' = λ y` the derivative at the first Euler point of the sequence with `n = 4`
+    /// substeps is `f0 (1 + λ H / 4)`, so the check fails exactly where `|λ H| / 4 > 2`: a step
+    /// is abandoned from `|λ H| = 8` on (after the first sequence's evaluation and its own),
+    /// and completed with an infinite error by `step`.
+    #[test]
+    fn stability_check_trips_where_the_midpoint_rule_turns_unstable() {
+        let lambda = -1e6;
+        let f = move |_t: Dd, y: &[Dd; 1]| [y[0] * lambda];
+        let m = Extrapolation::new(1e-20, 1e-22);
+        let (one, f0) = ([Dd::from(1.0)], [Dd::from(lambda)]);
+        let at = |h: f64| m.try_step(&f, Dd::from(0.0), &one, &f0, Dd::from(h));
+        assert!(at(7.99e-6).is_ok());
+        let spent = at(8.01e-6).expect_err("unstable");
+        assert_eq!(spent, 2, "abandoned at its second evaluation");
+        let full = m.step(&f, Dd::from(0.0), &one, &f0, Dd::from(8.01e-6));
+        assert_eq!(full.err, f64::INFINITY);
+        assert_eq!(full.evals, 64);
+    }
+
+    /// The method's own stability boundary, which places the check: `|T_88(z)|` for
+    /// `y' = λ y`, `z = λ H`, stays below 1 up to `z = -7.3` and exceeds it from `z = -7.4`.
+    #[test]
+    fn order_16_is_stable_to_about_seven_on_the_negative_real_axis() {
+        let f = |_t: Dd, y: &[Dd; 1]| [-y[0]];
+        let m = Extrapolation::new(1e-20, 1e-22);
+        let one = [Dd::from(1.0)];
+        let r = |h: f64| (m.step(&f, Dd::from(0.0), &one, &[-one[0]], Dd::from(h)).y[0]).hi();
+        assert!(
+            r(7.3).abs() < 1.0 && r(7.4).abs() > 1.0,
+            "{} {}",
+            r(7.3),
+            r(7.4)
+        );
     }
 }

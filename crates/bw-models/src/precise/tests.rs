@@ -242,3 +242,37 @@ fn the_separation_before_a_nearby_root_of_z_is_found() {
         );
     }
 }
+
+/// Case 22932 of the stress sweep's seed 10 (NDBWSHCCM, `p = 1`, `κ = 0.99984`, `Γ = -B`,
+/// `B = 2.5e11`, `n = 8.44`, `U = 1.51`): past the maximum compression `Z' = V (1 + 2B |Z|^n)`
+/// is stiff (about 5.6e8 `V` at `|Z| = 0.3`), and an extrapolation step of 0.013 there
+/// overshot in every midpoint sequence alike, to `Z = 2870`, with an error estimate of a third
+/// of the tolerance. Its sign change was taken for the root of `Z`, 0.22 early, and `e` came
+/// out 1.2e-5 low. The stability check rejects such steps. The reference is SciPy's DOP853 at
+/// rtol 1e-13 on the same equations, an independent program (the events at `V = 0`, `Z = 0`
+/// and `F = 0` with `V >= 0`); Verner's 9(8) at rtol 1e-14 agrees with it to 3e-14.
+#[test]
+fn a_step_that_overshoots_a_stiff_transient_is_not_taken() {
+    use crate::input::Constant;
+    let b = 250372801123.22696;
+    let m = Model {
+        kind: ModelKind::Shccm,
+        k: Nondim {
+            b,
+            gamma: -b,
+            kappa: 0.999836740198943,
+            sigma: 0.0,
+            n: 8.440280926165338,
+            p: 1.0,
+        },
+        u: &Constant(1.5119633668104555),
+    };
+    for rtol in [1e-16, 1e-17, 1e-18, 1e-20, 1e-22] {
+        let out = impact(&m, Extrapolation::new(rtol, rtol * 1e-2), 100_000, 100.0).unwrap();
+        let e = out.y[3].hi();
+        assert!(
+            (e - 0.999923438997038).abs() < 2e-13,
+            "rtol {rtol}: e = {e}"
+        );
+    }
+}
