@@ -120,6 +120,18 @@ pub enum GaveUp {
     Budget,
 }
 
+impl GaveUp {
+    /// The name in outputs: `"noise"`, `"too-few-speeds"`, `"not-smooth"` or `"budget"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            GaveUp::Noise => "noise",
+            GaveUp::TooFewSpeeds => "too-few-speeds",
+            GaveUp::NotSmooth => "not-smooth",
+            GaveUp::Budget => "budget",
+        }
+    }
+}
+
 /// A range of speeds that [`plan`] tried and left to be simulated (wholly or in part: the
 /// pieces it gave way to, if any, are among [`Sweep::pieces`]).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -140,6 +140,10 @@ const DECLINED: [&str; 6] = [
     "disagreed",
 ];
 
+/// Why a sweep simulated a speed it tried to interpolate (`bw_models::sweep::GaveUp::name`),
+/// in the order of the codes `cor` returns (`"none"`: interpolated, or not tried).
+const GAVE_UP: [&str; 5] = ["none", "noise", "too-few-speeds", "not-smooth", "budget"];
+
 /// `bwc.cor`: one impact per speed (or the one nondimensional impact) of the scene given as
 /// JSON text; a dict of numpy arrays `e`, `t_s`, `t_d` (NaN where absent), `separated`,
 /// `e_error` (a checked CoR's estimate of its error in `e`, `[solver] e_tol`; NaN where none),
@@ -147,7 +151,7 @@ const DECLINED: [&str; 6] = [
 /// `e_tol` that failed; NaN where none did), `tighter_out_of_steps` (whether it ran out of
 /// `max_steps`), `double_double` (whether the reported run is the double-double one,
 /// `[solver] double_double`), `double_double_declined` (codes into `DECLINED`), `rhs_evals`, `interpolated` (whether `e` and `t_s` came from
-/// a sweep's interpolant) and `outcome` (codes into `"separated"`, `"settled"`, `"horizon"`,
+/// a sweep's interpolant), `sweep_gave_up` (codes into `GAVE_UP`) and `outcome` (codes into `"separated"`, `"settled"`, `"horizon"`,
 /// `"failed"`).
 #[pyfunction]
 #[pyo3(signature = (scene_json, threads=None))]
@@ -215,6 +219,12 @@ fn cor<'py>(
     out.set_item("rhs_evals", evals.into_pyarray(py))?;
     let interpolated: Vec<bool> = runs.iter().map(|r| r.interpolation.is_some()).collect();
     out.set_item("interpolated", PyArray1::from_vec(py, interpolated))?;
+    let gave_up = |r: &simulate::Run| {
+        let name = r.sweep_gave_up.map_or("none", |g| g.name());
+        GAVE_UP.iter().position(|n| *n == name).unwrap_or(0) as u8
+    };
+    let gave_up: Vec<u8> = runs.iter().map(gave_up).collect();
+    out.set_item("sweep_gave_up", gave_up.into_pyarray(py))?;
     // Codes into OUTCOMES (the Python side makes the string array without per-run objects).
     let code = |o: Outcome| OUTCOMES.iter().position(|n| *n == o.name()).unwrap_or(3) as u8;
     let outcome: Vec<u8> = runs.iter().map(|r| code(r.outcome)).collect();

@@ -171,6 +171,7 @@ def test_a_sweep_too_noisy_to_interpolate_warns_and_names_the_setting():
                       r"so all 300 speeds were simulated") as caught:
         out = bwc.cor("shccm", dss1, speeds, solver=plain)
     assert not out["interpolated"].any()
+    assert (out["sweep_gave_up"] == "noise").all()
     # Attributed to the caller's line, not to the package's wrapper.
     assert [pathlib.Path(w.filename).name for w in caught] == ["test_bwc.py"]
     # The setting the warning names lets the sweep interpolate, and then nothing is said.
@@ -188,11 +189,14 @@ def test_a_kink_in_e_needs_more_speeds_and_the_warning_says_so():
     with pytest.warns(bwc.BwcWarning, match="changes too sharply .* more speeds let the sweep isolate"):
         few = bwc.cor("shccm", law, np.linspace(0.5, 10.0, 200))
     assert not few["interpolated"].any()
+    assert (few["sweep_gave_up"] == "too-few-speeds").sum() >= 20
+    assert np.isin(few["sweep_gave_up"], ["too-few-speeds", "budget"]).all()
     speeds = np.linspace(0.5, 10.0, 2000)
     with warnings.catch_warnings():
         warnings.simplefilter("error", bwc.BwcWarning)
         many = bwc.cor("shccm", law, speeds)
     assert many["interpolated"].sum() > 1500
+    assert (many["sweep_gave_up"][many["interpolated"]] == "none").all()
     # The interpolated rows agree with simulations at the same speeds (every tenth speed).
     every = bwc.cor("shccm", law, speeds[::10], sweep={"interpolate": False})
     assert np.abs(many["e"][::10] - every["e"]).max() < 1e-11

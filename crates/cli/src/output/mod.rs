@@ -74,6 +74,11 @@ pub struct RunSummary {
     pub source: &'static str,
     /// When the run switched to RODAS4 because it had become stiff (unit of `t_s`), or null.
     pub stiff_from: Option<f64>,
+    /// For a simulated run of a sweep whose speed the sweep tried to interpolate and gave up
+    /// on: why (`"noise"`: a larger `[sweep].tolerance` helps; `"too-few-speeds"`: a kink or
+    /// steep stretch, more speeds help; `"not-smooth"`: runs without a separation or failed
+    /// split the range; `"budget"`); null otherwise.
+    pub sweep_gave_up: Option<&'static str>,
     /// Contact duration (s), null where no time scale exists.
     pub t_d: Option<f64>,
     /// Separation time (nondimensional for nondimensional scenes, s otherwise), null without separation.
@@ -238,6 +243,7 @@ impl Summary {
                     source: source(r),
                     jacobians: r.stats.jacobians,
                     stiff_from: r.stiff_from,
+                    sweep_gave_up: r.sweep_gave_up.map(|g| g.name()),
                     series_steps: r.series_steps,
                     model: r.model.name(),
                     name: r.name.clone(),

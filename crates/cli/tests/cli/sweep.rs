@@ -160,7 +160,9 @@ fn plain_dss(extra: &str) -> String {
 }
 
 /// Runs `scene` with `--json`: how many of its runs were interpolated, and its stderr.
-fn interpolated_and_stderr(scene: &str) -> (usize, String) {
+/// How many runs were interpolated, the command's stderr, and the runs' `sweep_gave_up`
+/// (`""` for null).
+fn interpolated_and_stderr(scene: &str) -> (usize, String, Vec<String>) {
     let dir = scratch(&format!("sweep-notes-{:x}", scene.len()));
     let path = dir.join("scene.toml");
     std::fs::write(&path, scene).unwrap();
@@ -170,15 +172,19 @@ fn interpolated_and_stderr(scene: &str) -> (usize, String) {
     let interpolated = (v["runs"].as_array().unwrap().iter())
         .filter(|r| r["source"] == "interpolated")
         .count();
-    (interpolated, stderr)
+    let gave_up = (v["runs"].as_array().unwrap().iter())
+        .map(|r| r["sweep_gave_up"].as_str().unwrap_or("").to_string())
+        .collect();
+    (interpolated, stderr, gave_up)
 }
 
 #[test]
 fn a_sweep_too_noisy_for_its_tolerance_says_which_setting_lets_it_interpolate() {
     // Without the stops at kinks plain DOP853's `e` is about 4e-7 off at rtol 1e-8, and as
     // noisy in v0: no interpolant holds to the default tolerance (the rtol, e_tol being off).
-    let (interpolated, stderr) = interpolated_and_stderr(&plain_dss(""));
+    let (interpolated, stderr, gave_up) = interpolated_and_stderr(&plain_dss(""));
     assert_eq!(interpolated, 0, "{stderr}");
+    assert!(gave_up.iter().all(|g| g == "noise"), "{gave_up:?}");
     assert!(
         stderr.contains("no interpolant held to [sweep].tolerance 1e-8, so all 300 speeds")
             && stderr.contains("smooth only to the simulations' own error")
@@ -187,7 +193,8 @@ fn a_sweep_too_noisy_for_its_tolerance_says_which_setting_lets_it_interpolate() 
         "{stderr}"
     );
     // The setting it names works.
-    let (interpolated, stderr) = interpolated_and_stderr(&plain_dss("[sweep]\ntolerance = 1e-5\n"));
+    let (interpolated, stderr, _) =
+        interpolated_and_stderr(&plain_dss("[sweep]\ntolerance = 1e-5\n"));
     assert!(interpolated > 250, "{interpolated}: {stderr}");
     assert!(!stderr.contains("no interpolant"), "{stderr}");
 }
@@ -196,8 +203,17 @@ fn a_sweep_too_noisy_for_its_tolerance_says_which_setting_lets_it_interpolate() 
 fn a_sweep_with_a_kink_it_cannot_isolate_says_more_speeds_help() {
     // Table 4's baseball law over 0.5-10 m/s: e(v0) has a kink near 2.97 m/s, which 200
     // speeds cannot pay to isolate (2,000 can: the Python tests). The note says so, not noise.
-    let (interpolated, stderr) = interpolated_and_stderr(BASEBALL_200);
+    let (interpolated, stderr, gave_up) = interpolated_and_stderr(BASEBALL_200);
     assert_eq!(interpolated, 0, "{stderr}");
+    // Each run says why its speed was simulated: the kink for the range around it, the
+    // budget for the ranges tried after it.
+    assert!(
+        gave_up
+            .iter()
+            .all(|g| g == "too-few-speeds" || g == "budget"),
+        "{gave_up:?}"
+    );
+    assert!(gave_up.iter().filter(|g| *g == "too-few-speeds").count() >= 20);
     assert!(
         stderr.contains("no interpolant held to [sweep].tolerance 1e-11, so all 200 speeds")
             && stderr.contains("changes too sharply")

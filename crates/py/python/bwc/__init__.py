@@ -27,6 +27,7 @@ _OUTCOMES = np.array(["separated", "settled", "horizon", "failed"])
 _CHECKS = np.array(["off", "met", "unmet", "unverified", "none"])
 # Why the double-double retry of an unmet check reported nothing, indexed the same way.
 _DECLINED = np.array(["none", "stiff", "no-path", "failed", "steps-grew", "disagreed"])
+_GAVE_UP = np.array(["none", "noise", "too-few-speeds", "not-smooth", "budget"])
 
 _NONDIMENSIONAL = {"B", "Gamma", "kappa", "sigma", "n", "p", "U"}
 _BASE = {"B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "U_b", "T_b"}
@@ -91,7 +92,11 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     switched to RODAS4, and the double-double path is explicit), ``"no-path"``, ``"failed"``,
     ``"steps-grew"`` (a tighter run needed far more steps than the one before it) or
     ``"disagreed"``; ``"none"`` otherwise), ``rhs_evals`` (int, of every run behind a
-    CoR), ``interpolated`` (bool), ``outcome``
+    CoR), ``interpolated`` (bool), ``sweep_gave_up`` (for a speed the sweep tried to
+    interpolate and simulated instead, why: ``"noise"`` (values noisier than
+    ``sweep["tolerance"]``), ``"too-few-speeds"`` (a kink or steep stretch: more speeds help),
+    ``"not-smooth"`` (runs without a separation split the range) or ``"budget"``; ``"none"``
+    otherwise), ``outcome``
     (strings ``"separated"``, ``"settled"``, ``"horizon"``).
 
     Many speeds (from about 140 up, under a constant input) are served by Chebyshev
@@ -124,6 +129,7 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     out["outcome"] = _OUTCOMES[out["outcome"]]
     out["check"] = _CHECKS[out["check"]]
     out["double_double_declined"] = _DECLINED[out["double_double_declined"]]
+    out["sweep_gave_up"] = _GAVE_UP[out["sweep_gave_up"]]
     return out
 
 
