@@ -159,9 +159,8 @@ fn plain_dss(extra: &str) -> String {
     )
 }
 
-/// Runs `scene` with `--json`: how many of its runs were interpolated, and its stderr.
-/// How many runs were interpolated, the command's stderr, and the runs' `sweep_gave_up`
-/// (`""` for null).
+/// Runs `scene` with `--json`: how many of its runs were interpolated, its stderr, and the
+/// runs' `sweep_gave_up` (`""` for null).
 fn interpolated_and_stderr(scene: &str) -> (usize, String, Vec<String>) {
     let dir = scratch(&format!("sweep-notes-{:x}", scene.len()));
     let path = dir.join("scene.toml");

@@ -27,6 +27,7 @@ _OUTCOMES = np.array(["separated", "settled", "horizon", "failed"])
 _CHECKS = np.array(["off", "met", "unmet", "unverified", "none"])
 # Why the double-double retry of an unmet check reported nothing, indexed the same way.
 _DECLINED = np.array(["none", "stiff", "no-path", "failed", "steps-grew", "disagreed"])
+# Why a sweep simulated a speed it tried to interpolate, indexed the same way.
 _GAVE_UP = np.array(["none", "noise", "too-few-speeds", "not-smooth", "budget"])
 
 _NONDIMENSIONAL = {"B", "Gamma", "kappa", "sigma", "n", "p", "U"}
