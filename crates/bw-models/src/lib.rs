@@ -24,7 +24,10 @@
 //!   computed again in double-double arithmetic ([`Settings::double_double`],
 //!   [`Impact::double_double`]; [`Impact::double_double_declined`] says why not, where not);
 //! * sweeps of many impact speeds served by verified Chebyshev interpolants in `ln v0`
-//!   ([`sweep`]).
+//!   ([`sweep`]);
+//! * a CoR without time steps for the NDBWSHCCM with no input on the branch `Γ = -B`, as
+//!   quadratures in phase space ([`phase`]; opt-in, several times faster than the series path
+//!   at loose tolerances).
 //!
 //! Conventions: `x < 0` is compression, `F > 0` pushes the bodies apart, `v(0) = -v0`.
 //!
@@ -48,6 +51,7 @@ pub mod input;
 mod laws;
 mod models;
 mod params;
+pub mod phase;
 mod power;
 mod precise;
 mod scaling;
@@ -112,6 +116,12 @@ pub enum ModelError {
         /// Index of the offending point.
         index: usize,
         /// What is wrong.
+        reason: &'static str,
+    },
+    /// A method was asked for a model or parameters it does not cover.
+    #[error("not applicable: {reason}")]
+    NotApplicable {
+        /// What the method covers, or why it gave up.
         reason: &'static str,
     },
     /// The integration failed.

@@ -1,0 +1,274 @@
+use super::*;
+
+fn to(tol: f64) -> PhaseSettings {
+    PhaseSettings {
+        tol,
+        ..PhaseSettings::default()
+    }
+}
+use crate::{impact, input::Zero, BaseMap, BaseParams, Ndbwshccm, Nondim, Settings};
+
+fn shccm(b: f64, kappa: f64, sigma: f64, n: f64, p: f64) -> NondimParams {
+    let nd = Nondim {
+        b,
+        gamma: -b,
+        kappa,
+        sigma,
+        n,
+        p,
+    };
+    NondimParams::new(ModelKind::Shccm, nd).unwrap()
+}
+
+/// Table 3's DSS (1) NDBWSHCCM at `v0` (m/s).
+fn dss1(v0: f64) -> NondimParams {
+    let base = BaseParams {
+        b_b: 2.38,
+        gamma_b: -2.38,
+        kappa: 0.677,
+        sigma_b: 0.0348,
+        n: 2.93,
+        p: 2.62,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    BaseMap::new(ModelKind::Shccm, base)
+        .unwrap()
+        .at(v0)
+        .unwrap()
+        .0
+}
+
+/// The Hunt-Crossley CoR: `-σe - ln(1 - σe) = σ - ln(1 + σ)` (B = 0, where `Z = X` and `κ`
+/// drops out), by bisection on `(0, 1)`.
+fn hunt_crossley(sigma: f64) -> f64 {
+    let g = |e: f64| -sigma * e - (-sigma * e).ln_1p() - (sigma - sigma.ln_1p());
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if g(mid) < 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+#[test]
+fn hunt_crossley_restitution_in_closed_form() {
+    for (sigma, kappa, p) in [
+        (0.1, 0.3, 1.5),
+        (0.5, 0.5, 1.5),
+        (0.5, 0.9, 2.62),
+        (1.0, 0.2, 1.0),
+    ] {
+        let cor = cor(&shccm(0.0, kappa, sigma, 2.0, p), &to(1e-13)).unwrap();
+        let e = hunt_crossley(sigma);
+        assert!(
+            (cor.e - e).abs() < 2e-13,
+            "σ = {sigma}: {} against {e}",
+            cor.e
+        );
+        assert_eq!(cor.tolerance_met, Some(true), "σ = {sigma}: {cor:?}");
+    }
+}
+
+#[test]
+fn a_linear_spring_returns_at_unit_speed_after_half_a_period() {
+    // B = σ = 0, p = 1: X'' = -X, so e = 1 and T_s = π.
+    let cor = cor(&shccm(0.0, 0.5, 0.0, 1.0, 1.0), &to(1e-13)).unwrap();
+    assert!((cor.e - 1.0).abs() < 1e-14, "{}", cor.e);
+    let t_s = cor.t_s.unwrap();
+    assert!((t_s - std::f64::consts::PI).abs() < 1e-13, "{t_s}");
+}
+
+/// SciPy's DOP853 at rtol 3e-14, atol 3e-17 in time with the separation as an event
+/// (`e` then `T_s`); against rtol 1e-13 they differ by at most 9e-13 in `e` and 6.4e-12 in
+/// `T_s` (at 5 m/s), by 1e-13 elsewhere.
+const DSS1_SCIPY: [(f64, f64, f64); 5] = [
+    (0.5, 0.8982384640333555, 3.110317991344147),
+    (1.0, 0.8461344489119603, 3.0818836805113987),
+    (2.0, 0.796350132240353, 3.057022589640155),
+    (3.5, 0.7527138735434756, 3.0451785593981247),
+    (5.0, 0.7195507503030482, 3.043812443158303),
+];
+
+#[test]
+fn dss1_matches_scipy_in_e_and_the_separation_time() {
+    for (v0, e, t_s) in DSS1_SCIPY {
+        let cor = cor(&dss1(v0), &to(1e-13)).unwrap();
+        let slack = if v0 == 5.0 { 1e-11 } else { 1e-12 };
+        assert!(
+            (cor.e - e).abs() < slack,
+            "v0 = {v0}: e {} against {e}",
+            cor.e
+        );
+        let got = cor.t_s.unwrap();
+        assert!(
+            (got - t_s).abs() < 10.0 * slack,
+            "v0 = {v0}: T_s {got} against {t_s}"
+        );
+    }
+}
+
+#[test]
+fn the_error_estimate_covers_the_error_and_the_tolerance_is_met() {
+    for tol in [1e-5, 1e-6, 1e-8, 1e-10, 1e-12] {
+        for (v0, e, _) in DSS1_SCIPY {
+            let cor = cor(&dss1(v0), &to(tol)).unwrap();
+            let error = (cor.e - e).abs();
+            assert_eq!(
+                cor.tolerance_met,
+                Some(true),
+                "v0 = {v0}, tol {tol}: {cor:?}"
+            );
+            let estimate = cor.e_error.unwrap();
+            assert!(
+                error <= estimate.max(1e-12),
+                "v0 = {v0}, tol {tol}: {error} > {estimate}"
+            );
+        }
+    }
+}
+
+#[test]
+fn damping_that_parts_the_bodies_before_z_returns_to_zero() {
+    // σV outgrows κ before the root of Z: the separation is on the first unloading part.
+    let params = shccm(3.0, 0.1, 0.6, 2.0, 1.5);
+    let k = Coefficients::new(params.get(), 1e-12, true);
+    assert!(k
+        .unloading_before_root(rung(48), 0.0)
+        .unwrap()
+        .separated
+        .is_some());
+    let cor = cor(&params, &to(1e-12)).unwrap();
+    let model = Ndbwshccm::new(&params, Zero).unwrap();
+    let reference = impact(&model, &Settings::default()).unwrap();
+    assert!(
+        (cor.e - reference.e).abs() < 1e-10,
+        "{} against {}",
+        cor.e,
+        reference.e
+    );
+    let t_s = reference.t_s.unwrap();
+    let got = cor.t_s.unwrap();
+    assert!((got - t_s).abs() < 1e-9, "{got} against {t_s}");
+}
+
+#[test]
+fn what_the_phase_path_does_not_cover_is_refused() {
+    let mut nd = *dss1(2.0).get();
+    nd.gamma *= 0.5;
+    let not_branch = NondimParams::new(ModelKind::Shccm, nd).unwrap();
+    assert!(matches!(
+        cor(&not_branch, &to(1e-8)),
+        Err(ModelError::NotApplicable { .. })
+    ));
+    let mcm = NondimParams::new(ModelKind::Mcm, *dss1(2.0).get()).unwrap();
+    assert!(matches!(
+        cor(&mcm, &to(1e-8)),
+        Err(ModelError::NotApplicable { .. })
+    ));
+    for tol in [0.0, -1.0, 1.0, f64::NAN] {
+        assert!(matches!(
+            cor(&dss1(2.0), &to(tol)),
+            Err(ModelError::InvalidSetting { .. })
+        ));
+    }
+}
+
+#[test]
+fn phi_is_continuous_where_its_series_hands_over() {
+    for y in [-0.1f64, 0.1] {
+        let below = phi(y * (1.0 - 1e-12));
+        let closed = (-(-y).ln_1p() - y) / (y * y);
+        assert!(
+            (below - closed).abs() < 1e-13,
+            "{y}: {below} against {closed}"
+        );
+    }
+    assert_eq!(phi(0.0), 0.5);
+}
+
+#[test]
+fn the_quadratures_are_exact_for_polynomials_below_the_node_count() {
+    for &n in &RUNGS {
+        let r = rung(n);
+        // f = 3x^2 + 1 (and x^(n-1)): integrals from -1 in closed form.
+        let f: Vec<f64> = r.x.iter().map(|x| 3.0 * x * x + 1.0).collect();
+        assert!(
+            (r.total(&f) - 4.0).abs() < 1e-13,
+            "n = {n}: {}",
+            r.total(&f)
+        );
+        let mut out = vec![0.0; n];
+        r.cumulative(&f, 1.0, &mut out);
+        for (x, o) in r.x.iter().zip(&out) {
+            let exact = x * x * x + x + 2.0;
+            assert!(
+                (o - exact).abs() < 1e-13,
+                "n = {n} at {x}: {o} against {exact}"
+            );
+        }
+        let top: Vec<f64> = r.x.iter().map(|x| x.powi(n as i32 - 1)).collect();
+        let exact = if n % 2 == 1 { 2.0 / n as f64 } else { 0.0 };
+        assert!((r.total(&top) - exact).abs() < 1e-12, "n = {n}");
+        let c = r.coefficients(&f);
+        assert!((clenshaw(&c[..n], 0.3) - 1.27).abs() < 1e-13);
+    }
+}
+
+#[test]
+fn the_root_of_a_chebyshev_series_and_its_slope() {
+    // 0.3 - x^3 = 0.3 - (3 T_1 + T_3) / 4: root 0.3^(1/3); slope -3x^2.
+    let c = [0.3, -0.75, 0.0, -0.25];
+    let s = 0.3f64.cbrt();
+    let (f, df) = clenshaw_with_slope(&c, 0.5);
+    assert!(
+        (f - 0.175).abs() < 1e-15 && (df + 0.75).abs() < 1e-15,
+        "{f} {df}"
+    );
+    assert!((root(&c, 1.3, -0.7) - s).abs() < 1e-15);
+}
+
+/// Random fits on the branch `Γ = -B` against the time-domain path at its defaults (checked to
+/// `e_tol = 1e-10`): an independent method, so agreement to 1e-9 pins both.
+#[test]
+fn random_fits_agree_with_the_time_domain_path() {
+    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut uniform = |lo: f64, hi: f64| {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)
+    };
+    let mut compared = 0;
+    for _ in 0..40 {
+        let (b, kappa, sigma) = (uniform(0.0, 40.0), uniform(0.05, 0.95), uniform(0.0, 0.6));
+        let (n, p) = (uniform(1.0, 4.0), uniform(1.0, 3.0));
+        let params = shccm(b, kappa, sigma, n, p);
+        let reference = impact(
+            &Ndbwshccm::new(&params, Zero).unwrap(),
+            &Settings::default(),
+        );
+        let (reference, cor) = (reference.unwrap(), cor(&params, &to(1e-12)));
+        let Ok(cor) = cor else {
+            continue;
+        };
+        let here = format!("B {b}, κ {kappa}, σ {sigma}, n {n}, p {p}: {cor:?}");
+        assert_eq!(cor.tolerance_met, Some(true), "{here}");
+        assert!(
+            (cor.e - reference.e).abs() < 1e-9,
+            "{here} against {}",
+            reference.e
+        );
+        let t_s = reference.t_s.unwrap();
+        assert!(
+            (cor.t_s.unwrap() - t_s).abs() < 1e-8 * t_s,
+            "{here} against {t_s}"
+        );
+        compared += 1;
+    }
+    assert!(compared >= 36, "only {compared} of 40 on the phase path");
+}
