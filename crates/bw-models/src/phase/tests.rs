@@ -1,3 +1,4 @@
+use super::chebyshev::{clenshaw, clenshaw_with_slope};
 use super::*;
 
 fn to(tol: f64) -> PhaseSettings {
@@ -6,7 +7,7 @@ fn to(tol: f64) -> PhaseSettings {
         ..PhaseSettings::default()
     }
 }
-use crate::{impact, input::Zero, BaseMap, BaseParams, Ndbwshccm, Nondim, Settings};
+use crate::{impact, input::Zero, BaseMap, BaseParams, Ndbwmcm, Ndbwshccm, Nondim, Settings};
 
 fn shccm(b: f64, kappa: f64, sigma: f64, n: f64, p: f64) -> NondimParams {
     let nd = Nondim {
@@ -18,6 +19,30 @@ fn shccm(b: f64, kappa: f64, sigma: f64, n: f64, p: f64) -> NondimParams {
         p,
     };
     NondimParams::new(ModelKind::Shccm, nd).unwrap()
+}
+
+/// Table 3's DSS (1) and DSA (1) NDBWMCM fits at `v0` (m/s).
+fn mcm(dsa: bool, v0: f64) -> NondimParams {
+    let (b_b, kappa, sigma_b, n, p) = if dsa {
+        (0.521, 0.168, 0.0144, 1.0, 2.04)
+    } else {
+        (0.966, 0.531, 2.22e-16, 1.57, 1.75)
+    };
+    let base = BaseParams {
+        b_b,
+        gamma_b: -b_b,
+        kappa,
+        sigma_b,
+        n,
+        p,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    BaseMap::new(ModelKind::Mcm, base)
+        .unwrap()
+        .at(v0)
+        .unwrap()
+        .0
 }
 
 /// Table 3's DSS (1) NDBWSHCCM at `v0` (m/s).
@@ -136,12 +161,10 @@ fn the_error_estimate_covers_the_error_and_the_tolerance_is_met() {
 fn damping_that_parts_the_bodies_before_z_returns_to_zero() {
     // σV outgrows κ before the root of Z: the separation is on the first unloading part.
     let params = shccm(3.0, 0.1, 0.6, 2.0, 1.5);
-    let k = Coefficients::new(params.get(), 1e-12, true);
-    assert!(k
-        .unloading_before_root(rung(48), 0.0)
-        .unwrap()
-        .separated
-        .is_some());
+    let k = Coefficients::new(ModelKind::Shccm, params.get(), 1e-12, true);
+    let loading = k.hunt_crossley(rung(48));
+    let one = k.unloading_before_root(rung(48), &loading).unwrap();
+    assert!(one.separated.is_some());
     let cor = cor(&params, &to(1e-12)).unwrap();
     let model = Ndbwshccm::new(&params, Zero).unwrap();
     let reference = impact(&model, &Settings::default()).unwrap();
@@ -163,11 +186,6 @@ fn what_the_phase_path_does_not_cover_is_refused() {
     let not_branch = NondimParams::new(ModelKind::Shccm, nd).unwrap();
     assert!(matches!(
         cor(&not_branch, &to(1e-8)),
-        Err(ModelError::NotApplicable { .. })
-    ));
-    let mcm = NondimParams::new(ModelKind::Mcm, *dss1(2.0).get()).unwrap();
-    assert!(matches!(
-        cor(&mcm, &to(1e-8)),
         Err(ModelError::NotApplicable { .. })
     ));
     for tol in [0.0, -1.0, 1.0, f64::NAN] {
@@ -232,8 +250,9 @@ fn the_root_of_a_chebyshev_series_and_its_slope() {
     assert!((root(&c, 1.3, -0.7) - s).abs() < 1e-15);
 }
 
-/// Random fits on the branch `Γ = -B` against the time-domain path at its defaults (checked to
-/// `e_tol = 1e-10`): an independent method, so agreement to 1e-9 pins both.
+/// Random fits of both models on the branch `Γ = -B` against the time-domain path at its
+/// defaults (checked to `e_tol = 1e-10`): an independent method, so agreement to 1e-9 pins
+/// both.
 #[test]
 fn random_fits_agree_with_the_time_domain_path() {
     let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
@@ -243,32 +262,94 @@ fn random_fits_agree_with_the_time_domain_path() {
             .wrapping_add(1_442_695_040_888_963_407);
         lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)
     };
-    let mut compared = 0;
-    for _ in 0..40 {
-        let (b, kappa, sigma) = (uniform(0.0, 40.0), uniform(0.05, 0.95), uniform(0.0, 0.6));
+    let (mut compared, mut unmet) = (0, 0);
+    for i in 0..80 {
+        let (b, kappa, sigma) = (uniform(0.0, 40.0), uniform(0.05, 0.95), uniform(1e-4, 0.6));
         let (n, p) = (uniform(1.0, 4.0), uniform(1.0, 3.0));
-        let params = shccm(b, kappa, sigma, n, p);
-        let reference = impact(
-            &Ndbwshccm::new(&params, Zero).unwrap(),
-            &Settings::default(),
-        );
-        let (reference, cor) = (reference.unwrap(), cor(&params, &to(1e-12)));
+        let kind = if i % 2 == 0 {
+            ModelKind::Shccm
+        } else {
+            ModelKind::Mcm
+        };
+        let nd = Nondim {
+            b,
+            gamma: -b,
+            kappa,
+            sigma,
+            n,
+            p,
+        };
+        let params = NondimParams::new(kind, nd).unwrap();
+        let settings = Settings::default();
+        let (e, t_s) = match kind {
+            ModelKind::Shccm => {
+                let out = impact(&Ndbwshccm::new(&params, Zero).unwrap(), &settings).unwrap();
+                (out.e, out.t_s.unwrap())
+            }
+            ModelKind::Mcm => {
+                let out = impact(&Ndbwmcm::new(&params, Zero).unwrap(), &settings).unwrap();
+                (out.e, out.t_s.unwrap())
+            }
+        };
+        let cor = cor(&params, &to(1e-12));
         let Ok(cor) = cor else {
             continue;
         };
-        let here = format!("B {b}, κ {kappa}, σ {sigma}, n {n}, p {p}: {cor:?}");
-        assert_eq!(cor.tolerance_met, Some(true), "{here}");
-        assert!(
-            (cor.e - reference.e).abs() < 1e-9,
-            "{here} against {}",
-            reference.e
-        );
-        let t_s = reference.t_s.unwrap();
+        let here = format!("{kind:?} {nd:?}: {cor:?}");
+        // An unmet tolerance must still be honest about its error.
+        let bound = match cor.tolerance_met {
+            Some(true) => 1e-9,
+            _ => 1e-9 + cor.e_error.unwrap(),
+        };
+        unmet += usize::from(cor.tolerance_met != Some(true));
+        assert!((cor.e - e).abs() < bound, "{here} against {e}");
         assert!(
             (cor.t_s.unwrap() - t_s).abs() < 1e-8 * t_s,
             "{here} against {t_s}"
         );
         compared += 1;
     }
-    assert!(compared >= 36, "only {compared} of 40 on the phase path");
+    assert!(
+        compared >= 76 && unmet <= 2,
+        "{compared} of 80 on the phase path, {unmet} unmet"
+    );
+}
+
+/// The NDBWMCM (r, y, z, v) in SciPy's DOP853 at rtol 3e-14, atol 3e-17, separation as an event:
+/// `(v0, e, T_s)` for Table 3's DSS (1) and DSA (1) fits; against rtol 1e-13 they differ by at
+/// most 1.8e-13 in `e` and 2.8e-13 in `T_s`.
+const MCM_SCIPY: [(bool, f64, f64, f64); 6] = [
+    (false, 0.5, 0.9035970255522671, 3.156533777873984),
+    (false, 2.0, 0.7924479054838236, 3.0944568761388833),
+    (false, 5.0, 0.7267109460666116, 3.0695161927809784),
+    (true, 0.5, 0.8186930749800676, 3.143149455863966),
+    (true, 2.0, 0.6905765678819008, 3.105260308645841),
+    (true, 5.0, 0.5957906237822772, 3.0929771335345104),
+];
+
+#[test]
+fn the_mcm_fits_match_scipy_in_e_and_the_separation_time() {
+    for (dsa, v0, e, t_s) in MCM_SCIPY {
+        for tol in [1e-6, 1e-9, 1e-13] {
+            let cor = cor(&mcm(dsa, v0), &to(tol)).unwrap();
+            let here = format!("DSA {dsa}, v0 = {v0}, tol {tol}: {cor:?}");
+            assert_eq!(cor.tolerance_met, Some(true), "{here}");
+            let error = (cor.e - e).abs();
+            assert!(
+                error <= cor.e_error.unwrap().max(5e-13),
+                "{here}: {error} off {e}"
+            );
+            // `T_s` converges more slowly than `e` (its integrand's `1 / sqrt(2W)`), and the
+            // count is raised for `e`: its estimate is within a factor of 3 of its error.
+            let t_error = (cor.t_s.unwrap() - t_s).abs();
+            let t_estimate = cor.t_s_error.unwrap();
+            assert!(
+                t_error <= 3.0 * t_estimate.max(5e-13),
+                "{here}: T_s {t_error} off {t_s}"
+            );
+            if tol == 1e-13 {
+                assert!(t_error < 1e-11, "{here}: T_s {t_error} off {t_s}");
+            }
+        }
+    }
 }
