@@ -1,7 +1,6 @@
-//! Item 1 of issue 21 for the phase path (`bw_models::phase`), on the paper's fits it covers
-//! (the branch `Γ = -B` with no input: Table 3's DSS (1) NDBWSHCCM and NDBWMCM, DSA (1)
-//! NDBWMCM): the largest error in `e` over 19 speeds from 0.5 to 5 m/s against the time of the
-//! sweep, one thread, for
+//! Item 1 of issue 21 for the phase path (`bw_models::phase`), on Table 3's DSS (1) and DSA (1)
+//! fits of both models with no input: the largest error in `e` over 19 speeds from 0.5 to
+//! 5 m/s against the time of the sweep, one thread, for
 //!
 //! * the phase path at `tol` 1e-5 ... 1e-12, one node count from `tol` without a check (as the
 //!   series rows are one run each), for `e` alone and with `T_s`,
@@ -88,12 +87,20 @@ fn interpolated(plain: &[(f64, f64)], i: usize, lo: f64, hi: f64, err: f64) -> f
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    if args.len() == 3 && args[1] == "loop" {
-        // `phase-precision loop TOL`: 20,000 CoRs of DSS (1)'s NDBWSHCCM at 2 m/s, for a
-        // profiler.
+    if args.len() == 4 && args[1] == "loop" {
+        // `phase-precision loop TOL CASE`: 20,000 CoRs at 2 m/s, for a profiler; CASE is
+        // `dss1-shccm`, `dss1-mcm`, `dsa1-shccm` or `dsa1-mcm`.
         let tol: f64 = args[2].parse().expect("a tolerance");
         let s = one_phase(tol, false);
-        let params = cor::dss1(ModelKind::Shccm).at(2.0).expect("admissible").0;
+        let kind = match &args[3][5..] {
+            "mcm" => ModelKind::Mcm,
+            _ => ModelKind::Shccm,
+        };
+        let map = match &args[3][..4] {
+            "dsa1" => cor::dsa1(kind),
+            _ => cor::dss1(kind),
+        };
+        let params = map.at(2.0).expect("admissible").0;
         let start = std::time::Instant::now();
         let mut sum = 0.0;
         for _ in 0..20_000 {
@@ -106,6 +113,7 @@ fn main() {
     let cases = [
         ("NDBWSHCCM DSS (1)", cor::dss1(ModelKind::Shccm)),
         ("NDBWMCM DSS (1)", cor::dss1(ModelKind::Mcm)),
+        ("NDBWSHCCM DSA (1)", cor::dsa1(ModelKind::Shccm)),
         ("NDBWMCM DSA (1)", cor::dsa1(ModelKind::Mcm)),
     ];
     for (name, map) in cases {

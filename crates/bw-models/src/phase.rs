@@ -32,7 +32,7 @@
 //!   damping only brings its separation earlier, so that point closes the panel.
 //!
 //! Each part is a Chebyshev interpolant on `N` points of the first kind per panel (`N` from 8
-//! to 96, chosen from the tolerance; a check compares with the next `N`). The part with `Z < 0`
+//! to 64, chosen from the tolerance; a check compares with the next `N`). The part with `Z < 0`
 //! has two panels, split at the real part of the nearest root of `h`, the singularity that
 //! bounds one interpolant's convergence there (one panel needs twice the points for the same
 //! error). `q` is a plain quadrature; `W` depends on itself only through the damping, and is
@@ -60,8 +60,11 @@ use crate::{ModelError, ModelKind, Nondim, NondimParams};
 use chebyshev::{picard, root, rung, Rung, MAX_N, RUNGS};
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
 
-/// Newton steps allowed for the NDBWMCM's maximum compression.
+/// Newton steps allowed for the search of the maximum compression.
 const MAX_NEWTON: usize = 40;
+/// The largest `(B + Γ) |Z|^n` at the maximum compression the phase path takes: nearer the
+/// saturation `dq/dZ = 1 / h` grows without bound and the loading in `Z` converges slowly.
+const SATURATED: f64 = 0.5;
 
 /// What [`cor`] computes, and how carefully.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -128,9 +131,6 @@ pub fn cor(params: &NondimParams, settings: &PhaseSettings) -> Result<PhaseCor, 
         });
     }
     let p = params.get();
-    if p.gamma != -p.b {
-        return Err(not_applicable("the phase path needs Gamma = -B"));
-    }
     let k = Coefficients::new(params.kind(), p, tol, settings.duration);
     let first = RUNGS.iter().position(|&n| n >= nodes_for(tol)).unwrap_or(0);
     let (e, t_s, _) = k.solve(rung(RUNGS[first]))?;
@@ -197,19 +197,23 @@ struct Coefficients {
     kind: ModelKind,
     /// Whether `T` is wanted.
     duration: bool,
-    b: f64,
+    /// `B + Γ` and `B - Γ`: `h = 1 - (B + Γ) |Z|^n` where `Z` and `dq/dT` share their sign,
+    /// `1 + (B - Γ) |Z|^n` where they do not.
+    beta: f64,
+    alpha: f64,
     kappa: f64,
     sigma: f64,
     n: Pow,
     p: Pow,
-    pm1: Pow,
     /// Where the Picard iterations stop: their change at most this.
     settle: f64,
 }
 
-/// The maximum compression: `u_m = |q_m|`, `T` there, and what the Picard iterations left.
+/// The maximum compression: `u_m = -Z`, `q_m`, `T` there, and what the Picard iterations
+/// left.
 struct Loading {
     u_m: f64,
+    q_m: f64,
     t: f64,
     residual: f64,
 }
@@ -227,11 +231,11 @@ struct Part {
     residual: f64,
 }
 
-/// `|Z|^p`, `|Z|^(p-1)`, the sign of `Z` and `h` at a node.
+/// `|Z|`, `|Z|^p`, the sign of `Z` and `h` at a node.
 #[derive(Clone, Copy, Default)]
 struct Hysteretic {
+    z_abs: f64,
     zp: f64,
-    zpm1: f64,
     sign: f64,
     h: f64,
 }
@@ -241,25 +245,29 @@ impl Coefficients {
         Coefficients {
             kind,
             duration,
-            b: nd.b,
+            beta: nd.b + nd.gamma,
+            alpha: nd.b - nd.gamma,
             kappa: nd.kappa,
             sigma: nd.sigma,
             n: Pow::new(nd.n),
             p: Pow::new(nd.p),
-            pm1: Pow::new(nd.p - 1.0),
             settle: (0.1 * tol).max(1e-17),
         }
     }
 
     /// `F_el` and the damping's coefficient `c` of `dW/dq = F_el - c sqrt(2W)` at `q`.
     fn terms(&self, q: f64, z: Hysteretic) -> (f64, f64) {
-        let mut qpow = Powers::of(q.abs());
-        let qp = qpow.get(self.p);
+        self.terms_of(q, self.p.of_abs(q.abs()), z)
+    }
+
+    /// [`Coefficients::terms`] from `|q|^p` (`|q|^(p-1)` and `|Z|^(p-1)` by a division: `q`
+    /// and `Z` do not vanish at the nodes).
+    fn terms_of(&self, q: f64, qp: f64, z: Hysteretic) -> (f64, f64) {
         let f_el = -self.kappa * qp.copysign(q) - (1.0 - self.kappa) * z.zp * z.sign;
         let c = match self.kind {
             ModelKind::Shccm => self.sigma * qp,
             ModelKind::Mcm => {
-                let slope = self.kappa * qpow.get(self.pm1) + (1.0 - self.kappa) * z.zpm1 * z.h;
+                let slope = self.kappa * qp / q.abs() + (1.0 - self.kappa) * z.zp / z.z_abs * z.h;
                 self.sigma * self.p.exponent() * slope
             }
         };
@@ -279,8 +287,8 @@ impl Coefficients {
     /// `e`, `T_s` and the Picard iterations' residual in `e` on `r`'s nodes.
     fn solve(&self, r: &Rung) -> Result<(f64, Option<f64>, f64), ModelError> {
         let loading = match self.kind {
-            ModelKind::Shccm => self.hunt_crossley(r),
-            ModelKind::Mcm => self.mcm_loading(r)?,
+            ModelKind::Shccm if self.beta == 0.0 => self.hunt_crossley(r),
+            _ => self.searched_loading(r)?,
         };
         let one = self.unloading_before_root(r, &loading)?;
         let (w_s, t_s, residual) = match one.separated {
@@ -315,55 +323,60 @@ impl Coefficients {
         }
         Loading {
             u_m,
+            q_m: -u_m,
             t,
             residual: 0.0,
         }
     }
 
-    /// The NDBWMCM's loading on `u = -Y = u_m sin^4 φ`: `dW/du = -u^p - σ p u^(p-1) sqrt(2W)`
-    /// from `W = 1/2`, with `u_m` moved by `W(u_m) / u_m^p` (the slope of `W` where it
-    /// vanishes) until `W(u_m) = 0`; from the undamped `u_m^(p+1) = (p + 1) / 2`.
-    fn mcm_loading(&self, r: &Rung) -> Result<Loading, ModelError> {
-        let (n, p) = (r.n, self.p.exponent());
-        let (mut a, mut b, mut d) = ([0.0; MAX_N], [0.0; MAX_N], [0.0; MAX_N]);
+    /// The loading on `u = -Z = u_m sin^4 φ`: `dq/du = -1 / h`, `dW/dq = F_el + c sqrt(2W)`
+    /// from `W = 1/2`, with `u_m` moved by `W(u_m) h / F_el` (the slope of `W` where it
+    /// vanishes) until `W(u_m) = 0`; from `u_m` of `h = 1`: `u_m^(p+1) = (p + 1) φ(-σ)` for the
+    /// NDBWSHCCM (Hunt-Crossley), the undamped `(p + 1) / 2` for the NDBWMCM.
+    fn searched_loading(&self, r: &Rung) -> Result<Loading, ModelError> {
+        let n = r.n;
+        let mut factors = LoadingFactors::default();
         for k in 0..n {
             let (s, c) = (FRAC_PI_4 * (r.x[k] + 1.0)).sin_cos();
-            let mut pw = Powers::of(s * s * s * s);
-            (a[k], b[k], d[k]) = (pw.get(self.p), pw.get(self.pm1), 4.0 * s * s * s * c);
+            let unit = s * s * s * s;
+            let mut pw = Powers::of(unit);
+            factors.unit[k] = unit;
+            factors.unit_p[k] = pw.get(self.p);
+            factors.unit_n[k] = if self.beta == 0.0 {
+                0.0
+            } else {
+                pw.get(self.n)
+            };
+            factors.slope[k] = 4.0 * s * s * s * c;
         }
-        let mut u_m = (0.5 * (p + 1.0)).powf(1.0 / (p + 1.0));
-        let (mut f0, mut g, mut w, mut rhs) =
-            ([0.0; MAX_N], [0.0; MAX_N], [0.0; MAX_N], [0.0; MAX_N]);
+        let p = self.p.exponent();
+        let saturation = match self.beta {
+            0.0 => f64::INFINITY,
+            beta => beta.powf(-1.0 / self.n.exponent()),
+        };
+        let mut u_m = (0.5 * (p + 1.0))
+            .powf(1.0 / (p + 1.0))
+            .min(0.9 * saturation);
+        let mut nodes = LoadingNodes::default();
         for _ in 0..MAX_NEWTON {
-            let (ump, umpm1) = (self.p.of_abs(u_m), self.pm1.of_abs(u_m));
-            for k in 0..n {
-                f0[k] = -ump * a[k] * u_m * d[k];
-                g[k] = self.sigma * p * umpm1 * b[k] * u_m * d[k];
-            }
-            let (f0, g) = (&f0[..n], &g[..n]);
-            let change = picard(
-                r,
-                FRAC_PI_4,
-                (0.5, self.settle),
-                (f0, g),
-                &mut w[..n],
-                &mut rhs[..n],
-            )?;
-            let w_end = 0.5 + FRAC_PI_4 * r.total(&rhs[..n]);
+            let (w_end, slope, change) = nodes.solve(self, r, u_m, &factors)?;
             // `W` starts at 1/2: a few of its roundings are as close to 0 as it gets.
             if w_end.abs() <= self.settle.max(4.0 * f64::EPSILON) {
-                let mut t = 0.0;
-                if self.duration {
-                    let mut dt = [0.0; MAX_N];
-                    for k in 0..n {
-                        dt[k] = u_m * d[k] / (2.0 * w[k]).max(0.0).sqrt();
-                    }
-                    t = FRAC_PI_4 * r.total(&dt[..n]);
+                if self.beta * self.n.of_abs(u_m) > SATURATED {
+                    return Err(not_applicable(
+                        "the loading nears the hysteresis' saturation, where Z is a poor variable (B + Gamma too large for the phase path)",
+                    ));
                 }
-                let residual = change + w_end.abs();
-                return Ok(Loading { u_m, t, residual });
+                let t = if self.duration { nodes.time(r) } else { 0.0 };
+                let (q_m, residual) = (nodes.q_end, change + w_end.abs());
+                return Ok(Loading {
+                    u_m,
+                    q_m,
+                    t,
+                    residual,
+                });
             }
-            u_m += w_end / ump;
+            u_m = (u_m - w_end / slope).min(0.5 * (u_m + saturation));
         }
         Err(not_applicable(
             "the search for the maximum compression did not settle (sigma too large for the phase path)",
@@ -376,10 +389,10 @@ impl Coefficients {
         let u_m = loading.u_m;
         let split = self.theta_split(u_m);
         let start = Part {
-            q: -u_m,
+            q: loading.q_m,
             w: 0.0,
             t: loading.t,
-            f: self.force(-u_m, -u_m, 0.0),
+            f: self.force(loading.q_m, -u_m, 0.0),
             separated: None,
             residual: loading.residual,
         };
@@ -391,16 +404,16 @@ impl Coefficients {
     }
 
     /// Where the first panel in `θ` ends: at the real part of the nearest root of
-    /// `h = 1 + 2B u^n` (`u = (2B)^(-1/n) e^(±iπ/n)`), which bounds the convergence of one
-    /// interpolant over the whole part; at `π/4` where `h` has no roots (`B = 0`).
+    /// `h = 1 + (B - Γ) u^n` (`u = (B - Γ)^(-1/n) e^(±iπ/n)`), which bounds the convergence of one
+    /// interpolant over the whole part; at `π/4` where `h` has no roots (`B = Γ`).
     fn theta_split(&self, u_m: f64) -> f64 {
-        if self.b == 0.0 {
+        if self.alpha == 0.0 {
             return FRAC_PI_4;
         }
         let n = self.n.exponent();
         // cos θ = (|u| / u_m)^(1/4) e^(±iπ/(4n)); θ's real part by `acos` of the real part, a
         // fair stand-in for the split.
-        let modulus = ((2.0 * self.b).powf(-1.0 / n) / u_m).sqrt().sqrt();
+        let modulus = (self.alpha.powf(-1.0 / n) / u_m).sqrt().sqrt();
         let real = modulus * (std::f64::consts::PI / (4.0 * n)).cos();
         real.clamp(0.2, 0.98).acos().clamp(0.3, FRAC_PI_2 - 0.2)
     }
@@ -419,14 +432,10 @@ impl Coefficients {
             let (s, c) = (a + half * (r.x[k] + 1.0)).sin_cos();
             let c2 = c * c;
             let mut pw = Powers::of(u_m * c2 * c2);
-            let h = 1.0 + 2.0 * self.b * pw.get(self.n);
+            let h = 1.0 + self.alpha * pw.get(self.n);
             dq[k] = 4.0 * u_m * c2 * c * s / h;
-            let zpm1 = match self.kind {
-                ModelKind::Shccm => 0.0,
-                ModelKind::Mcm => pw.get(self.pm1),
-            };
-            let (zp, sign) = (pw.get(self.p), -1.0);
-            z[k] = Hysteretic { zp, zpm1, sign, h };
+            let (z_abs, zp, sign) = (u_m * c2 * c2, pw.get(self.p), -1.0);
+            z[k] = Hysteretic { z_abs, zp, sign, h };
         }
         let z_end = -u_m * b.cos().powi(4);
         let panel = Panel { r, half, from };
@@ -439,24 +448,132 @@ impl Coefficients {
         let (n, q0) = (r.n, one.q);
         let inv_p = 1.0 / self.p.exponent();
         let (ka, kb) = (self.kappa.powf(inv_p), (1.0 - self.kappa).powf(inv_p));
-        let q_end = kb * q0 / (ka + kb);
-        let half = 0.5 * (q_end - q0).max(0.0).sqrt().sqrt();
+        // Where `F_el` would vanish with `h = 1` (`q = q_0 + Z`); `h <= 1` only moves `q` on
+        // faster, so `F_el <= 0` there.
+        let z_end = (-ka * q0 / (ka + kb)).max(0.0);
+        if self.beta * self.n.of_abs(z_end) >= 0.99 {
+            return Err(not_applicable(
+                "the unloading nears the hysteresis' saturation (B + Gamma too large for the phase path)",
+            ));
+        }
+        let half = 0.5 * z_end.sqrt().sqrt();
         let (mut dq, mut z) = ([0.0; MAX_N], [Hysteretic::default(); MAX_N]);
         for k in 0..n {
             let t = half * (r.x[k] + 1.0);
-            dq[k] = 4.0 * t * t * t;
             let mut pw = Powers::of(t * t * t * t);
-            let zpm1 = match self.kind {
-                ModelKind::Shccm => 0.0,
-                ModelKind::Mcm => pw.get(self.pm1),
-            };
-            let (zp, sign, h) = (pw.get(self.p), 1.0, 1.0);
-            z[k] = Hysteretic { zp, zpm1, sign, h };
+            let h = 1.0 - self.beta * pw.get(self.n);
+            dq[k] = 4.0 * t * t * t / h;
+            let (z_abs, zp, sign) = (t * t * t * t, pw.get(self.p), 1.0);
+            z[k] = Hysteretic { z_abs, zp, sign, h };
         }
         let panel = Panel { r, half, from: one };
-        let end = panel.solve(self, &dq[..n], &z[..n], q_end - q0)?;
+        let end = panel.solve(self, &dq[..n], &z[..n], z_end)?;
         let (w_s, t_s) = end.separated.unwrap_or((end.w, end.t));
         Ok((w_s, t_s, end.residual))
+    }
+}
+
+/// What the loading's nodes on `u = u_m sin^4 φ` need whatever `u_m`: `sin^4 φ`, its `p`-th and
+/// `n`-th powers (the latter where `B + Γ != 0`), and `d(sin^4 φ)/dφ`.
+struct LoadingFactors {
+    unit: [f64; MAX_N],
+    unit_p: [f64; MAX_N],
+    unit_n: [f64; MAX_N],
+    slope: [f64; MAX_N],
+}
+
+impl Default for LoadingFactors {
+    fn default() -> Self {
+        LoadingFactors {
+            unit: [0.0; MAX_N],
+            unit_p: [0.0; MAX_N],
+            unit_n: [0.0; MAX_N],
+            slope: [0.0; MAX_N],
+        }
+    }
+}
+
+/// The loading's nodes at one trial `u_m`: `dq/dφ`, `W` and its integrand.
+struct LoadingNodes {
+    dq: [f64; MAX_N],
+    w: [f64; MAX_N],
+    rhs: [f64; MAX_N],
+    q_end: f64,
+}
+
+impl Default for LoadingNodes {
+    fn default() -> Self {
+        LoadingNodes {
+            dq: [0.0; MAX_N],
+            w: [0.0; MAX_N],
+            rhs: [0.0; MAX_N],
+            q_end: 0.0,
+        }
+    }
+}
+
+impl LoadingNodes {
+    /// `W(u_m)`, its slope in `u` there and the Picard residual.
+    fn solve(
+        &mut self,
+        k: &Coefficients,
+        r: &Rung,
+        u_m: f64,
+        f: &LoadingFactors,
+    ) -> Result<(f64, f64, f64), ModelError> {
+        let n = r.n;
+        let (ump, umn) = (k.p.of_abs(u_m), k.n.of_abs(u_m));
+        let mut z = [Hysteretic::default(); MAX_N];
+        for (i, zi) in z[..n].iter_mut().enumerate() {
+            let h = 1.0 - k.beta * umn * f.unit_n[i];
+            if h <= 0.0 {
+                return Err(not_applicable(
+                    "the loading reaches the hysteresis' saturation (B + Gamma too large for the phase path)",
+                ));
+            }
+            self.dq[i] = -u_m * f.slope[i] / h;
+            let (z_abs, zp) = (u_m * f.unit[i], ump * f.unit_p[i]);
+            *zi = Hysteretic {
+                z_abs,
+                zp,
+                sign: -1.0,
+                h,
+            };
+        }
+        let mut q = [0.0; MAX_N];
+        r.cumulative(&self.dq[..n], FRAC_PI_4, &mut q[..n]);
+        let (mut f0, mut g) = ([0.0; MAX_N], [0.0; MAX_N]);
+        for i in 0..n {
+            let (fe, c) = if k.beta == 0.0 {
+                // `q = Z` exactly (`h = 1`): its powers are `Z`'s.
+                k.terms_of(-z[i].z_abs, z[i].zp, z[i])
+            } else {
+                k.terms(q[i], z[i])
+            };
+            (f0[i], g[i]) = (fe * self.dq[i], -c * self.dq[i]);
+        }
+        let (f0, g, w0) = (&f0[..n], &g[..n], (0.5, k.settle));
+        let (w, rhs) = (&mut self.w[..n], &mut self.rhs[..n]);
+        let change = picard(r, FRAC_PI_4, w0, (f0, g), w, rhs)?;
+        self.q_end = FRAC_PI_4 * r.total(&self.dq[..n]);
+        let h_end = 1.0 - k.beta * umn;
+        let end = Hysteretic {
+            z_abs: u_m,
+            zp: ump,
+            sign: -1.0,
+            h: h_end,
+        };
+        let slope = -k.terms(self.q_end, end).0 / h_end;
+        Ok((0.5 + FRAC_PI_4 * r.total(&self.rhs[..n]), slope, change))
+    }
+
+    /// `T` at the maximum compression: `∫ |dq| / sqrt(2W)`.
+    fn time(&self, r: &Rung) -> f64 {
+        let mut dt = [0.0; MAX_N];
+        for (i, dti) in dt[..r.n].iter_mut().enumerate() {
+            *dti = -self.dq[i] / (2.0 * self.w[i]).max(0.0).sqrt();
+        }
+        FRAC_PI_4 * r.total(&dt[..r.n])
     }
 }
 

@@ -5,9 +5,9 @@ use crate::ModelError;
 use std::sync::OnceLock;
 
 /// The node counts tried, in order.
-pub(super) const RUNGS: [usize; 8] = [8, 12, 16, 24, 32, 48, 64, 96];
+pub(super) const RUNGS: [usize; 7] = [8, 12, 16, 24, 32, 48, 64];
 /// The largest node count: the size of every buffer.
-pub(super) const MAX_N: usize = 96;
+pub(super) const MAX_N: usize = 64;
 /// Picard iterations allowed per panel; each gains about `-log10(σ)` digits on the paper's fits.
 const MAX_PICARD: usize = 80;
 

@@ -180,19 +180,53 @@ fn damping_that_parts_the_bodies_before_z_returns_to_zero() {
 }
 
 #[test]
-fn what_the_phase_path_does_not_cover_is_refused() {
-    let mut nd = *dss1(2.0).get();
-    nd.gamma *= 0.5;
-    let not_branch = NondimParams::new(ModelKind::Shccm, nd).unwrap();
-    assert!(matches!(
-        cor(&not_branch, &to(1e-8)),
-        Err(ModelError::NotApplicable { .. })
-    ));
+fn invalid_tolerances_are_refused() {
     for tol in [0.0, -1.0, 1.0, f64::NAN] {
         assert!(matches!(
             cor(&dss1(2.0), &to(tol)),
             Err(ModelError::InvalidSetting { .. })
         ));
+    }
+}
+
+/// Table 3's DSA (1) NDBWSHCCM (`Γ_b = -1.02 != -B_b = -1.04`, `n = 1.01`) in SciPy's DOP853 at
+/// rtol 3e-14, atol 3e-17: `(v0, e, T_s)`; against rtol 1e-13 they differ by at most 3.5e-13 in
+/// `e` and 7.7e-13 in `T_s`.
+const DSA1_SHCCM_SCIPY: [(f64, f64, f64); 3] = [
+    (0.5, 0.818762241572518, 3.110705739199587),
+    (2.0, 0.6902633574365977, 3.0635636871263965),
+    (5.0, 0.5957045215591756, 3.056995124973578),
+];
+
+#[test]
+fn off_the_branch_gamma_equal_to_minus_b_the_loading_is_searched() {
+    let base = BaseParams {
+        b_b: 1.04,
+        gamma_b: -1.02,
+        kappa: 0.362,
+        sigma_b: 0.017,
+        n: 1.01,
+        p: 1.67,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    let map = BaseMap::new(ModelKind::Shccm, base).unwrap();
+    for (v0, e, t_s) in DSA1_SHCCM_SCIPY {
+        for tol in [1e-6, 1e-9, 1e-12] {
+            let cor = cor(&map.at(v0).unwrap().0, &to(tol)).unwrap();
+            let here = format!("v0 = {v0}, tol {tol}: {cor:?}");
+            assert_eq!(cor.tolerance_met, Some(true), "{here}");
+            let error = (cor.e - e).abs();
+            assert!(
+                error <= cor.e_error.unwrap().max(1e-12),
+                "{here}: {error} off {e}"
+            );
+            let t_error = (cor.t_s.unwrap() - t_s).abs();
+            assert!(
+                t_error <= 3.0 * cor.t_s_error.unwrap().max(1e-12),
+                "{here}: T_s {t_error} off {t_s}"
+            );
+        }
     }
 }
 
@@ -250,7 +284,7 @@ fn the_root_of_a_chebyshev_series_and_its_slope() {
     assert!((root(&c, 1.3, -0.7) - s).abs() < 1e-15);
 }
 
-/// Random fits of both models on the branch `Γ = -B` against the time-domain path at its
+/// Random fits of both models against the time-domain path at its
 /// defaults (checked to `e_tol = 1e-10`): an independent method, so agreement to 1e-9 pins
 /// both.
 #[test]
@@ -266,6 +300,14 @@ fn random_fits_agree_with_the_time_domain_path() {
     for i in 0..80 {
         let (b, kappa, sigma) = (uniform(0.0, 40.0), uniform(0.05, 0.95), uniform(1e-4, 0.6));
         let (n, p) = (uniform(1.0, 4.0), uniform(1.0, 3.0));
+        // Half of them on the branch `Γ = -B` (most of the paper's fits), half with a weakly
+        // saturating loading, `B + Γ` up to 0.3 (DSA (1)'s NDBWSHCCM: 0.02 `v0^0.76`); the
+        // phase path declines a loading that comes near the saturation.
+        let gamma = if i % 4 < 2 {
+            -b
+        } else {
+            (-b + uniform(0.0, 0.3)).min(b)
+        };
         let kind = if i % 2 == 0 {
             ModelKind::Shccm
         } else {
@@ -273,7 +315,7 @@ fn random_fits_agree_with_the_time_domain_path() {
         };
         let nd = Nondim {
             b,
-            gamma: -b,
+            gamma,
             kappa,
             sigma,
             n,
@@ -297,14 +339,14 @@ fn random_fits_agree_with_the_time_domain_path() {
         };
         let here = format!("{kind:?} {nd:?}: {cor:?}");
         // An unmet tolerance must still be honest about its error.
-        let bound = match cor.tolerance_met {
-            Some(true) => 1e-9,
-            _ => 1e-9 + cor.e_error.unwrap(),
+        let (bound, t_bound) = match cor.tolerance_met {
+            Some(true) => (1e-9, 1e-8 * t_s),
+            _ => (1e-9 + cor.e_error.unwrap(), 3.0 * cor.t_s_error.unwrap()),
         };
         unmet += usize::from(cor.tolerance_met != Some(true));
         assert!((cor.e - e).abs() < bound, "{here} against {e}");
         assert!(
-            (cor.t_s.unwrap() - t_s).abs() < 1e-8 * t_s,
+            (cor.t_s.unwrap() - t_s).abs() < t_bound,
             "{here} against {t_s}"
         );
         compared += 1;
