@@ -153,12 +153,11 @@ impl Rung {
     }
 }
 
-/// The root in `[-1, 1]` of `Σ c_j T_j`, which is `f_lo > 0` at -1 and `f_hi <= 0` at 1: Newton
-/// steps from the secant's guess, kept inside a shrinking bracket (bisection where a step
-/// leaves it), to a change of `1e-15`.
-pub(super) fn root(c: &[f64], f_lo: f64, f_hi: f64) -> f64 {
-    let (mut lo, mut hi) = (-1.0, 1.0);
-    let mut s = -1.0 + 2.0 * f_lo / (f_lo - f_hi);
+/// A root in `[lo, hi]` of `Σ c_j T_j`, which is `f_lo > 0` at `lo` and `f_hi <= 0` at `hi`:
+/// Newton steps from the secant's guess, kept inside a shrinking bracket (bisection where a
+/// step leaves it), to a change of `1e-15`.
+pub(super) fn root(c: &[f64], (mut lo, f_lo): (f64, f64), (mut hi, f_hi): (f64, f64)) -> f64 {
+    let mut s = lo + (hi - lo) * f_lo / (f_lo - f_hi);
     for _ in 0..60 {
         let (f, df) = clenshaw_with_slope(c, s);
         if f > 0.0 {

@@ -281,7 +281,7 @@ fn the_root_of_a_chebyshev_series_and_its_slope() {
         (f - 0.175).abs() < 1e-15 && (df + 0.75).abs() < 1e-15,
         "{f} {df}"
     );
-    assert!((root(&c, 1.3, -0.7) - s).abs() < 1e-15);
+    assert!((root(&c, (-1.0, 1.3), (1.0, -0.7)) - s).abs() < 1e-15);
 }
 
 /// Random fits of both models against the time-domain path at its
@@ -341,7 +341,7 @@ fn random_fits_agree_with_the_time_domain_path() {
         // An unmet tolerance must still be honest about its error.
         let (bound, t_bound) = match cor.tolerance_met {
             Some(true) => (1e-9, 1e-8 * t_s),
-            _ => (1e-9 + cor.e_error.unwrap(), 3.0 * cor.t_s_error.unwrap()),
+            _ => (1e-9 + cor.e_error.unwrap(), 3.0 * cor.t_s_error.unwrap() + 1e-12),
         };
         unmet += usize::from(cor.tolerance_met != Some(true));
         assert!((cor.e - e).abs() < bound, "{here} against {e}");
@@ -394,4 +394,27 @@ fn the_mcm_fits_match_scipy_in_e_and_the_separation_time() {
             }
         }
     }
+}
+
+/// Case 3496 of the stress sweep's seed 1 (`κ = 3.5e-5`, `p = 10`): the damping parts the
+/// bodies well before `Z` returns to 0, and near that root `F` is about `-1e-12`. A root search
+/// started from the panel's end found the interpolant's own root there, at every node count
+/// alike, so the check passed a result 8.2e-8 off. DOP853, Vern7 and Vern9 at rtol 1e-12 give
+/// `e` = 0.75268715637969 +- 2e-13 and `T_s` = 2.4518798761330 +- 3e-13.
+#[test]
+fn the_first_root_of_the_force_is_the_separation() {
+    let base = BaseParams {
+        b_b: 0.6083558616388809,
+        gamma_b: -0.6083558616388809,
+        kappa: 3.456373640578186e-5,
+        sigma_b: 0.43152520917412956,
+        n: 7.302728986035764,
+        p: 10.0,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    let map = BaseMap::new(ModelKind::Shccm, base).unwrap();
+    let cor = cor(&map.at(0.31967497898786673).unwrap().0, &to(1e-10)).unwrap();
+    assert!((cor.e - 0.75268715637969).abs() < 1e-11, "{cor:?}");
+    assert!((cor.t_s.unwrap() - 2.451879876133).abs() < 1e-9, "{cor:?}");
 }
