@@ -360,8 +360,9 @@ impl Coefficients {
 
     /// The loading on `u = -Z = u_m sin^4 φ`: `dq/du = -1 / h`, `dW/dq = F_el + c sqrt(2W)`
     /// from `W = 1/2`, with `u_m` moved by `W(u_m) h / F_el` (the slope of `W` where it
-    /// vanishes) until `W(u_m) = 0`; from `u_m` of `h = 1`: `u_m^(p+1) = (p + 1) φ(-σ)` for the
-    /// NDBWSHCCM (Hunt-Crossley), the undamped `(p + 1) / 2` for the NDBWMCM.
+    /// vanishes) until `W(u_m) = 0`; from `|q_m|` of `h = 1` (`|q_m|^(p+1) = (p + 1) φ(-σ)` for
+    /// the NDBWSHCCM, Hunt-Crossley; the undamped `(p + 1) / 2` for the NDBWMCM), moved to `Z`
+    /// to first order in `B + Γ`.
     fn searched_loading(&self, r: &Rung) -> Result<Loading, ModelError> {
         let n = r.n;
         let mut factors = LoadingFactors::default();
@@ -383,9 +384,14 @@ impl Coefficients {
             0.0 => f64::INFINITY,
             beta => beta.powf(-1.0 / self.n.exponent()),
         };
-        let mut u_m = (0.5 * (p + 1.0))
-            .powf(1.0 / (p + 1.0))
-            .min(0.9 * saturation);
+        let undamped = match self.kind {
+            ModelKind::Shccm => phi(-self.sigma),
+            ModelKind::Mcm => 0.5,
+        };
+        let x_m = ((p + 1.0) * undamped).powf(1.0 / (p + 1.0));
+        // To first order in `B + Γ`, `|q| = u + (B + Γ) u^(n+1) / (n + 1)`.
+        let u_guess = x_m * (1.0 - self.beta * self.n.of_abs(x_m) / (self.n.exponent() + 1.0));
+        let mut u_m = u_guess.max(0.5 * x_m).min(0.9 * saturation);
         let mut nodes = LoadingNodes::default();
         for _ in 0..MAX_NEWTON {
             let (w_end, slope, change) = nodes.solve(self, r, u_m, &factors)?;

@@ -341,7 +341,10 @@ fn random_fits_agree_with_the_time_domain_path() {
         // An unmet tolerance must still be honest about its error.
         let (bound, t_bound) = match cor.tolerance_met {
             Some(true) => (1e-9, 1e-8 * t_s),
-            _ => (1e-9 + cor.e_error.unwrap(), 3.0 * cor.t_s_error.unwrap() + 1e-12),
+            _ => (
+                1e-9 + cor.e_error.unwrap(),
+                3.0 * cor.t_s_error.unwrap() + 1e-12,
+            ),
         };
         unmet += usize::from(cor.tolerance_met != Some(true));
         assert!((cor.e - e).abs() < bound, "{here} against {e}");
@@ -417,4 +420,61 @@ fn the_first_root_of_the_force_is_the_separation() {
     let cor = cor(&map.at(0.31967497898786673).unwrap().0, &to(1e-10)).unwrap();
     assert!((cor.e - 0.75268715637969).abs() < 1e-11, "{cor:?}");
     assert!((cor.t_s.unwrap() - 2.451879876133).abs() < 1e-9, "{cor:?}");
+}
+
+/// Over the whole admissible set (the stress sweep's ranges: `B` from 1e-3 to 1e3, `Γ` anywhere
+/// in `[-B, B]`, `κ` from 1e-6 to 1 - 1e-6, `σ_b` from 1e-6 to 1e3, `n` and `p` from 1 to 10,
+/// `v0` from 1e-4 to 1e3 m/s) the phase path answers or declines, never panics, and what it
+/// answers is a CoR: finite, in `[0, 1]`, with a finite estimate.
+#[test]
+fn anywhere_in_the_admissible_set_it_answers_or_declines() {
+    let mut state: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut uniform = |lo: f64, hi: f64| {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)
+    };
+    let (mut answered, mut declined) = (0, 0);
+    for i in 0..3000 {
+        let kind = if i % 2 == 0 {
+            ModelKind::Shccm
+        } else {
+            ModelKind::Mcm
+        };
+        let b_b = 10f64.powf(uniform(-3.0, 3.0));
+        let logit = uniform(-13.8, 13.8);
+        let base = BaseParams {
+            b_b,
+            gamma_b: b_b * uniform(-1.0, 1.0),
+            kappa: (1.0 / (1.0 + (-logit).exp())).clamp(1e-6, 1.0 - 1e-6),
+            sigma_b: 10f64.powf(uniform(-6.0, 3.0)),
+            n: uniform(1.0, 10.0),
+            p: uniform(1.0, 10.0),
+            u_b: 1.0,
+            t_b: 1.0,
+        };
+        let Ok((params, _)) =
+            BaseMap::new(kind, base).and_then(|m| m.at(10f64.powf(uniform(-4.0, 3.0))))
+        else {
+            continue;
+        };
+        match cor(&params, &to(1e-10)) {
+            Ok(c) => {
+                let here = format!("{kind:?} {base:?}: {c:?}");
+                assert!(
+                    c.e.is_finite() && (0.0..=1.0 + 1e-9).contains(&c.e),
+                    "{here}"
+                );
+                assert!(c.e_error.is_some_and(f64::is_finite), "{here}");
+                answered += 1;
+            }
+            Err(ModelError::NotApplicable { .. }) => declined += 1,
+            Err(other) => panic!("{kind:?} {base:?}: {other}"),
+        }
+    }
+    assert!(
+        answered > 1000 && declined > 100,
+        "{answered} answered, {declined} declined"
+    );
 }
