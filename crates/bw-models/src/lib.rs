@@ -25,9 +25,8 @@
 //!   [`Impact::double_double`]; [`Impact::double_double_declined`] says why not, where not);
 //! * sweeps of many impact speeds served by verified Chebyshev interpolants in `ln v0`
 //!   ([`sweep`]);
-//! * a CoR without time steps for the nondimensional models with no input on the branch
-//!   `Γ = -B`, as quadratures in phase space ([`phase`]; opt-in, up to twice as fast as the
-//!   series path at equal error).
+//! * a CoR without time steps for the nondimensional models with no input, as quadratures in
+//!   phase space ([`phase`]; opt-in, up to twice as fast as the series path at equal error).
 //!
 //! Conventions: `x < 0` is compression, `F > 0` pushes the bodies apart, `v(0) = -v0`.
 //!

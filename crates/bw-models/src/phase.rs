@@ -1,5 +1,5 @@
-//! A CoR without time steps: the NDBWSHCCM and the NDBWMCM with no input on the branch
-//! `Γ = -B`, reduced to quadratures in phase space.
+//! A CoR without time steps: the NDBWSHCCM and the NDBWMCM with no input, reduced to
+//! quadratures in phase space.
 //!
 //! Without an input the clock enters the models only through `d/dT`. Write `q` for the
 //! displacement that drives the hysteresis (`X` in the NDBWSHCCM, `Y` in the NDBWMCM) and
@@ -13,34 +13,39 @@
 //! Both are `dW/dq = F_el - c(q) sqrt(2W)` with `c >= 0`, so a CoR is a few integrals over the
 //! bounded phase variables, not a run in time:
 //!
-//! * **Loading** (`dq/dT < 0`; `Z = q` since `h = 1` when `Γ = -B`). In the NDBWSHCCM this is
-//!   the Hunt-Crossley problem `V dV / (1 - σV) = |X|^p dX`, solved in closed form: with
-//!   `φ(y) = (-ln(1 - y) - y) / y^2`, `∫_0^V v dv / (1 - σv) = V^2 φ(σV)`, so the maximum
-//!   compression `u_m = |X_m|` has `u_m^(p+1) = (p + 1) φ(-σ)`; its duration `∫ dV / F` is a
-//!   quadrature in `ξ`, `V = -1 + ξ^(p+1)`, which takes out the contact's branch point. In
-//!   the NDBWMCM `u_m` (where `Y' = 0`) is found by Newton steps on `W(u_m) = 0`, with `W` on
-//!   `-Y = u_m sin^4 φ`.
-//! * **Unloading with `Z < 0`** (`h = 1 + 2B |Z|^n`), in `θ ∈ [0, π/2]` with `-Z = u_m cos^4 θ`:
+//! * **Loading** (`dq/dT < 0`, `h = 1 - (B + Γ)|Z|^n`). On the branch `Γ = -B` (`h = 1`,
+//!   `Z = q`) the NDBWSHCCM's is the Hunt-Crossley problem `V dV / (1 - σV) = |X|^p dX`,
+//!   solved in closed form: with `φ(y) = (-ln(1 - y) - y) / y^2`,
+//!   `∫_0^V v dv / (1 - σv) = V^2 φ(σV)`, so the maximum compression `u_m = |X_m|` has
+//!   `u_m^(p+1) = (p + 1) φ(-σ)`; its duration `∫ dV / F` is a quadrature in `ξ`,
+//!   `V = -1 + ξ^(p+1)`, which takes out the contact's branch point. Otherwise (the NDBWMCM,
+//!   or `Γ != -B`) `u_m = -Z_m` (where `dq/dT = 0`) is found by Newton steps on `W(u_m) = 0`,
+//!   with `W` on `-Z = u_m sin^4 φ`; a loading that comes near the saturation of `Z`
+//!   (`(B + Γ)|Z_m|^n > 1/2`, where `Z` is a poor variable) is declined.
+//! * **Unloading with `Z < 0`** (`h = 1 + (B - Γ)|Z|^n`), in `θ ∈ [0, π/2]` with `-Z = u_m cos^4 θ`:
 //!   `dq/dθ = 4 u_m cos^3 θ sin θ / h`, `dW/dθ = (dW/dq) dq/dθ`, `dT/dθ = (dq/dθ) / sqrt(2W)`.
 //!   The map takes out the square-root branch of `dq/dT` at the maximum compression and tames
 //!   the branch points of `|Z|^n`, `|Z|^p` and `|Z|^(p-1)` at the root of `Z` (fourth powers:
 //!   squares leave `|Z|^(p-1)` nearly a step for `p` near 1); the blow-ups of `Z(T)` in complex
 //!   time that bound every series in `T` sit at `Z = ∞` here.
-//! * **Unloading with `Z >= 0`** (`h = 1`, so `Z = q - q_0`), in `t` with `q = q_0 + t^4`, up
-//!   to the separation `F = 0`. `F_el` vanishes where `κ^(1/p) |q| = (1 - κ)^(1/p) Z`: the
-//!   NDBWMCM separates there (its `F` is `F_el`, and `V = Y'` at `F = 0`), and the NDBWSHCCM's
-//!   damping only brings its separation earlier, so that point closes the panel.
+//! * **Unloading with `Z >= 0`** (`h = 1 - (B + Γ)|Z|^n`, so `dq/dZ = 1/h`), in `t` with
+//!   `Z = t^4`, up to the separation `F <= 0`, the first root of `F` on the interpolant. With
+//!   `h = 1`, `F_el` vanishes where `κ^(1/p) |q| = (1 - κ)^(1/p) Z`; `h < 1` moves `q` on
+//!   faster and the NDBWSHCCM's damping only lowers `F`, so `F <= 0` there and that point
+//!   closes the panel (or, sooner, where `q` reaches 0 and `F = -(1 - κ) Z^p`). The NDBWMCM's
+//!   `F` is `F_el`, and at `F = 0` its `V` is `Y'`.
 //!
 //! Each part is a Chebyshev interpolant on `N` points of the first kind per panel (`N` from 8
-//! to 64, chosen from the tolerance; a check compares with the next `N`). The part with `Z < 0`
+//! to 64, chosen from the tolerance; a check goes up the counts until two changes in a row are
+//! small). The part with `Z < 0`
 //! has two panels, split at the real part of the nearest root of `h`, the singularity that
 //! bounds one interpolant's convergence there (one panel needs twice the points for the same
 //! error). `q` is a plain quadrature; `W` depends on itself only through the damping, and is
 //! found panel by panel by fixed-point (Picard) iteration from the undamped solution.
 //!
-//! On the paper's fits it covers (DSS (1), both models; DSA (1), NDBWMCM) this is 5.4-7.5 times
-//! faster than plain DOP853 at equal error in `e` from 7e-5 to 1e-10, and at least 6 times at
-//! the errors plain DOP853 does not reach (BENCHMARKS.md, "Session 30").
+//! On Table 3's DSS (1) fits of both models and DSA (1)'s NDBWMCM this is 6.2-9.1 times faster
+//! than plain DOP853 at equal error in `e`, from 7e-5 down; on DSA (1)'s NDBWSHCCM (`Γ != -B`,
+//! its loading searched) 4.6-5.0 times (BENCHMARKS.md, "Session 30").
 //!
 //! ```
 //! use bw_models::phase::{self, PhaseSettings};
@@ -117,7 +122,7 @@ pub struct PhaseCor {
     pub nodes: usize,
 }
 
-/// The CoR of the NDBWSHCCM or NDBWMCM `params` with no input (the branch `Γ = -B`).
+/// The CoR of the NDBWSHCCM or NDBWMCM `params` with no input.
 ///
 /// # Errors
 /// [`ModelError::NotApplicable`] for `Γ != -B`, and where a fixed-point iteration for the
@@ -196,8 +201,7 @@ fn not_applicable(reason: &'static str) -> ModelError {
     ModelError::NotApplicable { reason }
 }
 
-/// The node count per panel where the paper's DSS (1) and DSA (1) fits on the branch `Γ = -B`
-/// at 0.5-5 m/s are within `tol` in `e` (largest errors over the fits and speeds: 7e-5 at 8
+/// The node count per panel where the paper's DSS (1) and DSA (1) fits at 0.5-5 m/s are within `tol` in `e` (largest errors over the fits and speeds: 7e-5 at 8
 /// nodes, 3e-6 at 12, 2e-8 at 16, 6e-12 at 24, the references' 2e-13 at 32), so that a check's
 /// next count usually meets `tol` at once.
 fn nodes_for(tol: f64) -> usize {
