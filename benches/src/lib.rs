@@ -153,6 +153,28 @@ pub mod cor {
         BaseMap::new(kind, base).expect("published parameters are admissible")
     }
 
+    /// One run per CoR at `rtol` (`atol = rtol / 100`, no check): the series path by default.
+    pub fn one_run(rtol: f64) -> Settings {
+        Settings {
+            rtol,
+            atol: rtol / 100.0,
+            e_tol: None,
+            ..Settings::default()
+        }
+    }
+
+    /// Issue 21's plain path, one run per CoR: `[solver] series = false, stop_at_kinks =
+    /// false, method = "dop853"` (and no switch to RODAS4).
+    pub fn plain(rtol: f64) -> Settings {
+        Settings {
+            method: &bwc_ode::DOP853,
+            stop_at_kinks: false,
+            stiffness: bw_models::Stiffness::Ignore,
+            series: false,
+            ..one_run(rtol)
+        }
+    }
+
     /// One CoR evaluation at impact speed `v0` (m/s).
     pub fn evaluate(map: &BaseMap, v0: f64, settings: &Settings) -> Result<Cor, ModelError> {
         impact_at(map, Zero, v0, settings)

@@ -15,9 +15,9 @@
 //! `cargo run --release -p bwc-benches --bin phase-precision`
 
 use bw_models::phase::{self, PhaseSettings};
-use bw_models::{BaseMap, ModelKind, Settings, Stiffness};
-use bwc_benches::{cor, side_by_side};
-use bwc_ode::DOP853;
+use bw_models::{BaseMap, ModelKind, Settings};
+use bwc_benches::cor::{self, one_run, plain};
+use bwc_benches::side_by_side;
 
 const SPEEDS: usize = 19;
 const PHASE_TOLS: [f64; 6] = [1e-4, 1e-5, 1e-7, 1e-10, 1e-12, 1e-14];
@@ -25,25 +25,6 @@ const SERIES_RTOLS: [f64; 9] = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11
 const PLAIN_RTOLS: [f64; 10] = [
     1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13,
 ];
-
-fn one_run(rtol: f64) -> Settings {
-    Settings {
-        rtol,
-        atol: rtol / 100.0,
-        e_tol: None,
-        ..Settings::default()
-    }
-}
-
-fn plain(rtol: f64) -> Settings {
-    Settings {
-        method: &DOP853,
-        stop_at_kinks: false,
-        stiffness: Stiffness::Ignore,
-        series: false,
-        ..one_run(rtol)
-    }
-}
 
 fn series(map: &BaseMap, speeds: &[f64], s: &Settings) -> Vec<f64> {
     let cor = |v| cor::evaluate(map, v, s).map_or(f64::NAN, |c| c.e);

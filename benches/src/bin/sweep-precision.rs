@@ -15,9 +15,9 @@
 //! 2000; one thread)
 
 use bw_models::sweep::{self, Row, SweepSettings};
-use bw_models::{BaseMap, ModelKind, Settings, Stiffness};
-use bwc_benches::{cor, side_by_side};
-use bwc_ode::DOP853;
+use bw_models::{BaseMap, ModelKind, Settings};
+use bwc_benches::cor::{self, one_run, plain};
+use bwc_benches::side_by_side;
 
 /// The series rows' tolerances (the errors 1e-6 to 1e-12 lie between their errors).
 const SERIES_RTOLS: [f64; 9] = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12];
@@ -28,25 +28,6 @@ const PLAIN_RTOLS: [f64; 10] = [
 
 /// Plain DOP853's sweep tolerance through the plan, in multiples of its rtol.
 const PLAIN_SWEEP: f64 = 100.0;
-
-fn one_run(rtol: f64) -> Settings {
-    Settings {
-        rtol,
-        atol: rtol / 100.0,
-        e_tol: None,
-        ..Settings::default()
-    }
-}
-
-fn plain(rtol: f64) -> Settings {
-    Settings {
-        method: &DOP853,
-        stop_at_kinks: false,
-        stiffness: Stiffness::Ignore,
-        series: false,
-        ..one_run(rtol)
-    }
-}
 
 /// `e` at every speed, each simulated.
 fn every_speed(map: &BaseMap, speeds: &[f64], s: &Settings) -> Vec<f64> {
