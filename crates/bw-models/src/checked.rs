@@ -76,7 +76,8 @@ impl Check {
 
 /// Coefficient of restitution, separation time and statistics of one impact, under
 /// [`Settings::e_tol`] checked against runs at other tolerances; stores nothing and allocates
-/// nothing.
+/// nothing. Under [`Settings::phase`] an unforced impact of a model with that path is first
+/// tried there ([`crate::phase`], [`Impact::phase`]).
 ///
 /// # Errors
 /// As [`simulate`]. Under [`Settings::e_tol`], a failure of the first run at `rtol` (the check
@@ -86,6 +87,13 @@ pub fn impact<M: CollisionModel<N>, const N: usize>(
     model: &M,
     settings: &Settings,
 ) -> Result<Impact<N>, ModelError> {
+    if let Some(out) = settings
+        .phase
+        .then(|| model.phase_impact(Private(()), settings))
+        .flatten()
+    {
+        return Ok(out);
+    }
     let Some(e_tol) = settings.e_tol else {
         return simulate(model, settings, Sampling::None, |_, _| {});
     };

@@ -73,6 +73,15 @@ pub struct Settings {
     /// five seeds of the stress sweep (150,000 cases) it settles every unmet run that did not
     /// go stiff, and leaves no run off by more than 1e-10 (STABILITY.md, "Session 25").
     pub double_double: bool,
+    /// CoR evaluations ([`impact`]) of unforced impacts of the nondimensional models (and so of
+    /// [`crate::impact_at`]) by the phase path ([`crate::phase`]): `e` and `t_s` as quadratures
+    /// in phase space, checked to `e_tol` (without `e_tol`, one node count chosen from `rtol`,
+    /// unchecked). Where it declines or its check is not met, the impact takes the usual path.
+    /// Off by default: 4.6-9x faster than plain DOP853 at equal error on the paper's fits
+    /// (BENCHMARKS.md, "Session 30"), but younger than the series path, and on the stress
+    /// sweep one checked result in about 14,000 was three times its estimate off (within
+    /// `e_tol`; STABILITY.md, "Session 30").
+    pub phase: bool,
 }
 
 /// The largest step of the Runge-Kutta path with [`Settings::stop_at_kinks`], as a fraction of
@@ -119,6 +128,7 @@ impl Default for Settings {
             series: true,
             e_tol: Some(1e-10),
             double_double: true,
+            phase: false,
         }
     }
 }
@@ -225,6 +235,9 @@ pub struct Impact<const N: usize> {
     /// double-double retry reported nothing (`e` is then the double-precision one). `None`
     /// otherwise.
     pub double_double_declined: Option<DdDeclined>,
+    /// Whether the result is the phase path's ([`Settings::phase`]): no time steps, so `stats`
+    /// count no work and `rtol` is the setting's; `e_error` is the phase path's own estimate.
+    pub phase: bool,
 }
 
 impl<const N: usize> Impact<N> {
@@ -252,6 +265,7 @@ impl<const N: usize> Impact<N> {
             tighter_failed: None,
             double_double: false,
             double_double_declined: None,
+            phase: false,
         }
     }
 
@@ -281,6 +295,7 @@ impl<const N: usize> Impact<N> {
             tighter_failed: self.tighter_failed,
             double_double: self.double_double,
             double_double_declined: self.double_double_declined,
+            phase: self.phase,
         }
     }
 }
@@ -315,6 +330,8 @@ pub struct Cor {
     pub double_double: bool,
     /// Why the double-double retry reported nothing, where it was due.
     pub double_double_declined: Option<DdDeclined>,
+    /// Whether the result is the phase path's ([`Settings::phase`]).
+    pub phase: bool,
 }
 
 impl Cor {

@@ -43,6 +43,9 @@
 //! error). `q` is a plain quadrature; `W` depends on itself only through the damping, and is
 //! found panel by panel by fixed-point (Picard) iteration from the undamped solution.
 //!
+//! [`crate::impact`] takes this path for unforced CoRs under [`crate::Settings::phase`] (off
+//! by default), falling back to the usual path where it declines or its check is unmet.
+//!
 //! On Table 3's DSS (1) fits of both models and DSA (1)'s NDBWMCM this is 6.2-9.1 times faster
 //! than plain DOP853 at equal error in `e`, from 7e-5 down; on DSA (1)'s NDBWSHCCM (`Γ != -B`,
 //! its loading searched) 4.6-5.0 times (BENCHMARKS.md, "Session 30").
@@ -120,6 +123,25 @@ pub struct PhaseCor {
     pub tolerance_met: Option<bool>,
     /// Chebyshev points per part of the reported result.
     pub nodes: usize,
+    /// The law's displacement at the separation: `X` (NDBWSHCCM) or `Y` (NDBWMCM).
+    pub q_s: f64,
+    /// The hysteretic displacement `Z` at the separation.
+    pub z_s: f64,
+}
+
+impl PhaseCor {
+    fn of(solved: &Solved, nodes: usize) -> Self {
+        PhaseCor {
+            e: solved.e,
+            t_s: solved.t_s,
+            e_error: None,
+            t_s_error: None,
+            tolerance_met: None,
+            nodes,
+            q_s: solved.q_s,
+            z_s: solved.z_s,
+        }
+    }
 }
 
 /// The CoR of the NDBWSHCCM or NDBWMCM `params` with no input.
@@ -142,19 +164,50 @@ pub fn cor(params: &NondimParams, settings: &PhaseSettings) -> Result<PhaseCor, 
     let k = Coefficients::new(params.kind(), p, tol, settings.duration);
     let first = RUNGS.iter().position(|&n| n >= nodes_for(tol)).unwrap_or(0);
     if !settings.check {
-        let (e, t_s, _) = k.solve(rung(RUNGS[first]))?;
-        let (e_error, t_s_error, tolerance_met) = (None, None, None);
-        let nodes = RUNGS[first];
-        return Ok(PhaseCor {
-            e,
-            t_s,
-            e_error,
-            t_s_error,
-            tolerance_met,
-            nodes,
-        });
+        return Ok(PhaseCor::of(&k.solve(rung(RUNGS[first]))?, RUNGS[first]));
     }
     checked(&k, tol, first.saturating_sub(1))
+}
+
+/// The phase path's CoR for [`crate::impact`] under [`crate::Settings::phase`]: with no input,
+/// checked to `e_tol` (or one node count from `rtol` without it); `None` where the path
+/// declines, the settings are out of its range, or the check is not met.
+pub(crate) fn for_impact<I: crate::input::Input>(
+    params: &NondimParams,
+    input: &I,
+    settings: &crate::Settings,
+) -> Option<PhaseCor> {
+    if !settings.phase || !input.is_zero() {
+        return None;
+    }
+    let phase = PhaseSettings {
+        tol: settings.e_tol.unwrap_or(settings.rtol),
+        check: settings.e_tol.is_some(),
+        duration: true,
+    };
+    let cor = cor(params, &phase).ok()?;
+    // A contact longer than the horizon is the usual path's to report (no separation).
+    let within = cor.t_s.is_some_and(|t| t <= settings.t_max);
+    (cor.tolerance_met != Some(false) && within).then_some(cor)
+}
+
+/// The impact of a phase CoR ending in `state` (see [`crate::Impact::phase`]).
+pub(crate) fn impact_of<const N: usize>(
+    cor: &PhaseCor,
+    state: crate::State<N>,
+    settings: &crate::Settings,
+) -> crate::Impact<N> {
+    let stats = bwc_ode::Stats::default();
+    crate::Impact {
+        e_error: cor.e_error,
+        t_s_error: cor.t_s_error,
+        check: match cor.tolerance_met {
+            Some(true) => crate::Check::Met,
+            _ => crate::Check::Off,
+        },
+        phase: true,
+        ..crate::Impact::unchecked((cor.t_s, cor.e, state), stats, settings.rtol)
+    }
 }
 
 /// Results on the rungs from `first` up until two changes in a row are small: the last at most
@@ -164,35 +217,33 @@ pub fn cor(params: &NondimParams, settings: &PhaseSettings) -> Result<PhaseCor, 
 fn checked(k: &Coefficients, tol: f64, first: usize) -> Result<PhaseCor, ModelError> {
     // A coarse count's failure (a Picard iteration or search that did not settle there) only
     // leaves the next count without a predecessor.
-    let mut previous: Option<(f64, Option<f64>)> = None;
+    let mut previous: Option<Solved> = None;
     let mut before = f64::INFINITY;
     let mut out = Err(not_applicable("no node count gave a result"));
     for &n in &RUNGS[first..] {
-        let (e, t_s, residual) = match k.solve(rung(n)) {
-            Ok(result) => result,
+        let solved = match k.solve(rung(n)) {
+            Ok(solved) => solved,
             Err(err) => {
                 (previous, before, out) = (None, f64::INFINITY, Err(err));
                 continue;
             }
         };
-        let Some((e_was, t_was)) = previous else {
-            previous = Some((e, t_s));
+        let Some(was) = previous else {
+            previous = Some(solved);
             continue;
         };
-        let change = (e - e_was).abs() + residual;
+        let change = (solved.e - was.e).abs() + solved.residual;
         let met = change <= tol && before <= STALL * tol;
         out = Ok(PhaseCor {
-            e,
-            t_s,
             e_error: Some(change),
-            t_s_error: t_s.zip(t_was).map(|(a, b)| (a - b).abs()),
+            t_s_error: solved.t_s.zip(was.t_s).map(|(a, b)| (a - b).abs()),
             tolerance_met: Some(met),
-            nodes: n,
+            ..PhaseCor::of(&solved, n)
         });
         if met {
             break;
         }
-        (previous, before) = (Some((e, t_s)), change);
+        (previous, before) = (Some(solved), change);
     }
     out
 }
@@ -223,6 +274,16 @@ fn phi(y: f64) -> f64 {
     } else {
         (-(-y).ln_1p() - y) / (y * y)
     }
+}
+
+/// One node count's CoR: `e`, `T_s`, the Picard iterations' residual in `e`, and `q`, `Z` at
+/// the separation.
+struct Solved {
+    e: f64,
+    t_s: Option<f64>,
+    residual: f64,
+    q_s: f64,
+    z_s: f64,
 }
 
 /// The model's parameters.
@@ -258,10 +319,19 @@ struct Part {
     w: f64,
     t: f64,
     f: f64,
-    /// `W` and `T` at the separation, where it came within the part.
-    separated: Option<(f64, f64)>,
+    /// The separation, where it came within the part.
+    separated: Option<Separation>,
     /// The Picard iterations' last changes in `W` so far, summed.
     residual: f64,
+}
+
+/// `W`, `T`, `q` and `Z` at the separation.
+#[derive(Clone, Copy)]
+struct Separation {
+    w: f64,
+    t: f64,
+    q: f64,
+    z: f64,
 }
 
 /// `|Z|`, `|Z|^p`, the sign of `Z` and `h` at a node.
@@ -317,21 +387,26 @@ impl Coefficients {
         }
     }
 
-    /// `e`, `T_s` and the Picard iterations' residual in `e` on `r`'s nodes.
-    fn solve(&self, r: &Rung) -> Result<(f64, Option<f64>, f64), ModelError> {
+    /// The CoR on `r`'s nodes, unchecked.
+    fn solve(&self, r: &Rung) -> Result<Solved, ModelError> {
         let loading = match self.kind {
             ModelKind::Shccm if self.beta == 0.0 => self.hunt_crossley(r),
             _ => self.searched_loading(r)?,
         };
         let one = self.unloading_before_root(r, &loading)?;
-        let (w_s, t_s, residual) = match one.separated {
-            Some((w, t)) => (w, t, one.residual),
+        let (at, residual) = match one.separated {
+            Some(at) => (at, one.residual),
             None => self.unloading_after_root(r, &one)?,
         };
-        let e = (2.0 * w_s.max(0.0)).sqrt();
-        // `de = dW / e`.
-        let residual = residual / e.max(f64::MIN_POSITIVE);
-        Ok((e, self.duration.then_some(t_s), residual))
+        let e = (2.0 * at.w.max(0.0)).sqrt();
+        Ok(Solved {
+            e,
+            t_s: self.duration.then_some(at.t),
+            // `de = dW / e`.
+            residual: residual / e.max(f64::MIN_POSITIVE),
+            q_s: at.q,
+            z_s: at.z,
+        })
     }
 
     /// The NDBWSHCCM's loading in closed form, and its duration `∫ dV / F` over
@@ -483,12 +558,11 @@ impl Coefficients {
             let (z_abs, zp, sign) = (u_m * c2 * c2, pw.get(self.p), -1.0);
             z[k] = Hysteretic { z_abs, zp, sign, h };
         }
-        let z_end = -u_m * b.cos().powi(4);
+        let z_at = |s: f64| -u_m * (a + half * (s + 1.0)).cos().powi(4);
         let panel = Panel { r, half, from };
-        panel.solve(self, &dq[..n], &z[..n], z_end)
+        panel.solve(self, (&dq[..n], &z[..n]), &z_at)
     }
 
-    /// The part with `Z >= 0`, in `t` with `q = q_0 + t^4`, up to the separation.
     /// `dq/dt` and the hysteretic element at the nodes of `t ∈ [0, 2 half]`, `Z = t^4`.
     fn after_root_nodes(
         &self,
@@ -507,8 +581,9 @@ impl Coefficients {
         }
     }
 
-    /// Returns `W`, `T` and the Picard residual at the separation.
-    fn unloading_after_root(&self, r: &Rung, one: &Part) -> Result<(f64, f64, f64), ModelError> {
+    /// The part with `Z >= 0`, in `t` with `Z = t^4`, up to the separation: there, `W`, `T`,
+    /// `q` and `Z`, and the Picard residual.
+    fn unloading_after_root(&self, r: &Rung, one: &Part) -> Result<(Separation, f64), ModelError> {
         let (n, q0) = (r.n, one.q);
         let inv_p = 1.0 / self.p.exponent();
         let (ka, kb) = (self.kappa.powf(inv_p), (1.0 - self.kappa).powf(inv_p));
@@ -538,10 +613,16 @@ impl Coefficients {
             z_end = (2.0 * half).powi(4);
             self.after_root_nodes(r, half, &mut dq, &mut z);
         }
+        let z_at = |s: f64| (half * (s + 1.0)).powi(4);
         let panel = Panel { r, half, from: one };
-        let end = panel.solve(self, &dq[..n], &z[..n], z_end)?;
-        let (w_s, t_s) = end.separated.unwrap_or((end.w, end.t));
-        Ok((w_s, t_s, end.residual))
+        let end = panel.solve(self, (&dq[..n], &z[..n]), &z_at)?;
+        let at = end.separated.unwrap_or(Separation {
+            w: end.w,
+            t: end.t,
+            q: end.q,
+            z: z_end,
+        });
+        Ok((at, end.residual))
     }
 }
 
@@ -658,14 +739,13 @@ struct Panel<'a> {
 
 impl Panel<'_> {
     /// `q`, `W` and `T` over the panel from `dq` (`dq/ds` at the nodes) and the hysteretic
-    /// element there; `z_end` is `Z` at the panel's end. Where `F` turns non-positive by the
+    /// element there; `z_at(s)` is `Z` at `s ∈ [-1, 1]`. Where `F` turns non-positive by the
     /// end, the separation is located on the interpolant of `F`.
     fn solve(
         &self,
         k: &Coefficients,
-        dq: &[f64],
-        z: &[Hysteretic],
-        z_end: f64,
+        (dq, z): (&[f64], &[Hysteretic]),
+        z_at: &dyn Fn(f64) -> f64,
     ) -> Result<Part, ModelError> {
         let (r, n, half, from) = (self.r, self.r.n, self.half, self.from);
         let mut q = [0.0; MAX_N];
@@ -699,11 +779,14 @@ impl Panel<'_> {
         }
         let q_end = from.q + half * r.total(dq);
         let w_end = from.w + half * r.total(&w_rhs[..n]);
+        let z_end = z_at(1.0);
         let f_end = k.force(q_end, z_end, w_end);
         let separated = (f_end <= 0.0).then(|| {
             let (w_rhs, dt) = (&w_rhs[..n], &dt[..n]);
             if f_end == 0.0 {
-                return (w_end, from.t + half * r.total(dt));
+                let t = from.t + half * r.total(dt);
+                let (w, q, z) = (w_end, q_end, z_end);
+                return Separation { w, t, q, z };
             }
             // The first crossing: bracketed by the first node where `F <= 0` (a tiny `F`
             // near the end can carry the interpolant's own roots).
@@ -715,8 +798,12 @@ impl Panel<'_> {
                 None => (r.x[n - 1], force[n - 1]),
             };
             let s = root(&r.coefficients(&force[..n])[..n], lo, hi);
-            let w_s = from.w + half * r.integral_to(w_rhs, s);
-            (w_s, from.t + half * r.integral_to(dt, s))
+            Separation {
+                w: from.w + half * r.integral_to(w_rhs, s),
+                t: from.t + half * r.integral_to(dt, s),
+                q: from.q + half * r.integral_to(dq, s),
+                z: z_at(s),
+            }
         });
         Ok(Part {
             q: q_end,

@@ -61,6 +61,8 @@ pub struct Run {
     pub double_double: bool,
     /// Why the double-double retry of an unmet check reported nothing, where it was due.
     pub double_double_declined: Option<DdDeclined>,
+    /// Whether `e` and `t_s` came from the phase path (`bw_models::Settings::phase`).
+    pub phase: bool,
     /// Sampled trajectory (only when an output asks for it).
     pub trajectory: Vec<Sample>,
     /// The contacts of a `[sequence]` scene with the displacement (m) at each separation.
@@ -169,6 +171,7 @@ impl Run {
             tighter_failed: None,
             double_double: false,
             double_double_declined: None,
+            phase: false,
             trajectory: Vec::new(),
             bounces: Vec::new(),
             interpolation: None,
@@ -607,6 +610,7 @@ fn record(
         tighter_failed: impact.tighter_failed,
         double_double: impact.double_double,
         double_double_declined: impact.double_double_declined,
+        phase: impact.phase,
         trajectory,
         bounces: Vec::new(),
         interpolation: None,

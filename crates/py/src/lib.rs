@@ -150,7 +150,8 @@ const GAVE_UP: [&str; 5] = ["none", "noise", "too-few-speeds", "not-smooth", "bu
 /// `check` (codes into `CHECKS`), `tighter_failed_rtol` (the rtol of a tighter run under
 /// `e_tol` that failed; NaN where none did), `tighter_out_of_steps` (whether it ran out of
 /// `max_steps`), `double_double` (whether the reported run is the double-double one,
-/// `[solver] double_double`), `double_double_declined` (codes into `DECLINED`), `rhs_evals`, `interpolated` (whether `e` and `t_s` came from
+/// `[solver] double_double`), `double_double_declined` (codes into `DECLINED`), `phase`
+/// (whether the phase path served it, `[solver] phase`), `rhs_evals`, `interpolated` (whether `e` and `t_s` came from
 /// a sweep's interpolant), `sweep_gave_up` (codes into `GAVE_UP`) and `outcome` (codes into `"separated"`, `"settled"`, `"horizon"`,
 /// `"failed"`).
 #[pyfunction]
@@ -209,6 +210,8 @@ fn cor<'py>(
     out.set_item("tighter_out_of_steps", PyArray1::from_vec(py, out_of_steps))?;
     let double_double: Vec<bool> = runs.iter().map(|r| r.double_double).collect();
     out.set_item("double_double", PyArray1::from_vec(py, double_double))?;
+    let phase: Vec<bool> = runs.iter().map(|r| r.phase).collect();
+    out.set_item("phase", PyArray1::from_vec(py, phase))?;
     let declined = |r: &simulate::Run| {
         let name = r.double_double_declined.map_or("none", |d| d.name());
         DECLINED.iter().position(|n| *n == name).unwrap_or(0) as u8

@@ -116,6 +116,10 @@ def test_each_cor_carries_its_error_estimate():
         double = bwc.cor("shccm", hc, solver={"series": False, "e_tol": 1e-15, "double_double": False})
     assert not double["double_double"][0] and double["check"][0] == "unmet"
     assert precise["double_double_declined"][0] == double["double_double_declined"][0] == "none"
+    # The phase path where asked for: the same CoR without time steps, checked to e_tol.
+    phase = bwc.cor("shccm", hc, solver={"phase": True})
+    assert phase["phase"][0] and not checked["phase"][0] and phase["rhs_evals"][0] == 0
+    assert phase["check"][0] == "met" and abs(phase["e"][0] - want) < 1e-10
 
 
 def test_a_stiff_unmet_cor_says_why_double_double_was_not_tried():

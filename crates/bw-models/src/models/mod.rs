@@ -52,6 +52,17 @@ pub trait CollisionModel<const N: usize>: System<N> {
     ) -> Option<Result<crate::Impact<N>, crate::precise::DdFailure>> {
         None
     }
+    /// The crate's phase path of the nondimensional models for unforced impacts
+    /// ([`Settings::phase`]; private as [`Self::series_impact`]): the impact where the path
+    /// applies and its check (if any) is met, `None` otherwise.
+    #[doc(hidden)]
+    fn phase_impact(
+        &self,
+        _: crate::series::Private,
+        _settings: &Settings,
+    ) -> Option<crate::Impact<N>> {
+        None
+    }
     /// Whether the input is constant at all times.
     fn input_is_constant(&self) -> bool {
         self.input_constant_after() == Some(f64::NEG_INFINITY)

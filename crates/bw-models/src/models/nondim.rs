@@ -9,7 +9,7 @@ use crate::laws::hysteresis;
 use crate::params::{ModelKind, NondimParams};
 use crate::power::{Pow, Powers};
 use crate::series::SeriesRun;
-use crate::{ModelError, Nondim, Settings, State};
+use crate::{Impact, ModelError, Nondim, Settings, State};
 use bwc_ode::{Matrix, System};
 
 /// The nondimensional parameters both ND models use, with the exponents classified once.
@@ -180,6 +180,12 @@ impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
     ) -> Option<SeriesRun<3>> {
         crate::series::impact(self, settings)
     }
+    fn phase_impact(&self, _: crate::series::Private, settings: &Settings) -> Option<Impact<3>> {
+        let params = NondimParams::new(ModelKind::Shccm, self.k.nondim()).ok()?;
+        let cor = crate::phase::for_impact(&params, &self.input, settings)?;
+        let state = State::<3>::new(cor.q_s, cor.z_s, cor.e);
+        Some(crate::phase::impact_of(&cor, state, settings))
+    }
     fn jacobian(&self, _t: f64, y: &State<3>) -> Matrix<3> {
         let k = &self.k;
         let (x, z, v) = (y[0], y[1], y[2]);
@@ -308,6 +314,14 @@ impl<I: Input> CollisionModel<4> for Ndbwmcm<I> {
         settings: &Settings,
     ) -> Option<SeriesRun<4>> {
         crate::series::impact(self, settings)
+    }
+    fn phase_impact(&self, _: crate::series::Private, settings: &Settings) -> Option<Impact<4>> {
+        let params = NondimParams::new(ModelKind::Mcm, self.k.nondim()).ok()?;
+        let cor = crate::phase::for_impact(&params, &self.input, settings)?;
+        // With no input `R' = -σF = -σV'`, so `R = -σ (V + 1)` from `V(0) = -1`.
+        let r = -self.k.sigma * (cor.e + 1.0);
+        let state = State::<4>::new(r, cor.q_s, cor.z_s, cor.e);
+        Some(crate::phase::impact_of(&cor, state, settings))
     }
     fn jacobian(&self, _t: f64, y: &State<4>) -> Matrix<4> {
         let k = &self.k;

@@ -9,7 +9,7 @@ use crate::laws::{hysteresis, Bwmcl, Bwshccl};
 use crate::params::{ModelKind, NondimParams, PhysicalParams};
 use crate::power::Pow;
 use crate::series::SeriesRun;
-use crate::{ModelError, Settings, State};
+use crate::{Impact, ModelError, Settings, State};
 use bwc_ode::System;
 
 /// BWSHCCM (eq:EBWSHCCM) in SI units, states `(x, z, v)`: the BWSHCCL driven by `v`, and
@@ -102,6 +102,15 @@ impl<I: Input> CollisionModel<3> for Bwshccm<I> {
             .ok()?
             .series_impact(key, settings)?;
         Some(in_si(run, self.state_scale(), self.scales.t_c))
+    }
+    fn phase_impact(&self, key: crate::series::Private, settings: &Settings) -> Option<Impact<3>> {
+        if !self.input.is_zero() {
+            return None;
+        }
+        let out = Ndbwshccm::new(&self.nd, crate::input::Zero)
+            .ok()?
+            .phase_impact(key, settings)?;
+        Some(phase_in_si(out, self.state_scale(), self.scales.t_c))
     }
     fn double_double_impact(
         &self,
@@ -208,6 +217,15 @@ impl<I: Input> CollisionModel<4> for Bwmcm<I> {
             .series_impact(key, settings)?;
         Some(in_si(run, self.state_scale(), self.scales.t_c))
     }
+    fn phase_impact(&self, key: crate::series::Private, settings: &Settings) -> Option<Impact<4>> {
+        if !self.input.is_zero() {
+            return None;
+        }
+        let out = Ndbwmcm::new(&self.nd, crate::input::Zero)
+            .ok()?
+            .phase_impact(key, settings)?;
+        Some(phase_in_si(out, self.state_scale(), self.scales.t_c))
+    }
     fn double_double_impact(
         &self,
         _: crate::series::Private,
@@ -250,17 +268,28 @@ fn dd_in_si<I: Input, const N: usize>(
         time_scale: scales.t_c,
     };
     let run = crate::precise::run_model((kind, *nd.get(), &u), ext, settings, state_of)?;
-    Some(run.map(|out| crate::Impact {
+    Some(run.map(|out| Impact {
         t_s: out.t_s.map(|t| t * scales.t_c),
         ..out
     }))
+}
+
+/// A phase impact of the nondimensional model in the SI model's units: times times `T_c`,
+/// each state component times its scale (Table 1).
+fn phase_in_si<const N: usize>(out: Impact<N>, scale: State<N>, t_c: f64) -> Impact<N> {
+    Impact {
+        t_s: out.t_s.map(|t| t * t_c),
+        t_s_error: out.t_s_error.map(|t| t * t_c),
+        state: out.state.component_mul(&scale),
+        ..out
+    }
 }
 
 /// A series run of the nondimensional model in the SI model's units: times times `T_c`, each
 /// state component times its scale (Table 1; `e = V(T_s) = v(t_s) / v0` is the same).
 fn in_si<const N: usize>(run: SeriesRun<N>, scale: State<N>, t_c: f64) -> SeriesRun<N> {
     match run {
-        SeriesRun::Done(out) => SeriesRun::Done(crate::Impact {
+        SeriesRun::Done(out) => SeriesRun::Done(Impact {
             t_s: out.t_s.map(|t| t * t_c),
             state: out.state.component_mul(&scale),
             settled_at: out.settled_at.map(|t| t * t_c),

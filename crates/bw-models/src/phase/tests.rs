@@ -478,3 +478,109 @@ fn anywhere_in_the_admissible_set_it_answers_or_declines() {
         "{answered} answered, {declined} declined"
     );
 }
+
+/// The state at the separation against the time-domain path's (checked to `e_tol`): `X`, `Z`
+/// of the NDBWSHCCM and `Y`, `Z` of the NDBWMCM, on DSS (1) and DSA (1) at 2 m/s.
+#[test]
+fn the_state_at_the_separation_matches_the_time_domain_path() {
+    let settings = Settings::default();
+    for (params, state) in [
+        (dss1(2.0), {
+            let m = Ndbwshccm::new(&dss1(2.0), Zero).unwrap();
+            let s = impact(&m, &settings).unwrap().state;
+            (s[0], s[1])
+        }),
+        (mcm(true, 2.0), {
+            let m = Ndbwmcm::new(&mcm(true, 2.0), Zero).unwrap();
+            let s = impact(&m, &settings).unwrap().state;
+            (s[1], s[2])
+        }),
+    ] {
+        let cor = cor(&params, &to(1e-12)).unwrap();
+        assert!(
+            (cor.q_s - state.0).abs() < 1e-8,
+            "{cor:?} against {state:?}"
+        );
+        assert!(
+            (cor.z_s - state.1).abs() < 1e-8,
+            "{cor:?} against {state:?}"
+        );
+    }
+}
+
+/// `Settings::phase`: unforced CoRs of both models come from the phase path, checked to
+/// `e_tol`, and agree with the defaults; a forced impact, and one the path declines (a large
+/// `σ`), take the usual path.
+#[test]
+fn impact_takes_the_phase_path_where_asked_and_it_applies() {
+    let phase = Settings {
+        phase: true,
+        ..Settings::default()
+    };
+    let defaults = Settings::default();
+    let model = Ndbwshccm::new(&dss1(2.0), Zero).unwrap();
+    let (fast, usual) = (
+        impact(&model, &phase).unwrap(),
+        impact(&model, &defaults).unwrap(),
+    );
+    assert!(
+        fast.phase && !usual.phase && fast.check == crate::Check::Met,
+        "{fast:?}"
+    );
+    assert!((fast.e - usual.e).abs() < 2e-10 && fast.e_error.unwrap() <= 1e-10);
+    assert!((fast.t_s.unwrap() - usual.t_s.unwrap()).abs() < 1e-8);
+    assert!(
+        (fast.state - usual.state).abs().max() < 1e-8,
+        "{fast:?} {usual:?}"
+    );
+    let model = Ndbwmcm::new(&mcm(true, 2.0), Zero).unwrap();
+    let (fast, usual) = (
+        impact(&model, &phase).unwrap(),
+        impact(&model, &defaults).unwrap(),
+    );
+    assert!(fast.phase && (fast.e - usual.e).abs() < 2e-10, "{fast:?}");
+    // R = -σ (V + 1): the damper's stretch at the separation, as the time domain has it.
+    assert!(
+        (fast.state - usual.state).abs().max() < 1e-8,
+        "{fast:?} {usual:?}"
+    );
+
+    let forced = Ndbwshccm::new(&dss1(2.0), crate::input::Constant(0.3)).unwrap();
+    assert!(!impact(&forced, &phase).unwrap().phase);
+    let damped = shccm(3.0, 0.5, 50.0, 2.0, 1.5);
+    let out = impact(&Ndbwshccm::new(&damped, Zero).unwrap(), &phase).unwrap();
+    assert!(!out.phase && out.separated(), "{out:?}");
+
+    // An SI model through its nondimensional form, in seconds and SI states.
+    let si = crate::Bwshccm::new(&si_shccm(), 0.05, 2.0, Zero).unwrap();
+    let (fast, usual) = (
+        impact(&si, &phase).unwrap(),
+        impact(&si, &defaults).unwrap(),
+    );
+    assert!(fast.phase && (fast.e - usual.e).abs() < 2e-10, "{fast:?}");
+    let t = usual.t_s.unwrap();
+    assert!(
+        (fast.t_s.unwrap() - t).abs() < 1e-8 * t,
+        "{fast:?} {usual:?}"
+    );
+    let scale = usual.state.abs().max();
+    assert!(
+        (fast.state - usual.state).abs().max() < 1e-8 * scale,
+        "{fast:?} {usual:?}"
+    );
+}
+
+/// An SI BWSHCCM on the branch `γ = -β` (a 50 g ball at 2 m/s).
+fn si_shccm() -> crate::PhysicalParams {
+    let law = crate::Physical {
+        k: 1e6,
+        c: 1e3,
+        n: 1.5,
+        p: 1.5,
+        alpha: 0.5,
+        beta: 1e4,
+        gamma: -1e4,
+        a: 1.0,
+    };
+    crate::PhysicalParams::new(ModelKind::Shccm, law).unwrap()
+}

@@ -57,6 +57,9 @@ pub struct RunSummary {
     pub nondimensional: Option<NondimSummary>,
     /// How the run ended: `"separated"`, `"settled"`, `"horizon"` or `"failed"`.
     pub outcome: &'static str,
+    /// Whether `e` and `t_s` came from the phase path (`[solver] phase`: quadratures in phase
+    /// space, no time steps, so every count is 0 and `e_error` is its own estimate).
+    pub phase: bool,
     /// Rejected steps.
     pub rejected: u64,
     /// For a settled contact, where it came to rest (`F + u = 0`); null otherwise.
@@ -226,6 +229,7 @@ impl Summary {
                         out_of_steps: f.out_of_steps,
                     }),
                     double_double_declined: r.double_double_declined.map(|d| d.to_string()),
+                    phase: r.phase,
                     arithmetic: if r.double_double {
                         "double-double"
                     } else {
@@ -335,7 +339,7 @@ pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
             "jacobians": "count", "series_steps": "count", "source": "text",
             "rtol": "1", "e_error": "1", "t_s_error": t, "check": "text",
             "tighter_failed": {"rtol": "1", "out_of_steps": "true/false"}, "arithmetic": "text",
-            "double_double_declined": "text",
+            "double_double_declined": "text", "phase": "true/false",
             "interpolation": {"degree": "count", "estimate": "1", "from": "m/s", "to": "m/s"}},
         "sweep.csv": {"v_0": "m/s", "e": "1", "t_d": "s", "t_s": t, "separated": "true/false",
             "name": "text", "outcome": "text", "source": "text"},

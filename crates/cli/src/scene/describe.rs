@@ -112,6 +112,7 @@ pub(crate) fn settings(s: &Settings) -> Value {
         "series": s.series,
         "e_tol": s.e_tol,
         "double_double": s.double_double,
+        "phase": s.phase,
     })
 }
 

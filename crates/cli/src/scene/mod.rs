@@ -10,7 +10,7 @@
 //! [input]                    # optional: constant | gravity | arctan | table | sum
 //! kind = "gravity"
 //! [solver]                   # optional: method, rtol, atol, max_step, t_max, max_steps, stop_at_kinks,
-//!                            #   switch_when_stiff, series, e_tol (0: off), double_double
+//!                            #   switch_when_stiff, series, e_tol (0: off), double_double, phase
 //! [output]                   # optional: trajectory, dt, loops, sweep, plots
 //! [sweep]                    # optional: interpolate (default true), tolerance (default e_tol / 10)
 //! ```

@@ -22,11 +22,12 @@ pub struct RawSolver {
     pub series: Option<Spanned<bool>>,
     pub e_tol: Option<Num>,
     pub double_double: Option<Spanned<bool>>,
+    pub phase: Option<Spanned<bool>>,
 }
 
 /// Parses a `[solver]`-like table (`method`, `rtol`, `atol`, `max_step`, `t_max`, `max_steps`,
 /// `stop_at_kinks`, `switch_when_stiff`, `series`, `e_tol`: 0 for one run at `rtol`,
-/// `double_double`) over `defaults`.
+/// `double_double`, `phase`) over `defaults`.
 pub(crate) fn solver_settings(
     ctx: &Ctx,
     table: &Option<Spanned<RawSolver>>,
@@ -79,6 +80,9 @@ pub(crate) fn solver_settings(
     }
     if let Some(v) = &r.double_double {
         s.double_double = *v.get_ref();
+    }
+    if let Some(v) = &r.phase {
+        s.phase = *v.get_ref();
     }
     if let Some(v) = ctx.opt(&r.e_tol, &key("e_tol"))? {
         s.e_tol = (v != 0.0).then_some(v);

@@ -678,3 +678,37 @@ fn a_stiff_unmet_cor_says_why_double_double_was_not_tried() {
     assert_eq!(run["check"], "met", "{run}");
     assert!(run["double_double_declined"].is_null(), "{run}");
 }
+
+/// `[solver] phase = true`: the Hunt-Crossley scene's CoR comes from the phase path (the JSON
+/// says so, with no steps), matches the closed form and the default run, and a forced scene
+/// keeps the usual path.
+#[test]
+fn the_phase_path_where_solver_asks_for_it() {
+    let dir = scratch("phase");
+    let hc = "model = \"shccm\"\n[nondimensional]\nB = 0\nGamma = 0\nkappa = 0.5\nsigma = 0.5\nn = 1\np = 1.5\n";
+    let scene = dir.join("hc.toml");
+    let run_of = |text: &str| {
+        std::fs::write(&scene, text).unwrap();
+        json(&simulate(&["run", scene.to_str().unwrap(), "--json"]))["runs"][0].clone()
+    };
+    let phase = run_of(&format!("{hc}[solver]\nphase = true\n"));
+    let usual = run_of(hc);
+    assert_eq!(
+        (&phase["phase"], &usual["phase"]),
+        (&true.into(), &false.into())
+    );
+    assert_eq!(
+        (&phase["check"], &phase["rhs_evals"]),
+        (&"met".into(), &0.into()),
+        "{phase}"
+    );
+    let e = phase["e"].as_f64().unwrap();
+    assert!((e - 0.748434931597434).abs() < 1e-10, "{phase}");
+    assert!(
+        (e - usual["e"].as_f64().unwrap()).abs() < 1e-10,
+        "{phase} {usual}"
+    );
+    assert!(phase["e_error"].as_f64().unwrap() <= 1e-10, "{phase}");
+    let forced = run_of(&format!("{hc}U = 0.1\n[solver]\nphase = true\n"));
+    assert_eq!(forced["phase"], false, "{forced}");
+}

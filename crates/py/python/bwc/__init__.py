@@ -92,7 +92,9 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     check stayed ``"unmet"``, why that retry reported nothing: ``"stiff"`` (not tried: a run
     switched to RODAS4, and the double-double path is explicit), ``"no-path"``, ``"failed"``,
     ``"steps-grew"`` (a tighter run needed far more steps than the one before it) or
-    ``"disagreed"``; ``"none"`` otherwise), ``rhs_evals`` (int, of every run behind a
+    ``"disagreed"``; ``"none"`` otherwise), ``phase`` (bool: the CoR came from the phase
+    path, quadratures without time steps, which ``solver["phase"] = True`` asks for where the
+    input is zero; its ``rhs_evals`` are 0), ``rhs_evals`` (int, of every run behind a
     CoR), ``interpolated`` (bool), ``sweep_gave_up`` (for a speed the sweep tried to
     interpolate and simulated instead, why: ``"noise"`` (values noisier than
     ``sweep["tolerance"]``), ``"too-few-speeds"`` (a kink or steep stretch: more speeds help),
