@@ -77,9 +77,9 @@ pub struct Settings {
     /// [`crate::impact_at`]) by the phase path ([`crate::phase`]): `e` and `t_s` as quadratures
     /// in phase space, checked to `e_tol` (without `e_tol`, one node count chosen from `rtol`,
     /// unchecked). Where it declines or its check is not met, the impact takes the usual path.
-    /// Off by default: 4.6-9x faster than plain DOP853 at equal error on the paper's fits
+    /// Off by default: 4.3-9x faster than plain DOP853 at equal error on the paper's fits
     /// (BENCHMARKS.md, "Session 30"), but younger than the series path, and on the stress
-    /// sweep one checked result in about 14,000 was three times its estimate off (within
+    /// sweep one checked result in about 15,000 was seven times its estimate off (within
     /// `e_tol`; STABILITY.md, "Session 30").
     pub phase: bool,
 }

@@ -46,9 +46,9 @@
 //! [`crate::impact`] takes this path for unforced CoRs under [`crate::Settings::phase`] (off
 //! by default), falling back to the usual path where it declines or its check is unmet.
 //!
-//! On Table 3's DSS (1) fits of both models and DSA (1)'s NDBWMCM this is 6.2-9.1 times faster
+//! On Table 3's DSS (1) fits of both models and DSA (1)'s NDBWMCM this is 5.5-9.1 times faster
 //! than plain DOP853 at equal error in `e`, from 7e-5 down; on DSA (1)'s NDBWSHCCM (`Γ != -B`,
-//! its loading searched) 4.6-5.0 times (BENCHMARKS.md, "Session 30").
+//! its loading searched) 4.3-5.0 times (BENCHMARKS.md, "Session 30").
 //!
 //! ```
 //! use bw_models::phase::{self, PhaseSettings};
@@ -70,11 +70,16 @@ use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
 
 /// How much larger than the tolerance the change before the last may be in a check.
 const STALL: f64 = 1e3;
-/// Newton steps allowed for the search of the maximum compression.
-const MAX_NEWTON: usize = 40;
+/// Newton steps allowed for the search of the maximum compression (it takes 3-6 where it
+/// converges at all).
+const MAX_NEWTON: usize = 12;
 /// The largest `(B + Γ) |Z|^n` at the maximum compression the phase path takes: nearer the
 /// saturation `dq/dZ = 1 / h` grows without bound and the loading in `Z` converges slowly.
 const SATURATED: f64 = 0.5;
+/// The same for the search's first guess, a little above [`SATURATED`] (the guess can be low).
+const EARLY_SATURATED: f64 = 0.6;
+/// Why a loading near saturation is declined.
+const SATURATION: &str = "the loading nears the hysteresis' saturation, where Z is a poor variable (B + Gamma too large for the phase path)";
 
 /// What [`cor`] computes, and how carefully.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -471,6 +476,11 @@ impl Coefficients {
         // To first order in `B + Γ`, `|q| = u + (B + Γ) u^(n+1) / (n + 1)`.
         let u_guess = x_m * (1.0 - self.beta * self.n.of_abs(x_m) / (self.n.exponent() + 1.0));
         let mut u_m = u_guess.max(0.5 * x_m).min(0.9 * saturation);
+        // The guess is within a few per cent of `u_m` off saturation: decline a loading that
+        // will end near it before the search spends its steps.
+        if self.beta * self.n.of_abs(u_m) > EARLY_SATURATED {
+            return Err(not_applicable(SATURATION));
+        }
         let mut nodes = LoadingNodes::default();
         for _ in 0..MAX_NEWTON {
             let (w_end, slope, change) = nodes.solve(self, r, u_m, &factors)?;
@@ -484,9 +494,7 @@ impl Coefficients {
             };
             if w_end.abs() <= miss.max(4.0 * f64::EPSILON) {
                 if self.beta * self.n.of_abs(u_m) > SATURATED {
-                    return Err(not_applicable(
-                        "the loading nears the hysteresis' saturation, where Z is a poor variable (B + Gamma too large for the phase path)",
-                    ));
+                    return Err(not_applicable(SATURATION));
                 }
                 let t = if self.duration { nodes.time(r) } else { 0.0 };
                 let (q_m, residual) = (nodes.q_end, change + w_end.abs());

@@ -22,25 +22,55 @@ pub(super) fn picard(
     w: &mut [f64],
     rhs: &mut [f64],
 ) -> Result<f64, ModelError> {
-    let mut next = [0.0; MAX_N];
-    let next = &mut next[..r.n];
+    let n = r.n;
+    let (mut next, mut g_last, mut f_last) = ([0.0; MAX_N], [0.0; MAX_N], [0.0; MAX_N]);
     r.cumulative(f0, half, w);
     w.iter_mut().for_each(|wk| *wk += w0);
-    for _ in 0..MAX_PICARD {
+    let (mut best, mut stalled) = (f64::INFINITY, 0);
+    for i in 0..MAX_PICARD {
         for (((rk, &fk), &gk), &wk) in rhs.iter_mut().zip(f0).zip(g).zip(w.iter()) {
             *rk = fk - gk * (2.0 * wk).max(0.0).sqrt();
         }
-        r.cumulative(rhs, half, next);
-        let (mut change, mut size) = (0.0f64, 0.0f64);
-        for (wk, &nk) in w.iter_mut().zip(next.iter()) {
-            let updated = w0 + nk;
-            change = change.max((updated - *wk).abs());
-            size = size.max(updated.abs());
-            *wk = updated;
+        r.cumulative(rhs, half, &mut next[..n]);
+        next[..n].iter_mut().for_each(|x| *x += w0);
+        // The residual `G(W) - W` of the map `G` and its change since the last iteration.
+        let (mut change, mut size, mut dot, mut norm) = (0.0f64, 0.0f64, 0.0, 0.0);
+        for k in 0..n {
+            let f = next[k] - w[k];
+            let df = f - f_last[k];
+            (dot, norm) = (dot + f * df, norm + df * df);
+            change = change.max(f.abs());
+            size = size.max(next[k].abs());
+            f_last[k] = f;
         }
         // Below a few roundings of `W` the iteration only moves the last bits.
         if change <= settle.max(8.0 * f64::EPSILON * size) {
+            w.copy_from_slice(&next[..n]);
             return Ok(change);
+        }
+        // An iteration that has stopped contracting will not settle: decline after three
+        // iterations without a tenth off the best residual, not after `MAX_PICARD` (the usual
+        // path serves such damping).
+        if change < 0.9 * best {
+            (best, stalled) = (change, 0);
+        } else {
+            stalled += 1;
+            if stalled >= 3 {
+                break;
+            }
+        }
+        // Anderson's acceleration with one previous iterate, from the fourth iteration (the
+        // paper's fits settle in three or four plain ones): the combination of the last two
+        // images that minimises the residual, a secant step along the slowest direction.
+        let theta = if i >= 3 && norm > 0.0 {
+            dot / norm
+        } else {
+            0.0
+        };
+        for k in 0..n {
+            let image = next[k];
+            w[k] = image - theta * (image - g_last[k]);
+            g_last[k] = image;
         }
     }
     Err(super::not_applicable(
