@@ -490,7 +490,7 @@ impl Coefficients {
         let (ka, kb) = (self.kappa.powf(inv_p), (1.0 - self.kappa).powf(inv_p));
         // Where `F_el` would vanish with `h = 1` (`q = q_0 + Z`); `h <= 1` only moves `q` on
         // faster, so `F_el <= 0` there.
-        let z_end = (-ka * q0 / (ka + kb)).max(0.0);
+        let mut z_end = (-ka * q0 / (ka + kb)).max(0.0);
         if self.beta * self.n.of_abs(z_end) >= 0.99 {
             return Err(not_applicable(
                 "the unloading nears the hysteresis' saturation (B + Gamma too large for the phase path)",
@@ -499,7 +499,6 @@ impl Coefficients {
         let (mut dq, mut z) = ([0.0; MAX_N], [Hysteretic::default(); MAX_N]);
         let mut half = 0.5 * z_end.sqrt().sqrt();
         self.after_root_nodes(r, half, &mut dq, &mut z);
-        let mut z_end = z_end;
         let q_end = q0 + half * r.total(&dq[..n]);
         if q_end > 0.0 {
             // With `h < 1`, `q` passes 0 first, a branch point of `|q|^p` inside the panel:
@@ -578,11 +577,17 @@ impl Panel<'_> {
         let w_end = from.w + half * r.total(&w_rhs[..n]);
         let z_end = z_at(1.0);
         let f_end = k.force(q_end, z_end, w_end);
+        // `T` at `s` (`None`: the panel's end), only where asked for: each reading away from
+        // the end is a transform of its integrand.
+        let t_at = |s: Option<f64>| match (k.duration, s) {
+            (false, _) => 0.0,
+            (true, None) => from.t + half * r.total(&dt[..n]),
+            (true, Some(s)) => from.t + half * r.integral_to(&dt[..n], s),
+        };
         let separated = (f_end <= 0.0).then(|| {
-            let (w_rhs, dt) = (&w_rhs[..n], &dt[..n]);
+            let w_rhs = &w_rhs[..n];
             if f_end == 0.0 {
-                let t = from.t + half * r.total(dt);
-                let (w, q, z) = (w_end, q_end, z_end);
+                let (w, t, q, z) = (w_end, t_at(None), q_end, z_end);
                 return Separation { w, t, q, z };
             }
             // The first crossing: bracketed by the first node where `F <= 0` (a tiny `F`
@@ -597,7 +602,7 @@ impl Panel<'_> {
             let s = root(&r.coefficients(&force[..n])[..n], lo, hi);
             Separation {
                 w: from.w + half * r.integral_to(w_rhs, s),
-                t: from.t + half * r.integral_to(dt, s),
+                t: t_at(Some(s)),
                 q: from.q + half * r.integral_to(dq, s),
                 z: z_at(s),
             }
@@ -605,7 +610,7 @@ impl Panel<'_> {
         Ok(Part {
             q: q_end,
             w: w_end,
-            t: from.t + half * r.total(&dt[..n]),
+            t: t_at(None),
             f: f_end,
             separated,
             residual: from.residual + change,

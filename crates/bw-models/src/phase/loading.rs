@@ -86,18 +86,18 @@ impl Coefficients {
         if self.beta * self.n.of_abs(u_m) > EARLY_SATURATED {
             return Err(not_applicable(SATURATION));
         }
+        // `W` starts at 1/2: a few of its roundings are as close to 0 as it gets. `T` needs
+        // more: its integrand `1 / sqrt(2W)` turns a miss `δ` at the end into about `sqrt(δ)`;
+        // the Newton steps converge quadratically, so that costs one step more.
+        let miss = match self.duration {
+            true => self.settle * self.settle,
+            false => self.settle,
+        }
+        .max(4.0 * f64::EPSILON);
         let mut nodes = LoadingNodes::default();
         for _ in 0..MAX_NEWTON {
             let (w_end, slope, change) = nodes.solve(self, r, u_m, &factors)?;
-            // `W` starts at 1/2: a few of its roundings are as close to 0 as it gets. `T` needs
-            // more: its integrand `1 / sqrt(2W)` turns a miss `δ` at the end into about
-            // `sqrt(δ)`; the Newton steps converge quadratically, so that costs one step more.
-            let miss = if self.duration {
-                self.settle * self.settle
-            } else {
-                self.settle
-            };
-            if w_end.abs() <= miss.max(4.0 * f64::EPSILON) {
+            if w_end.abs() <= miss {
                 if self.beta * self.n.of_abs(u_m) > SATURATED {
                     return Err(not_applicable(SATURATION));
                 }
