@@ -4,7 +4,9 @@
 //! how many it takes, why it declines the rest, and whether it agrees where both report a met
 //! check. Lists every case where the two differ by more than `1e-9 + e_error`.
 //!
-//! `cargo run --release -p bwc-benches --bin phase-stress -- COUNT SEED`
+//! `cargo run --release -p bwc-benches --bin phase-stress -- COUNT SEED`, or `-- case SEED I`
+//! for one case: its parameters, the defaults' CoR and the phase path's, checked at several
+//! tolerances.
 
 use bw_models::phase::{self, PhaseSettings};
 use bw_models::{BaseMap, Check, ModelError};
@@ -65,7 +67,38 @@ fn verdict(seed: u64, i: u64) -> Option<Verdict> {
     })
 }
 
+/// `case SEED I`: one case in full.
+fn one_case(seed: u64, i: u64) {
+    let case = sample(seed, i);
+    println!("{:?} {:?} v0 = {} m/s", case.kind, case.base, case.v0);
+    let reference = run(&case);
+    println!(
+        "defaults: {:?} ({:?}, e_error {:?})",
+        reference.result, reference.check, reference.e_error
+    );
+    let Ok((params, _)) = BaseMap::new(case.kind, case.base).and_then(|m| m.at(case.v0)) else {
+        return;
+    };
+    println!("{:?}", params.get());
+    for tol in [1e-6, 1e-8, 1e-10, 1e-12] {
+        let settings = PhaseSettings {
+            tol,
+            check: true,
+            duration: true,
+        };
+        println!(
+            "phase at tol {tol:.0e}: {:?}",
+            phase::cor(&params, &settings)
+        );
+    }
+}
+
 fn main() {
+    let raw: Vec<String> = std::env::args().skip(1).collect();
+    if raw.len() == 3 && raw[0] == "case" {
+        let number = |s: &String| s.parse().expect("case SEED I");
+        return one_case(number(&raw[1]), number(&raw[2]));
+    }
     let args: Vec<u64> = std::env::args()
         .skip(1)
         .map(|a| a.parse().expect("COUNT SEED"))

@@ -20,7 +20,9 @@
 //!   `u_m^(p+1) = (p + 1) φ(-σ)`; its duration `∫ dV / F` is a quadrature in `ξ`,
 //!   `V = -1 + ξ^(p+1)`, which takes out the contact's branch point. Otherwise (the NDBWMCM,
 //!   or `Γ != -B`) `u_m = -Z_m` (where `dq/dT = 0`) is found by Newton steps on `W(u_m) = 0`,
-//!   with `W` on `-Z = u_m sin^4 φ`; a loading that comes near the saturation of `Z`
+//!   with `W` on `-Z = u_m sin^4 φ`, from a guess to first order in `B + Γ` and `σ`; each
+//!   step keeps the terms of `W` near the turn to `s^2` (`s` the distance to it), so two or
+//!   three steps settle. A loading that comes near the saturation of `Z`
 //!   (`(B + Γ)|Z_m|^n > 1/2`, where `Z` is a poor variable) is declined.
 //! * **Unloading with `Z < 0`** (`h = 1 + (B - Γ)|Z|^n`), in `θ ∈ [0, π/2]` with `-Z = u_m cos^4 θ`:
 //!   `dq/dθ = 4 u_m cos^3 θ sin θ / h`, `dW/dθ = (dW/dq) dq/dθ`, `dT/dθ = (dq/dθ) / sqrt(2W)`.
@@ -37,18 +39,22 @@
 //!
 //! Each part is a Chebyshev interpolant on `N` points of the first kind per panel (`N` from 8
 //! to 64, chosen from the tolerance; a check goes up the counts until two changes in a row are
-//! small). The part with `Z < 0`
+//! small). The searched loading takes the next count up: its integrand is peaked, and on one
+//! panel it converged more slowly than the unloading. The part with `Z < 0`
 //! has two panels, split at the real part of the nearest root of `h`, the singularity that
 //! bounds one interpolant's convergence there (one panel needs twice the points for the same
 //! error). `q` is a plain quadrature; `W` depends on itself only through the damping, and is
-//! found panel by panel by fixed-point (Picard) iteration from the undamped solution.
+//! found panel by panel by fixed-point (Picard) iteration from the undamped solution. For `e`
+//! alone the iterations stop on the contraction's estimate of what is left, and the search's
+//! last step needs no solve; `T` takes neither shortcut, as its integrand `1 / sqrt(2W)`
+//! magnifies what is left in `W` near the turn.
 //!
 //! [`crate::impact`] takes this path for unforced CoRs under [`crate::Settings::phase`] (off
 //! by default), falling back to the usual path where it declines or its check is unmet.
 //!
-//! On Table 3's DSS (1) fits of both models and DSA (1)'s NDBWMCM this is 5.5-9.1 times faster
-//! than plain DOP853 at equal error in `e`, from 7e-5 down; on DSA (1)'s NDBWSHCCM (`Γ != -B`,
-//! its loading searched) 4.3-5.0 times (BENCHMARKS.md, "Session 30").
+//! On Table 3's DSS (1) and DSA (1) fits of both models this is 5.7-12 times faster than plain
+//! DOP853 at equal error in `e`, from 6e-5 down to 1e-12 and beyond (BENCHMARKS.md,
+//! "Session 31").
 //!
 //! ```
 //! use bw_models::phase::{self, PhaseSettings};
@@ -66,7 +72,7 @@ mod loading;
 
 use crate::power::{Pow, Powers};
 use crate::{ModelError, ModelKind, Nondim, NondimParams};
-use chebyshev::{picard, root, rung, Rung, MAX_N, RUNGS};
+use chebyshev::{picard, root, rung, Rung, Settle, Start, MAX_N, RUNGS};
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
 
 /// How much larger than the tolerance the change before the last may be in a check.
@@ -116,7 +122,8 @@ pub struct PhaseCor {
     /// Whether `e_error` met the tolerance (checked runs only); if not, `e` is the result at
     /// the largest node count.
     pub tolerance_met: Option<bool>,
-    /// Chebyshev points per part of the reported result.
+    /// Chebyshev points per panel of the reported result's unloading (a searched loading
+    /// takes the next count up).
     pub nodes: usize,
     /// The law's displacement at the separation: `X` (NDBWSHCCM) or `Y` (NDBWMCM).
     pub q_s: f64,
@@ -262,6 +269,15 @@ fn nodes_for(tol: f64) -> usize {
     }
 }
 
+/// The loading's node count beside `n` for the unloading's panels: the next count up. The
+/// loading is one panel over `Z` from the contact to the maximum compression, and its
+/// integrand `F_el dq/dφ ∝ sin^(4p+3) φ cos φ` is peaked, so it converges more slowly than
+/// the unloading's two panels (on 12 points the loading was 1e-6 to 2e-6 off on DSA (1) and
+/// DSS (1)'s NDBWMCM, the unloading 1e-7).
+fn loading_nodes(n: usize) -> usize {
+    RUNGS.iter().copied().find(|&m| m > n).unwrap_or(MAX_N)
+}
+
 /// `φ(y) = (-ln(1 - y) - y) / y^2 = Σ_{k>=2} y^(k-2) / k`, by its series near 0 where the
 /// closed form cancels.
 fn phi(y: f64) -> f64 {
@@ -354,6 +370,25 @@ impl Coefficients {
         }
     }
 
+    /// The Picard iterations' stop at `tol`: on the contraction's estimate of what is left
+    /// for `e` alone; on the change, a hundred times lower, for `T`. What the iterations leave
+    /// in `W` is the same on every node count, so a check cannot see it, and `T`'s integrand
+    /// `1 / sqrt(2W)` magnifies it near the turn (on DSA (1)'s fits at 2 m/s and `tol` 1e-6,
+    /// the estimate at `tol / 100` left `T_s` 4.6e-10 off, ten times the check's change; a
+    /// change of `tol` left it 3.4e-10 off on every count from 16 points up).
+    fn picard_settle(&self, tol: f64) -> Settle {
+        match self.duration {
+            false => Settle {
+                tol,
+                estimated: true,
+            },
+            true => Settle {
+                tol: (0.01 * tol).max(1e-17),
+                estimated: false,
+            },
+        }
+    }
+
     /// `F_el` and the damping's coefficient `c` of `dW/dq = F_el - c sqrt(2W)` at `q`.
     fn terms(&self, q: f64, z: Hysteretic) -> (f64, f64) {
         self.terms_of(q, self.p.of_abs(q.abs()), z)
@@ -385,9 +420,10 @@ impl Coefficients {
 
     /// The CoR on `r`'s nodes, unchecked.
     fn solve(&self, r: &Rung) -> Result<Solved, ModelError> {
+        let up = rung(loading_nodes(r.n));
         let loading = match self.kind {
-            ModelKind::Shccm if self.beta == 0.0 => self.hunt_crossley(r),
-            _ => self.searched_loading(r)?,
+            ModelKind::Shccm if self.beta == 0.0 => self.hunt_crossley(up),
+            _ => self.searched_loading(up)?,
         };
         let one = self.unloading_before_root(r, &loading)?;
         let (at, residual) = match one.separated {
@@ -557,9 +593,9 @@ impl Panel<'_> {
         let change = picard(
             r,
             half,
-            (from.w, k.settle),
+            (from.w, k.picard_settle(k.settle)),
             (f0, g),
-            &mut w[..n],
+            (&mut w[..n], Start::Undamped),
             &mut w_rhs[..n],
         )?;
         let (mut dt, mut force) = ([0.0; MAX_N], [0.0; MAX_N]);

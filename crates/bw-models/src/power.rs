@@ -90,6 +90,15 @@ impl Powers {
         Self { a, log2: None }
     }
 
+    /// The base `a > 0` with its `log2 a` known.
+    #[inline]
+    pub(crate) fn with_log2(a: f64, log2: f64) -> Self {
+        Self {
+            a,
+            log2: Some(log2),
+        }
+    }
+
     /// `a^p`, bit for bit equal to `p.of_abs(a)`.
     #[inline]
     pub(crate) fn get(&mut self, p: Pow) -> f64 {

@@ -584,3 +584,133 @@ fn si_shccm() -> crate::PhysicalParams {
     };
     crate::PhysicalParams::new(ModelKind::Shccm, law).unwrap()
 }
+
+/// DSA (1)'s NDBWSHCCM with base parameters of Table 3.
+fn dsa1_shccm(v0: f64) -> NondimParams {
+    let base = BaseParams {
+        b_b: 1.04,
+        gamma_b: -1.02,
+        kappa: 0.362,
+        sigma_b: 0.017,
+        n: 1.01,
+        p: 1.67,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    BaseMap::new(ModelKind::Shccm, base)
+        .unwrap()
+        .at(v0)
+        .unwrap()
+        .0
+}
+
+/// For `e` alone the path takes shortcuts `T` cannot: the Picard iterations stop on the
+/// contraction's estimate, and the search's last step needs no solve. Against SciPy's DOP853
+/// on the three searched loadings, the estimate still covers the error, and one unchecked
+/// count still meets `tol`.
+#[test]
+fn e_alone_meets_the_scipy_references_within_its_estimate() {
+    let refs = DSA1_SHCCM_SCIPY
+        .iter()
+        .map(|&(v0, e, _)| (dsa1_shccm(v0), e))
+        .chain(MCM_SCIPY.iter().map(|&(dsa, v0, e, _)| (mcm(dsa, v0), e)));
+    for (params, e) in refs {
+        for tol in [1e-5, 1e-8, 1e-11] {
+            let alone = |check| PhaseSettings {
+                tol,
+                check,
+                duration: false,
+            };
+            let checked = cor(&params, &alone(true)).unwrap();
+            let here = format!("{:?}, tol {tol}: {checked:?}", params.get());
+            assert_eq!(checked.tolerance_met, Some(true), "{here}");
+            assert_eq!(checked.t_s, None, "{here}");
+            let error = (checked.e - e).abs();
+            assert!(
+                error <= checked.e_error.unwrap().max(1e-12) && error <= tol,
+                "{here}: {error} off {e}"
+            );
+            let one = cor(&params, &alone(false)).unwrap();
+            assert!((one.e - e).abs() <= tol, "{here}: unchecked {one:?}");
+        }
+    }
+}
+
+/// Simpson's rule for `∫_0^1 f` on `m` (even) intervals.
+fn simpson(f: impl Fn(f64) -> f64, m: usize) -> f64 {
+    let h = 1.0 / m as f64;
+    let weight = |i: usize| match i {
+        0 => 1.0,
+        i if i == m => 1.0,
+        i if i % 2 == 1 => 4.0,
+        _ => 2.0,
+    };
+    (0..=m).map(|i| weight(i) * f(i as f64 * h)).sum::<f64>() * h / 3.0
+}
+
+/// `mcm_compression`'s first-order dissipation, `σ a B(a, 3/2)` with `a = p / (p + 1)`,
+/// against `σ p ∫_0^1 y^(p-1) sqrt(1 - y^(p+1)) dy` by Simpson's rule, in `u` with `y = u^4 / 2`
+/// up to `y = 1/2` and in `s` with `y = 1 - s^2` beyond (both smooth: `y^(p-1) dy` becomes
+/// `u^(4p-1)`, the square root's branch at `y = 1` becomes `s sqrt(p + 1 + ...)`).
+#[test]
+fn the_ndbwmcm_first_order_dissipation_is_a_beta_function() {
+    for p in [1.2, 2.04, 3.5] {
+        let nd = Nondim {
+            b: 0.5,
+            gamma: -0.5,
+            kappa: 0.3,
+            sigma: 0.01,
+            n: 1.0,
+            p,
+        };
+        let k = Coefficients::new(ModelKind::Mcm, &nd, 1e-10, false);
+        let undamped = (0.5 * (p + 1.0)).powf(1.0 / (p + 1.0));
+        let closed = (undamped - k.mcm_compression()) / nd.sigma;
+        let g = |y: f64| y.powf(p - 1.0) * (1.0 - y.powf(p + 1.0)).max(0.0).sqrt();
+        let low = simpson(|u| g(0.5 * u.powi(4)) * 2.0 * u.powi(3), 2000);
+        let edge = 0.5f64.sqrt();
+        let high = simpson(
+            |x| g(1.0 - (edge * x).powi(2)) * 2.0 * edge * x * edge,
+            2000,
+        );
+        let quadrature = p * (low + high);
+        assert!(
+            (closed - quadrature).abs() < 1e-10,
+            "p = {p}: {closed} against {quadrature}"
+        );
+    }
+}
+
+/// The search starts within 5e-4 of the maximum compression it finds on DSA (1)'s fits (first
+/// order in `B + Γ` and in `σ`; the zeroth order alone was 5e-3 and 1.2e-2 off).
+#[test]
+fn the_first_guess_is_near_the_maximum_compression() {
+    for (params, kind) in [
+        (dsa1_shccm(2.0), ModelKind::Shccm),
+        (mcm(true, 2.0), ModelKind::Mcm),
+    ] {
+        let k = Coefficients::new(kind, params.get(), 1e-12, false);
+        let found = k.searched_loading(rung(32)).unwrap().u_m;
+        let guess = k.first_guess();
+        assert!(
+            ((guess - found) / found).abs() < 5e-4,
+            "{kind:?}: guess {guess}, found {found}"
+        );
+    }
+}
+
+/// [`loading::Slope::distance`] inverts `W(s) = a s + (2/3) c sqrt(2a) s^(3/2) + (c^2/3 +
+/// a'/2) s^2` short of the turn, and `W = -(a s - a' s^2 / 2)` past it.
+#[test]
+fn the_step_to_the_turn_inverts_the_expansion_of_w() {
+    let (a, c, da) = (1.3, 0.2, 0.7);
+    let slope = loading::Slope { a, c, da };
+    for s in [1e-2, 1e-3, 1e-4, 1e-6] {
+        let b = 2.0 / 3.0 * c * (2.0 * a).sqrt();
+        let short = a * s + b * s * f64::sqrt(s) + (c * c / 3.0 + 0.5 * da) * s * s;
+        let past = -(a * s - 0.5 * da * s * s);
+        let (to, back) = (slope.distance(short), slope.distance(past));
+        assert!(((to - s) / s).abs() < 1e-6, "s = {s}: {to}");
+        assert!(((back + s) / s).abs() < 1e-6, "s = {s}: {back}");
+    }
+}
