@@ -326,11 +326,10 @@ struct Loading {
 
 /// What each part hands on.
 struct Part {
-    /// `q`, `W`, `T` and `F` at the part's end.
+    /// `q`, `W` and `T` at the part's end.
     q: f64,
     w: f64,
     t: f64,
-    f: f64,
     /// The separation, where it came within the part.
     separated: Option<Separation>,
     /// The Picard iterations' last changes in `W` so far, summed.
@@ -418,6 +417,29 @@ impl Coefficients {
         }
     }
 
+    /// A function with the sign and the root of `F` at `q <= 0`, `Z` and `W`, smooth at
+    /// `q = 0`, to locate the separation on its interpolant. With `q <= 0`,
+    /// `F = a^p - b^p` for `a = (-q) (κ - σV)^(1/p)` and `b = (1 - κ)^(1/p) Z` (signed powers;
+    /// `σ = 0` in the NDBWMCM's `F = F_el`), so `a - b` has `F`'s sign and root without the
+    /// branch point of `|q|^p` at `q = 0`, next to which a CoR with `κ` near 1 separates. That
+    /// needs `κ - σV` away from 0: `σ <= κ / 2` does (`V <= 1`); otherwise `F` itself. With
+    /// `κ <= 1/2` the root is at `|q| >= Z (κ - σV)^(-1/p)`, away from `q = 0`, and `F`
+    /// serves without the powers.
+    fn crossing(&self, q: f64, z: f64, w: f64) -> f64 {
+        if self.kappa <= 0.5 {
+            return self.force(q, z, w);
+        }
+        let damped = match self.kind {
+            ModelKind::Shccm if self.sigma <= 0.5 * self.kappa => {
+                self.kappa - self.sigma * (2.0 * w).max(0.0).sqrt()
+            }
+            ModelKind::Shccm => return self.force(q, z, w),
+            ModelKind::Mcm => self.kappa,
+        };
+        let inv_p = 1.0 / self.p.exponent();
+        -q * damped.powf(inv_p) - (1.0 - self.kappa).powf(inv_p) * z
+    }
+
     /// The CoR on `r`'s nodes, unchecked.
     fn solve(&self, r: &Rung) -> Result<Solved, ModelError> {
         let up = rung(loading_nodes(r.n));
@@ -450,7 +472,6 @@ impl Coefficients {
             q: loading.q_m,
             w: 0.0,
             t: loading.t,
-            f: self.force(loading.q_m, -u_m, 0.0),
             separated: None,
             residual: loading.residual,
         };
@@ -500,19 +521,36 @@ impl Coefficients {
         panel.solve(self, (&dq[..n], &z[..n]), &z_at)
     }
 
-    /// `dq/dt` and the hysteretic element at the nodes of `t ∈ [0, 2 half]`, `Z = t^4`.
+    /// `t` at `s ∈ [-1, 1]` on `[0, t_end]`: `t_end u` with `u = (s + 1) / 2`, or, where the
+    /// panel ends at `q = 0`, `t_end (1 - (1 - u)^4)`, which makes `q` vanish like `(1 - u)^4`
+    /// there: the branch points of `|q|^p` and of the NDBWMCM's `|q|^(p-1)` at that end become
+    /// four times milder, as the map `Z = t^4` does at the other.
+    fn after_root_t(s: f64, (t_end, squeeze): (f64, bool)) -> f64 {
+        let u = 0.5 * (s + 1.0);
+        match squeeze {
+            false => t_end * u,
+            true => t_end * (1.0 - (1.0 - u).powi(4)),
+        }
+    }
+
+    /// `dq/ds` and the hysteretic element at the nodes of the panel `t ∈ [0, t_end]`
+    /// ([`Coefficients::after_root_t`]), `Z = t^4`.
     fn after_root_nodes(
         &self,
         r: &Rung,
-        half: f64,
+        (t_end, squeeze): (f64, bool),
         dq: &mut [f64; MAX_N],
         z: &mut [Hysteretic; MAX_N],
     ) {
         for k in 0..r.n {
-            let t = half * (r.x[k] + 1.0);
+            let t = Self::after_root_t(r.x[k], (t_end, squeeze));
+            let dt = match squeeze {
+                false => 0.5 * t_end,
+                true => 2.0 * t_end * (1.0 - 0.5 * (r.x[k] + 1.0)).powi(3),
+            };
             let mut pw = Powers::of(t * t * t * t);
             let h = 1.0 - self.beta * pw.get(self.n);
-            dq[k] = 4.0 * t * t * t / h;
+            dq[k] = 4.0 * t * t * t / h * dt;
             let (z_abs, zp, sign) = (t * t * t * t, pw.get(self.p), 1.0);
             z[k] = Hysteretic { z_abs, zp, sign, h };
         }
@@ -533,24 +571,29 @@ impl Coefficients {
             ));
         }
         let (mut dq, mut z) = ([0.0; MAX_N], [Hysteretic::default(); MAX_N]);
-        let mut half = 0.5 * z_end.sqrt().sqrt();
-        self.after_root_nodes(r, half, &mut dq, &mut z);
-        let q_end = q0 + half * r.total(&dq[..n]);
+        let mut map = (z_end.sqrt().sqrt(), false);
+        self.after_root_nodes(r, map, &mut dq, &mut z);
+        let q_end = q0 + r.total(&dq[..n]);
         if q_end > 0.0 {
             // With `h < 1`, `q` passes 0 first, a branch point of `|q|^p` inside the panel:
             // the panel ends there instead, where `F = -(1 - κ) Z^p < 0` still brackets the
-            // separation. (`dq` does not depend on `q`, so its interpolant locates the point.)
+            // separation, on a map that squares the branch point. (`dq` does not depend on
+            // `q`, so its interpolant locates the point.)
             let mut minus_q = [0.0; MAX_N];
-            r.cumulative(&dq[..n], half, &mut minus_q[..n]);
+            r.cumulative(&dq[..n], 1.0, &mut minus_q[..n]);
             minus_q[..n].iter_mut().for_each(|m| *m = -(*m + q0));
             let c = r.coefficients(&minus_q[..n]);
             let s = root(&c[..n], (-1.0, -q0), (1.0, -q_end));
-            half *= 0.5 * (s + 1.0);
-            z_end = (2.0 * half).powi(4);
-            self.after_root_nodes(r, half, &mut dq, &mut z);
+            map = (Self::after_root_t(s, map), true);
+            z_end = map.0.powi(4);
+            self.after_root_nodes(r, map, &mut dq, &mut z);
         }
-        let z_at = |s: f64| (half * (s + 1.0)).powi(4);
-        let panel = Panel { r, half, from: one };
+        let z_at = |s: f64| Self::after_root_t(s, map).powi(4);
+        let panel = Panel {
+            r,
+            half: 1.0,
+            from: one,
+        };
         let end = panel.solve(self, (&dq[..n], &z[..n]), &z_at)?;
         let at = end.separated.unwrap_or(Separation {
             w: end.w,
@@ -582,11 +625,11 @@ impl Panel<'_> {
         let (r, n, half, from) = (self.r, self.r.n, self.half, self.from);
         let mut q = [0.0; MAX_N];
         r.cumulative(dq, half, &mut q[..n]);
-        let (mut f0, mut g, mut f_el) = ([0.0; MAX_N], [0.0; MAX_N], [0.0; MAX_N]);
+        let (mut f0, mut g) = ([0.0; MAX_N], [0.0; MAX_N]);
         for i in 0..n {
             q[i] += from.q;
             let (fe, c) = k.terms(q[i], z[i]);
-            (f_el[i], f0[i], g[i]) = (fe, fe * dq[i], c * dq[i]);
+            (f0[i], g[i]) = (fe * dq[i], c * dq[i]);
         }
         let (mut w, mut w_rhs) = ([0.0; MAX_N], [0.0; MAX_N]);
         let (f0, g) = (&f0[..n], &g[..n]);
@@ -598,16 +641,11 @@ impl Panel<'_> {
             (&mut w[..n], Start::Undamped),
             &mut w_rhs[..n],
         )?;
-        let (mut dt, mut force) = ([0.0; MAX_N], [0.0; MAX_N]);
-        for i in 0..n {
-            let v = (2.0 * w[i]).max(0.0).sqrt();
-            if k.duration {
-                dt[i] = dq[i] / v;
+        let mut dt = [0.0; MAX_N];
+        if k.duration {
+            for i in 0..n {
+                dt[i] = dq[i] / (2.0 * w[i]).max(0.0).sqrt();
             }
-            force[i] = match k.kind {
-                ModelKind::Shccm => f_el[i] - g[i] / dq[i] * v,
-                ModelKind::Mcm => f_el[i],
-            };
         }
         let q_end = from.q + half * r.total(dq);
         let w_end = from.w + half * r.total(&w_rhs[..n]);
@@ -627,11 +665,17 @@ impl Panel<'_> {
                 return Separation { w, t, q, z };
             }
             // The first crossing: bracketed by the first node where `F <= 0` (a tiny `F`
-            // near the end can carry the interpolant's own roots).
+            // near the end can carry the interpolant's own roots), on the smooth stand-in
+            // for `F`.
+            let mut force = [0.0; MAX_N];
+            for i in 0..n {
+                force[i] = k.crossing(q[i], z[i].sign * z[i].z_abs, w[i]);
+            }
             let first = force[..n].iter().position(|&f| f <= 0.0);
-            let hi = first.map_or((1.0, f_end), |i| (r.x[i], force[i]));
+            let end = k.crossing(q_end, z_end, w_end);
+            let hi = first.map_or((1.0, end), |i| (r.x[i], force[i]));
             let lo = match first {
-                Some(0) => (-1.0, from.f),
+                Some(0) => (-1.0, k.crossing(from.q, z_at(-1.0), from.w)),
                 Some(i) => (r.x[i - 1], force[i - 1]),
                 None => (r.x[n - 1], force[n - 1]),
             };
@@ -647,7 +691,6 @@ impl Panel<'_> {
             q: q_end,
             w: w_end,
             t: t_at(None),
-            f: f_end,
             separated,
             residual: from.residual + change,
         })
