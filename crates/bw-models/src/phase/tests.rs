@@ -198,8 +198,8 @@ const DSA1_SHCCM_SCIPY: [(f64, f64, f64); 3] = [
     (5.0, 0.5957045215591756, 3.056995124973578),
 ];
 
-#[test]
-fn off_the_branch_gamma_equal_to_minus_b_the_loading_is_searched() {
+/// DSA (1)'s NDBWSHCCM with base parameters of Table 3.
+fn dsa1_shccm(v0: f64) -> NondimParams {
     let base = BaseParams {
         b_b: 1.04,
         gamma_b: -1.02,
@@ -210,10 +210,18 @@ fn off_the_branch_gamma_equal_to_minus_b_the_loading_is_searched() {
         u_b: 1.0,
         t_b: 1.0,
     };
-    let map = BaseMap::new(ModelKind::Shccm, base).unwrap();
+    BaseMap::new(ModelKind::Shccm, base)
+        .unwrap()
+        .at(v0)
+        .unwrap()
+        .0
+}
+
+#[test]
+fn off_the_branch_gamma_equal_to_minus_b_the_loading_is_searched() {
     for (v0, e, t_s) in DSA1_SHCCM_SCIPY {
         for tol in [1e-6, 1e-9, 1e-12] {
-            let cor = cor(&map.at(v0).unwrap().0, &to(tol)).unwrap();
+            let cor = cor(&dsa1_shccm(v0), &to(tol)).unwrap();
             let here = format!("v0 = {v0}, tol {tol}: {cor:?}");
             assert_eq!(cor.tolerance_met, Some(true), "{here}");
             let error = (cor.e - e).abs();
@@ -583,25 +591,6 @@ fn si_shccm() -> crate::PhysicalParams {
         a: 1.0,
     };
     crate::PhysicalParams::new(ModelKind::Shccm, law).unwrap()
-}
-
-/// DSA (1)'s NDBWSHCCM with base parameters of Table 3.
-fn dsa1_shccm(v0: f64) -> NondimParams {
-    let base = BaseParams {
-        b_b: 1.04,
-        gamma_b: -1.02,
-        kappa: 0.362,
-        sigma_b: 0.017,
-        n: 1.01,
-        p: 1.67,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
-    BaseMap::new(ModelKind::Shccm, base)
-        .unwrap()
-        .at(v0)
-        .unwrap()
-        .0
 }
 
 /// For `e` alone the path takes shortcuts `T` cannot: the Picard iterations stop on the
