@@ -13,6 +13,12 @@ the series path at rtol 1e-13 simulating every speed.
     cargo build --release -p bwc-cli
     python3 benches/sweep_bench.py target/release/bwc-simulate [ROUNDS]   # from the repository root
     python3 benches/sweep_bench.py target/release/bwc-simulate precision [ROUNDS] [COUNT]
+    python3 benches/sweep_bench.py target/release/bwc-simulate against OTHER_EXE [ROUNDS]
+    python3 benches/sweep_bench.py target/release/bwc-simulate phase [ROUNDS]
+
+`against` times the interpolated 20,000-speed sweeps of two builds in turns and says whether
+their outputs are identical; `phase` times them with the defaults and with
+`[solver] phase = true`.
 """
 
 import json
@@ -125,9 +131,35 @@ def precision_case(exe, rounds, model, base, v0):
         print(f"| {rtol:.0e} | {ep:.1e}, {tp:.3f} s | {ed:.1e}, {td:.3f} s | {ratio} |")
 
 
+def paired(exes_and_solvers, rounds):
+    """The interpolated 20,000-speed sweeps, each (executable, [solver] text) in turns: medians
+    per CoR, the largest difference in `e` from the first, and whether the outputs match."""
+    for name, (model, base) in CASES.items():
+        paths = [written(scene(model, base, True, None, solver)) for _, solver in exes_and_solvers]
+        times = [[] for _ in exes_and_solvers]
+        outs = [None] * len(exes_and_solvers)
+        for _ in range(rounds):  # in turns
+            for i, ((exe, _), path) in enumerate(zip(exes_and_solvers, paths)):
+                t, outs[i] = timed(exe, path)
+                times[i].append(t)
+        for p in paths:
+            os.unlink(p)
+        cells = []
+        for i, runs in enumerate(outs):
+            de = max(abs(a["e"] - b["e"]) for a, b in zip(outs[0], runs))
+            same = all(a["e"] == b["e"] and a["t_s"] == b["t_s"] for a, b in zip(outs[0], runs))
+            per = statistics.median(times[i]) / 2e4 * 1e6
+            cells.append(f"{per:.2f} us/CoR (max diff e {de:.1e}, identical {same})")
+        print(f"| {name} | " + " | ".join(cells) + " |")
+
+
 if __name__ == "__main__":
     exe = sys.argv[1] if len(sys.argv) > 1 else "target/release/bwc-simulate"
-    if len(sys.argv) > 2 and sys.argv[2] == "precision":
+    if len(sys.argv) > 3 and sys.argv[2] == "against":
+        paired([(exe, ""), (sys.argv[3], "")], int(sys.argv[4]) if len(sys.argv) > 4 else 5)
+    elif len(sys.argv) > 2 and sys.argv[2] == "phase":
+        paired([(exe, ""), (exe, "[solver]\nphase = true")], int(sys.argv[3]) if len(sys.argv) > 3 else 3)
+    elif len(sys.argv) > 2 and sys.argv[2] == "precision":
         precision(exe, int(sys.argv[3]) if len(sys.argv) > 3 else 3,
                   int(sys.argv[4]) if len(sys.argv) > 4 else 2000)
     else:
