@@ -437,6 +437,27 @@ fn cor_evaluation_does_not_allocate() {
         allocations, 0,
         "heap allocations in two RODAS4 CoR evaluations"
     );
+    // Nor does the phase path, once its tables (one per node count, built on first use) are
+    // in place: its panels live on the stack.
+    let phase = Settings {
+        phase: true,
+        ..Settings::default()
+    };
+    let warm = (
+        impact(&shccm, &phase).unwrap(),
+        impact(&mcm, &phase).unwrap(),
+    );
+    let ((f, g), allocations) = alloc_counter::count(|| {
+        (
+            impact(&shccm, &phase).unwrap(),
+            impact(&mcm, &phase).unwrap(),
+        )
+    });
+    assert!(warm.0.phase && warm.1.phase && f.phase && g.phase);
+    assert_eq!(
+        allocations, 0,
+        "heap allocations in two phase-path CoR evaluations"
+    );
     // The counter does count: a Vec allocates.
     assert!(alloc_counter::count(|| vec![1u8; 16]).1 >= 1);
 }
