@@ -308,6 +308,8 @@ struct Coefficients {
     beta: f64,
     alpha: f64,
     kappa: f64,
+    /// `κ^(1/p)` and `(1 - κ)^(1/p)`: where `F_el` vanishes after the root of `Z`.
+    kappa_roots: (f64, f64),
     sigma: f64,
     n: Pow,
     p: Pow,
@@ -363,6 +365,7 @@ impl Coefficients {
             beta: nd.b + nd.gamma,
             alpha: nd.b - nd.gamma,
             kappa: nd.kappa,
+            kappa_roots: (nd.kappa.powf(1.0 / nd.p), (1.0 - nd.kappa).powf(1.0 / nd.p)),
             sigma: nd.sigma,
             n: Pow::new(nd.n),
             p: Pow::new(nd.p),
@@ -438,15 +441,16 @@ impl Coefficients {
         if self.kappa <= 0.5 {
             return self.force(q, z, w);
         }
-        let damped = match self.kind {
+        let (ka, kb) = self.kappa_roots;
+        let a = match self.kind {
             ModelKind::Shccm if self.sigma <= 0.5 * self.kappa => {
-                self.kappa - self.sigma * (2.0 * w).max(0.0).sqrt()
+                let damped = self.kappa - self.sigma * (2.0 * w).max(0.0).sqrt();
+                damped.powf(1.0 / self.p.exponent())
             }
             ModelKind::Shccm => return self.force(q, z, w),
-            ModelKind::Mcm => self.kappa,
+            ModelKind::Mcm => ka,
         };
-        let inv_p = 1.0 / self.p.exponent();
-        -q * damped.powf(inv_p) - (1.0 - self.kappa).powf(inv_p) * z
+        -q * a - kb * z
     }
 
     /// The CoR on `r`'s nodes, unchecked.
@@ -569,8 +573,7 @@ impl Coefficients {
     /// `q` and `Z`, and the Picard residual.
     fn unloading_after_root(&self, r: &Rung, one: &Part) -> Result<(Separation, f64), ModelError> {
         let (n, q0) = (r.n, one.q);
-        let inv_p = 1.0 / self.p.exponent();
-        let (ka, kb) = (self.kappa.powf(inv_p), (1.0 - self.kappa).powf(inv_p));
+        let (ka, kb) = self.kappa_roots;
         // Where `F_el` would vanish with `h = 1` (`q = q_0 + Z`); `h <= 1` only moves `q` on
         // faster, so `F_el <= 0` there.
         let mut z_end = (-ka * q0 / (ka + kb)).max(0.0);
@@ -586,8 +589,8 @@ impl Coefficients {
         if q_end > 0.0 {
             // With `h < 1`, `q` passes 0 first, a branch point of `|q|^p` inside the panel:
             // the panel ends there instead, where `F = -(1 - κ) Z^p < 0` still brackets the
-            // separation, on a map that squares the branch point. (`dq` does not depend on
-            // `q`, so its interpolant locates the point.)
+            // separation, on a map that makes the branch point milder. (`dq` does not depend
+            // on `q`, so its interpolant locates the point.)
             let mut minus_q = [0.0; MAX_N];
             r.cumulative(&dq[..n], 1.0, &mut minus_q[..n]);
             minus_q[..n].iter_mut().for_each(|m| *m = -(*m + q0));
