@@ -44,7 +44,7 @@ use bw_models::{
 };
 use bwc_benches::{cor, side_by_side};
 use bwc_cli::plot::{chart, Axis, Series, Style};
-use bwc_ode::{tableau, System, Tableau, DOP853, VERN7};
+use bwc_ode::{System, Tableau, DOP853, METHODS, VERN7};
 use std::fmt::Write as _;
 
 /// A case: its name, its runs at given settings, their references `(e, T_s)`, and the model
@@ -411,7 +411,7 @@ fn run_case(case: &Case, out: &std::path::Path, csv: &mut String) -> String {
     } else {
         Vec::new()
     };
-    let methods = tableau::all()
+    let methods = METHODS
         .map(|tab| (tab.name, tab, explicit, false))
         .into_iter()
         .chain([

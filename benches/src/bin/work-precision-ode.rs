@@ -4,7 +4,6 @@
 //! `cargo run --release -p bwc-benches --bin work-precision-ode`
 
 use bwc_benches::{arenstorf_period, median_seconds};
-use bwc_ode::tableau;
 
 fn main() {
     println!("# Arenstorf orbit, one period; error = |y(T) - y(0)|_inf, atol = rtol");
@@ -12,7 +11,7 @@ fn main() {
         "{:<8} {:>8} {:>12} {:>10} {:>12}",
         "method", "rtol", "error", "rhs_evals", "time_us"
     );
-    for tab in tableau::all() {
+    for tab in bwc_ode::METHODS {
         for k in 4..=13 {
             let rtol = 10f64.powi(-k);
             let (err, evals) = arenstorf_period(tab, rtol);

@@ -11,7 +11,8 @@
 //! a kink are smooth, so after two or three aimed trials the step is accepted with the
 //! switching function within `LANDING` noise floors of zero, and the locator stops there.
 
-use crate::{class, Switches, Values, LANDING, MAX_FUNCTIONS};
+use crate::functions::{Switches, Values, LANDING, MAX_FUNCTIONS};
+use crate::root::class;
 use bwc_ode::Trial;
 
 /// The aiming state of one step.

@@ -12,7 +12,8 @@
 //! output by golden-section search. The crossing is bracketed between the start and the first
 //! sample past it.
 
-use crate::{class, Condition, Values};
+use crate::functions::{Condition, Values, MAX_FUNCTIONS};
+use crate::root::class;
 use bwc_ode::State;
 
 /// Relative size of the forward-difference step, as a fraction of the step size.
@@ -69,7 +70,7 @@ pub(crate) fn rates<C: Condition<N>, const N: usize>(
 ) -> Values {
     let eps = DIFFERENCE * h;
     let ahead = condition.values(t + eps, &(y + f * eps));
-    let mut r = [0.0; crate::MAX_FUNCTIONS];
+    let mut r = [0.0; MAX_FUNCTIONS];
     for i in 0..n {
         r[i] = (ahead[i] - g[i]) / eps;
     }

@@ -1,9 +1,9 @@
 //! The locator: one accepted step at a time, the events and switching points inside it.
 
-use crate::{
-    aim, class, find_crossing, interior, Bracket, Condition, Error, Switches, Values, LANDING,
-    MAX_FUNCTIONS,
-};
+use crate::error::Error;
+use crate::functions::{Condition, Switches, Values, LANDING, MAX_FUNCTIONS};
+use crate::root::{class, find_crossing, Bracket};
+use crate::{aim, interior};
 use bwc_ode::{Dense, State, Stepper};
 
 /// The earliest crossing of one kind of function in a span, if any: where (bracketed) and which.

@@ -4,7 +4,7 @@
 use bwc_events::{
     class, Condition, Crossing, Direction, Locator, NoSwitches, Outcome, Step, SwitchAt, Values,
 };
-use bwc_ode::{tableau, Integrator, Options, State, DOP853, VERN7, VERN9};
+use bwc_ode::{Integrator, Options, State, DOP853, VERN7, VERN9};
 
 /// Separation `F <= 0 <= v` for a two-state oscillator `x' = v, v' = F(x)`.
 struct Separation<G>(G);
@@ -135,7 +135,7 @@ fn switching_point_is_hit_exactly_and_restores_accuracy() {
         }
     };
     let t_end = 3.0;
-    for tab in tableau::all() {
+    for tab in bwc_ode::METHODS {
         let opts = Options::new(1e-12, 1e-14);
         let mut it = Integrator::new(f, tab, 0.0, State::<1>::new(0.0), opts).unwrap();
         let mut loc = Locator::new(
@@ -186,7 +186,7 @@ fn rejected_steps_are_aimed_at_kinks() {
     let f = |_t: f64, y: &State<2>| State::<2>::new(y[1], -y[0] - 3.0 * y[0].max(0.0));
     let t_end = 5.0 * std::f64::consts::PI;
     let (y0, exact) = (State::<2>::new(0.0, -1.0), State::<2>::new(-1.0, 0.0));
-    for tab in tableau::all() {
+    for tab in bwc_ode::METHODS {
         let opts = Options::new(1e-12, 1e-14);
         let mut it = Integrator::new(f, tab, 0.0, y0, opts).unwrap();
         let mut loc = Locator::new(

@@ -6,11 +6,11 @@
 //! or machine, so a study can be spread over a cluster one replicate per task.
 
 use crate::data::{Dataset, Point};
+use crate::error::IdentifyError;
 use crate::fit::{fit, Budget};
 use crate::objective::{Objective, Weights};
 use crate::space::Space;
 use crate::uncertainty::uncertainty;
-use crate::IdentifyError;
 use bw_models::input::Zero;
 use bw_models::{impact_at, BaseParams, Settings};
 use rand::SeedableRng;

@@ -1,7 +1,7 @@
 //! Measured aggregate quantities: CoR `e` and/or contact duration `t_d` (s) at impact speeds
 //! `v_0` (m/s), read from CSV with `#` comment lines; repeated speeds are allowed.
 
-use crate::IdentifyError;
+use crate::error::IdentifyError;
 use std::path::{Path, PathBuf};
 
 /// One measurement.

@@ -12,10 +12,10 @@
 //! below the resolution of the usual acoustic or video timing (a contact of 0.1-1 ms, a force
 //! peak hundreds of times `m g`).
 
-use crate::fit::CubeProblem;
+use crate::error::IdentifyError;
 use crate::objective::{passes, TermOrder};
+use crate::problem::CubeProblem;
 use crate::space::Space;
-use crate::IdentifyError;
 use bw_models::input::Constant;
 use bw_models::sequence::{drop_sequence, Contact, Flight, Policy, SequenceSettings, Start};
 use bw_models::{impact_at, BaseMap, ModelError, Settings};

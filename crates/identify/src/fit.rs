@@ -2,8 +2,9 @@
 //! polishing, from several seeded starts. Everything runs on the unit cube of the
 //! [`crate::Space`].
 
+use crate::error::IdentifyError;
 use crate::objective::{Costs, Objective, Prediction, TermOrder};
-use crate::IdentifyError;
+use crate::problem::CubeProblem;
 use argmin::core::{Executor, State};
 use argmin::solver::neldermead::NelderMead;
 use argmin::solver::particleswarm::ParticleSwarm;
@@ -164,49 +165,6 @@ pub struct FitResult {
 fn optimizer_error(e: argmin::core::Error) -> IdentifyError {
     IdentifyError::Optimizer {
         message: e.to_string(),
-    }
-}
-
-/// A cost on the unit cube `[0, 1]^d`, always finite (penalised outside the cube).
-pub trait CubeProblem: Sync {
-    /// Dimension `d`.
-    fn dim(&self) -> usize;
-    /// The cost at `s`.
-    fn cost_at(&self, s: &[f64]) -> f64;
-    /// Cost evaluations so far.
-    fn evaluations(&self) -> u64;
-    /// For a least-squares cost, the residuals at `s` whose sum of squares is
-    /// [`CubeProblem::cost_at`]; then the search polishes by Levenberg-Marquardt. `None` (the
-    /// default) polishes by Nelder-Mead alone.
-    fn residuals_at(&self, s: &[f64]) -> Option<Vec<f64>> {
-        let _ = s;
-        None
-    }
-    /// The cost at `s` where it is below `bound`; otherwise any value not below `bound`. A
-    /// search that only compares a cost with a bound (a particle with its own best) asks this,
-    /// and a problem may then skip work, trying first the terms that `order` ranks high and
-    /// updating it (see [`Objective::scalar_below`]). The default is [`CubeProblem::cost_at`].
-    fn cost_below(&self, s: &[f64], bound: f64, order: &mut TermOrder) -> f64 {
-        let _ = (bound, order);
-        self.cost_at(s)
-    }
-}
-
-impl<I: Input + Sync> CubeProblem for Objective<'_, I> {
-    fn dim(&self) -> usize {
-        self.space().dim()
-    }
-    fn cost_at(&self, s: &[f64]) -> f64 {
-        self.scalar(s)
-    }
-    fn evaluations(&self) -> u64 {
-        Objective::evaluations(self)
-    }
-    fn residuals_at(&self, s: &[f64]) -> Option<Vec<f64>> {
-        Some(self.residuals(s))
-    }
-    fn cost_below(&self, s: &[f64], bound: f64, order: &mut TermOrder) -> f64 {
-        self.scalar_below(s, bound, order)
     }
 }
 

@@ -2,8 +2,8 @@
 //! to the free quantities (unit-cube coordinates, i.e. relative to each bound interval, in log
 //! scale where the search is), its singular values (faer), and the weakest direction.
 
+use crate::error::IdentifyError;
 use crate::objective::Objective;
-use crate::IdentifyError;
 use bw_models::input::Input;
 
 /// The report.

@@ -44,80 +44,24 @@
 mod coverage;
 mod data;
 mod drops;
+mod error;
 mod fit;
 mod identifiability;
 mod lm;
 mod loops;
 mod objective;
+mod problem;
 mod space;
 mod uncertainty;
 
 pub use coverage::{coverage, replicate, study, CoverageTask, Replicate};
 pub use data::{Dataset, Point};
 pub use drops::{DropData, DropKind, DropObjective, DropRow, DropSetup};
-pub use fit::{
-    at_bound, fit, minimize, Budget, Convergence, CubeProblem, FitResult, Minimum, POLISH_ROUNDS,
-};
+pub use error::IdentifyError;
+pub use fit::{at_bound, fit, minimize, Budget, Convergence, FitResult, Minimum, POLISH_ROUNDS};
 pub use identifiability::{analyse, Identifiability};
 pub use loops::{loop_cost, Curve, LawSpace, Loop, LoopObjective, LAW_NAMES};
 pub use objective::{predict, Costs, Objective, Prediction, TermOrder, Weights, FAILED};
+pub use problem::CubeProblem;
 pub use space::{KnownMassStiffness, Param, Space, NAMES};
 pub use uncertainty::{uncertainty, BandPoint, Uncertainty, LEVEL};
-
-use std::path::PathBuf;
-
-/// Everything that can go wrong in an identification.
-#[derive(Debug, thiserror::Error)]
-pub enum IdentifyError {
-    /// A data file could not be read.
-    #[error("{path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// What the operating system said.
-        source: std::io::Error,
-    },
-    /// A data file is malformed or holds an inadmissible value.
-    #[error("{path}:{line}: {message}")]
-    Data {
-        /// The file.
-        path: PathBuf,
-        /// 1-based line.
-        line: u64,
-        /// What is wrong.
-        message: String,
-    },
-    /// A bound, fixed value or starting point is not admissible.
-    #[error("`{name}` in [{lo}, {hi}]: needs {allowed}")]
-    Bounds {
-        /// The quantity.
-        name: &'static str,
-        /// Lower bound (or the value).
-        lo: f64,
-        /// Upper bound (or the value).
-        hi: f64,
-        /// What is admissible.
-        allowed: &'static str,
-    },
-    /// The constraints cannot be met.
-    #[error("infeasible: {reason}")]
-    Infeasible {
-        /// Why.
-        reason: String,
-    },
-    /// The objectives are not usable with the data.
-    #[error("objectives: {reason}")]
-    Objectives {
-        /// Why.
-        reason: String,
-    },
-    /// The optimizer failed.
-    #[error("optimizer: {message}")]
-    Optimizer {
-        /// argmin's message.
-        message: String,
-    },
-    /// A model could not be built or simulated.
-    #[error(transparent)]
-    Model(#[from] bw_models::ModelError),
-}

@@ -8,7 +8,7 @@
 //! acceleration bends each step along such a valley: it costs one residual evaluation per trial
 //! and saves Jacobians, which cost one evaluation per parameter.
 
-use crate::fit::CubeProblem;
+use crate::problem::CubeProblem;
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 

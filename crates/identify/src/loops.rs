@@ -9,9 +9,9 @@
 //! averaged over the loops (0 for identical loops, about 1 for unrelated ones). It needs no
 //! timing of the measured points, so digitised loops can be used as they are.
 
-use crate::fit::CubeProblem;
+use crate::error::IdentifyError;
+use crate::problem::CubeProblem;
 use crate::space::Param;
-use crate::IdentifyError;
 use bw_models::input::Zero;
 use bw_models::{
     nondimensionalize, simulate, Bwmcm, Bwshccm, CollisionModel, ModelKind, Physical,

@@ -2,8 +2,8 @@
 //! costs `J_j = (1/M) Σ (Θ̃_j - Θ_j(P*, u, v0))²` (eq:J) over a dataset.
 
 use crate::data::{Dataset, Point};
+use crate::error::IdentifyError;
 use crate::space::Space;
-use crate::IdentifyError;
 use bw_models::input::Input;
 use bw_models::{impact_at, BaseMap, ModelError, Settings};
 use rayon::prelude::*;

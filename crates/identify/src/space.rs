@@ -3,7 +3,7 @@
 //! decoded into base parameters `P*`. `Γ_b` is searched as `g = Γ_b / B_b ∈ [-1, 1]`, so that
 //! `-B_b <= Γ_b <= B_b` holds by construction.
 
-use crate::IdentifyError;
+use crate::error::IdentifyError;
 use bw_models::{BaseMap, BaseParams, ModelKind};
 
 /// Names of the searchable quantities, in order.

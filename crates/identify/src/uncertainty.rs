@@ -21,9 +21,9 @@
 //! (`BENCHMARKS.md`, `bwc-identify coverage`).
 
 use crate::data::Dataset;
+use crate::error::IdentifyError;
 use crate::objective::{predict, Objective, Prediction};
 use crate::space::NAMES;
-use crate::IdentifyError;
 use bw_models::input::Input;
 use statrs::distribution::{ContinuousCDF, StudentsT};
 

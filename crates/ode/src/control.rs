@@ -1,7 +1,31 @@
 //! Step bookkeeping shared by the explicit and the Rosenbrock integrators.
 
-use crate::integrator::Stats;
 use crate::{Error, Options, State};
+
+/// Work done by a solve.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Right-hand-side evaluations.
+    pub rhs_evals: u64,
+    /// Accepted steps.
+    pub accepted: u64,
+    /// Rejected steps (including steps retaken to stop exactly at a switching point).
+    pub rejected: u64,
+    /// Events located (switching points and terminal events).
+    pub events: u64,
+    /// Jacobian evaluations (implicit methods only).
+    pub jacobians: u64,
+}
+
+impl std::ops::AddAssign for Stats {
+    fn add_assign(&mut self, o: Self) {
+        self.rhs_evals += o.rhs_evals;
+        self.accepted += o.accepted;
+        self.rejected += o.rejected;
+        self.events += o.events;
+        self.jacobians += o.jacobians;
+    }
+}
 
 /// The step limits of a solve.
 #[derive(Debug, Clone, Copy)]

@@ -1,41 +1,12 @@
 //! The stepping engine shared by every tableau.
 
-use crate::control::{aimed, inside_last_step, Limits};
-use crate::tableau::{ErrorEstimate, Tableau};
+use crate::control::{aimed, inside_last_step, Limits, Stats};
+use crate::tableau::{ErrorEstimate, Tableau, MAX_ROWS, MAX_STAGES};
 use crate::{Controller, Error, Options, State, System};
 
-/// Most stages any built-in method needs (Verner 9 with its dense stages).
-pub const MAX_STAGES: usize = 21;
 /// A step counts as limited by stability when `h |λ|` exceeds this fraction of the method's
 /// real stability boundary (see [`crate::tableau::StiffnessTest`]).
 const STIFF_FRACTION: f64 = 0.6;
-/// Most rows of any built-in interpolant.
-pub(crate) const MAX_ROWS: usize = 8;
-
-/// Work done by a solve.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct Stats {
-    /// Right-hand-side evaluations.
-    pub rhs_evals: u64,
-    /// Accepted steps.
-    pub accepted: u64,
-    /// Rejected steps (including steps retaken to stop exactly at a switching point).
-    pub rejected: u64,
-    /// Events located (switching points and terminal events).
-    pub events: u64,
-    /// Jacobian evaluations (implicit methods only).
-    pub jacobians: u64,
-}
-
-impl std::ops::AddAssign for Stats {
-    fn add_assign(&mut self, o: Self) {
-        self.rhs_evals += o.rhs_evals;
-        self.accepted += o.accepted;
-        self.rejected += o.rejected;
-        self.events += o.events;
-        self.jacobians += o.jacobians;
-    }
-}
 
 /// A rejected trial step, shown to the `aim` hook of [`Integrator::step_aiming`].
 #[derive(Debug, Clone, Copy)]
@@ -192,10 +163,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
     ) -> Result<Self, Error> {
         options.validate()?;
         // The built-in methods are known to fit; a user's tableau is checked once here.
-        if !crate::tableau::all()
-            .iter()
-            .any(|t| std::ptr::eq(*t, tableau))
-        {
+        if !crate::METHODS.iter().any(|t| std::ptr::eq(*t, tableau)) {
             tableau.validate()?;
         }
         if !t0.is_finite() || !y0.iter().all(|v| v.is_finite()) {

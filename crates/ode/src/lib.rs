@@ -49,31 +49,16 @@ mod methods;
 mod options;
 mod rosenbrock;
 mod stepper;
+mod system;
 pub mod tableau;
 
+pub use control::Stats;
 pub use error::Error;
 pub use extrapolation::{DdSystem, DdTrial, Extrapolation};
-pub use integrator::{Dense, Integrator, Stats, Trial, MAX_STAGES};
-pub use methods::{DOP853, DOPRI5, VERN7, VERN9};
+pub use integrator::{Dense, Integrator, Trial};
+pub use methods::{DOP853, DOPRI5, METHODS, VERN7, VERN9};
 pub use options::{Controller, Options};
 pub use rosenbrock::{Jacobian, Matrix, Rosenbrock};
 pub use stepper::{Method, Solver, Stepper};
-pub use tableau::Tableau;
-
-/// A state of `N` components on the stack.
-pub type State<const N: usize> = nalgebra::SVector<f64, N>;
-
-/// A right-hand side `y' = f(t, y)` (non-autonomous in general).
-///
-/// Implemented for closures `Fn(f64, &State<N>) -> State<N>` and for references to systems.
-pub trait System<const N: usize> {
-    /// The derivative `f(t, y)`.
-    fn rhs(&self, t: f64, y: &State<N>) -> State<N>;
-}
-
-impl<const N: usize, F: Fn(f64, &State<N>) -> State<N>> System<N> for F {
-    #[inline]
-    fn rhs(&self, t: f64, y: &State<N>) -> State<N> {
-        self(t, y)
-    }
-}
+pub use system::{State, System};
+pub use tableau::{Tableau, MAX_STAGES};

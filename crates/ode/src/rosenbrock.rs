@@ -16,8 +16,9 @@
 
 #![allow(clippy::excessive_precision)] // coefficients keep their published digits
 
+use crate::control::Stats;
 use crate::control::{aimed, inside_last_step, Limits};
-use crate::integrator::{compensated, Dense, Stats, Trial};
+use crate::integrator::{compensated, Dense, Trial};
 use crate::{Error, Options, State, System};
 
 /// An `N x N` matrix on the stack.

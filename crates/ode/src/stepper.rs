@@ -1,7 +1,8 @@
 //! One interface over the explicit and the Rosenbrock integrators, and a solver that starts
 //! explicit and switches to RODAS4 when Hairer's stiffness test fires.
 
-use crate::integrator::{Dense, Stats, Trial};
+use crate::control::Stats;
+use crate::integrator::{Dense, Trial};
 use crate::{Error, Integrator, Jacobian, Options, Rosenbrock, State, Tableau};
 
 /// What event location needs from an adaptive integrator (implemented by [`Integrator`],

@@ -16,6 +16,12 @@
 //! `f(t + h, y_1)`, evaluated once a step is accepted and reused as the first stage of the next.
 //! Stages after `fsal` are only needed by the dense output and computed lazily.
 
+/// Most stages any built-in method needs (Verner 9 with its dense stages): the engine's stage
+/// buffers hold this many.
+pub const MAX_STAGES: usize = 21;
+/// Most rows of any built-in interpolant: the engine's dense-output buffers hold this many.
+pub(crate) const MAX_ROWS: usize = 8;
+
 /// How the local error of a step is estimated.
 #[derive(Debug, Clone, Copy)]
 pub enum ErrorEstimate {
@@ -91,7 +97,7 @@ impl Tableau {
         self.c.len()
     }
 
-    /// Checks that the tableau fits the engine: at most [`crate::MAX_STAGES`] stages in all,
+    /// Checks that the tableau fits the engine: at most [`MAX_STAGES`] stages in all,
     /// strictly lower-triangular rows, one node per stage, `stages` weights, error and
     /// interpolant rows no longer than the stages, the fsal and stiffness stages in range,
     /// and every coefficient finite. (The built-in methods pass; their consistency as
@@ -107,10 +113,10 @@ impl Tableau {
             })
         };
         let total = self.total_stages();
-        if total == 0 || total > crate::MAX_STAGES {
+        if total == 0 || total > MAX_STAGES {
             return bad(format!(
                 "{total} stages in all; the engine takes 1 to {}",
-                crate::MAX_STAGES
+                MAX_STAGES
             ));
         }
         if self.a.len() != total {
@@ -143,11 +149,11 @@ impl Tableau {
             return bad("error weights longer than the stages".into());
         }
         let rows = self.interpolant.rows;
-        if rows.len() > crate::integrator::MAX_ROWS || rows.iter().any(|r| r.len() > total) {
+        if rows.len() > MAX_ROWS || rows.iter().any(|r| r.len() > total) {
             return bad(format!(
                 "{} interpolant rows (at most {}) or a row longer than the stages",
                 rows.len(),
-                crate::integrator::MAX_ROWS
+                MAX_ROWS
             ));
         }
         let all = self
@@ -165,11 +171,6 @@ impl Tableau {
     }
 }
 
-/// All built-in methods, in order of increasing order.
-pub fn all() -> [&'static Tableau; 4] {
-    [&crate::DOPRI5, &crate::DOP853, &crate::VERN7, &crate::VERN9]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -178,7 +179,7 @@ mod tests {
     /// to zero, interpolant at θ = 1 reproduces the solution.
     #[test]
     fn a_tableau_the_engine_cannot_take_is_an_error() {
-        for t in all() {
+        for t in crate::METHODS {
             t.validate().unwrap();
         }
         // 22 stages: one more than the engine holds.
@@ -218,7 +219,7 @@ mod tests {
 
     #[test]
     fn tableaux_are_consistent() {
-        for t in all() {
+        for t in crate::METHODS {
             let s = t.total_stages();
             assert_eq!(t.a.len(), s, "{}", t.name);
             assert!(t.fsal < s && t.b.len() == t.stages, "{}", t.name);
@@ -271,7 +272,7 @@ mod tests {
     /// necessary order conditions that catch a mistyped coefficient.
     #[test]
     fn quadrature_conditions_hold_to_each_order() {
-        for t in all() {
+        for t in crate::METHODS {
             for k in 0..t.order as i32 {
                 let sum: f64 = t.b.iter().zip(t.c).map(|(b, c)| b * c.powi(k)).sum();
                 let want = 1.0 / f64::from(k + 1);
@@ -309,7 +310,7 @@ mod tests {
 
     #[test]
     fn stiffness_bounds_are_the_real_stability_boundaries() {
-        for t in all() {
+        for t in crate::METHODS {
             let r = |z: f64| {
                 let mut y = vec![0.0; t.stages];
                 for i in 0..t.stages {

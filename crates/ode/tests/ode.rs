@@ -2,7 +2,7 @@
 #![allow(clippy::excessive_precision)] // reference values keep their published digits
 
 use bwc_ode::{
-    tableau, Controller, Error, Integrator, Options, State, Tableau, DOP853, DOPRI5, VERN7, VERN9,
+    Controller, Error, Integrator, Options, State, Tableau, DOP853, DOPRI5, VERN7, VERN9,
 };
 
 /// Non-autonomous, nonlinear problem with exact solution:
@@ -47,7 +47,7 @@ fn fixed_step_error(tab: &'static Tableau, steps: usize, t_end: f64) -> f64 {
 /// problem (so wrong time nodes c_i would show up as a lower order).
 #[test]
 fn measured_convergence_order_matches_each_method() {
-    for tab in tableau::all() {
+    for tab in bwc_ode::METHODS {
         // Step counts chosen so that errors stay well above round-off.
         let (n0, t_end) = match tab.order {
             5 => (20, 1.0),
@@ -78,7 +78,7 @@ fn measured_convergence_order_matches_each_method() {
 /// Adaptive integration of the same problem: the error follows the tolerance.
 #[test]
 fn adaptive_nonautonomous_meets_tolerance() {
-    for tab in tableau::all() {
+    for tab in bwc_ode::METHODS {
         let mut it = Integrator::new(
             nonautonomous,
             tab,
@@ -142,7 +142,7 @@ fn arenstorf_orbit_closes_after_one_period() {
 /// is O(h^(q+1)) for an interpolant of order q, so halving h divides it by about 2^(q+1).
 #[test]
 fn dense_output_error_matches_interpolant_order() {
-    for tab in tableau::all() {
+    for tab in bwc_ode::METHODS {
         let q = tab.interpolant.order as f64;
         let t0 = 0.3;
         let err_at = |h: f64| {
@@ -207,7 +207,7 @@ fn dense_output_error_matches_interpolant_order() {
 #[test]
 fn blow_up_is_reported_not_panicked() {
     let f = |_t: f64, y: &State<1>| State::<1>::new(y[0] * y[0]);
-    for tab in tableau::all() {
+    for tab in bwc_ode::METHODS {
         let mut it =
             Integrator::new(f, tab, 0.0, State::<1>::new(1.0), Options::new(1e-8, 1e-8)).unwrap();
         let err = it.integrate_to(2.0).unwrap_err();
@@ -267,7 +267,7 @@ fn per_component_tolerances_pi_control_and_min_step() {
     let y0 = State::<2>::new(1e-6, 1e3);
     let exact = |t: f64| State::<2>::new(1e-6 * (-t).exp(), 1e3 * (2.0 * t).exp());
     let opts = Options::per_component(State::<2>::new(1e-10, 1e-10), State::<2>::new(1e-20, 1e-6));
-    for tab in tableau::all() {
+    for tab in bwc_ode::METHODS {
         for beta in [0.0, 0.08] {
             let ctrl = Controller {
                 beta,
