@@ -42,5 +42,5 @@ fn main() {
         }
     }
     let per = clock.elapsed().as_secs_f64() / f64::from(count.max(1));
-    bwc_cli::out!("e = {e:.15}, {:.2} us per evaluation", per * 1e6);
+    bwc_app::out!("e = {e:.15}, {:.2} us per evaluation", per * 1e6);
 }

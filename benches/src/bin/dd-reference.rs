@@ -18,7 +18,7 @@ fn main() {
     let (seed, rtols, cases) = cases_args("dd-reference");
     let reports: Vec<String> = cases.par_iter().map(|&i| report(seed, i, &rtols)).collect();
     for r in reports {
-        bwc_cli::out!("{r}");
+        bwc_app::out!("{r}");
     }
 }
 

@@ -6,16 +6,16 @@
 //! `cargo run --release -p bwc-benches --bin identify-convergence -- fixtures/*.toml`
 //! (loop fits are skipped).
 
-use bwc_cli::config::Config;
+use bwc_app::config::Config;
 use bwc_identify::{fit, Budget, Objective};
 use std::time::Instant;
 
 fn main() {
     let paths: Vec<String> = std::env::args().skip(1).collect();
-    bwc_cli::out!(
+    bwc_app::out!(
         "| fit | reference J (evals) | seed | J | J / best | starts agreeing | evals | wall s |"
     );
-    bwc_cli::out!("|---|---|---|---|---|---|---|---|");
+    bwc_app::out!("|---|---|---|---|---|---|---|---|");
     for path in paths {
         let config = match Config::load(std::path::Path::new(&path)) {
             Ok(c) => c,
@@ -47,7 +47,7 @@ fn main() {
                 .collect();
             let best = runs.iter().map(|(_, m, _)| m.cost).fold(r.cost, f64::min);
             for (seed, m, wall) in &runs {
-                bwc_cli::out!(
+                bwc_app::out!(
                     "| {} | {:.5e} ({}) | {seed} | {:.5e} | {:.4} | {}/{} | {} | {wall:.2} |",
                     f.name,
                     r.cost,

@@ -7,7 +7,7 @@
 //! `cargo run --release -p bwc-benches --bin identify-coverage -- [REPLICATES]` (default 40)
 
 use bw_models::BaseParams;
-use bwc_cli::config::Config;
+use bwc_app::config::Config;
 use bwc_identify::{coverage, study};
 
 fn main() {
@@ -46,17 +46,17 @@ fn main() {
             0.0222,
         ),
     ];
-    bwc_cli::out!(
+    bwc_app::out!(
         "| model | replicates | noise | coverage | mean half-width | without intervals | wall s |"
     );
-    bwc_cli::out!("|---|---|---|---|---|---|---|");
+    bwc_app::out!("|---|---|---|---|---|---|---|");
     for (f, (truth, noise)) in config.fits.iter().zip(truths) {
-        let task = bwc_cli::identify::coverage_task(f, truth, noise);
+        let task = bwc_app::identify::coverage_task(f, truth, noise);
         let clock = std::time::Instant::now();
         let reps = study(&task, 1..replicates + 1).expect("replicates");
         let with: Vec<_> = reps.iter().filter(|r| r.error.is_none()).collect();
         let hw = with.iter().map(|r| r.halfwidth).sum::<f64>() / with.len().max(1) as f64;
-        bwc_cli::out!(
+        bwc_app::out!(
             "| {} | {replicates} | {noise} | {:.3} | {hw:.4} | {} | {:.0} |",
             f.kind.name(),
             coverage(&reps),

@@ -88,11 +88,11 @@ fn main() {
         fine: sweep_with(seed, count, &on_runge_kutta(&VERN9, fine_rtol)),
         check: sweep_with(seed, count, &on_runge_kutta(&VERN7, check_rtol)),
     };
-    bwc_cli::out!(
+    bwc_app::out!(
         "# {count} cases, seed {seed}: misses above {MISS:e} against Vern9 at rtol {fine_rtol:e} \
          (checked against Vern7 at {check_rtol:e})"
     );
-    bwc_cli::out!(
+    bwc_app::out!(
         "settings\tseparated\toff\toff_series\tlargest\tflagged\tsilent\tunverified\twall_s\trefereed\tdouble_double"
     );
     for (name, s) in settings_from(&args[args.len().min(2)..]) {
@@ -108,7 +108,7 @@ fn main() {
             ),
             None => ("-".to_string(), "-".to_string(), "-".to_string()),
         };
-        bwc_cli::out!(
+        bwc_app::out!(
             "{name}\t{}\t{}\t{}\t{:.1e}\t{flagged}\t{silent}\t{unverified}\t{wall:.1}\t{}\t{}",
             t.separated,
             t.off,
@@ -156,13 +156,13 @@ fn audit_runs(name: &str, runs: &[Outcome], fine: &[Outcome], (seed, k): (u64, u
         if miss > MISS || miss.is_nan() {
             off += 1;
             if list {
-                bwc_cli::out!(
+                bwc_app::out!(
                     "# audit of {name}, case {i}: {miss:.1e} off the double-double referee"
                 );
             }
         }
     }
-    bwc_cli::out!(
+    bwc_app::out!(
         "# audit of {name}: {} of {} separated runs drawn, {} with a referee ({:.0} s): \
          largest distance {:.1e} (case {}), the reference's {:.1e}; more than {MISS:e} off: {off}",
         drawn.len(),
@@ -237,7 +237,7 @@ fn tally(name: &str, runs: &[Outcome], references: &References, list: (bool, boo
         let (Some(e), Some(ef), Some(ec)) = (separated_e(run), separated_e(f), separated_e(c))
         else {
             if flagged && list.1 {
-                bwc_cli::out!(
+                bwc_app::out!(
                     "# {name} case {i}: flagged, {:?}, e {:?}, no reference (not counted) \
                      estimate {:?}{retry}",
                     run.check,
@@ -252,7 +252,7 @@ fn tally(name: &str, runs: &[Outcome], references: &References, list: (bool, boo
         t.unverified += usize::from(run.check == Some(Check::Unverified));
         let miss = (e - ef).abs();
         if flagged && list.1 {
-            bwc_cli::out!(
+            bwc_app::out!(
                 "# {name} case {i}: flagged, {:?}, e {e} reference {ef} ({miss:.1e} off) estimate \
                  {:?} double-double {}{retry}",
                 run.check,
@@ -265,7 +265,7 @@ fn tally(name: &str, runs: &[Outcome], references: &References, list: (bool, boo
                 Some(e_dd) if (e - e_dd).abs() <= MISS => {
                     t.refereed += 1;
                     if list.0 {
-                        bwc_cli::out!(
+                        bwc_app::out!(
                             "# {name} case {i}: e {e} misses the Runge-Kutta reference {ef} by \
                              {miss:.1e}, but the double-double referee {e_dd} by {:.1e}: not a miss",
                             (e - e_dd).abs()
@@ -282,7 +282,7 @@ fn tally(name: &str, runs: &[Outcome], references: &References, list: (bool, boo
             t.largest = t.largest.max(miss);
             if list.0 {
                 let case = &run.case;
-                bwc_cli::out!(
+                bwc_app::out!(
                     "# {name} case {i}: {:?} e {e} reference {ef} miss {miss:.1e} \
                      estimate {:?} tighter run failed {:?} series {} stiff {} input {:?} v0 {}",
                     case.kind,

@@ -19,7 +19,7 @@ fn main() {
     let (seed, rtols, cases) = cases_args("stress-case");
     for i in cases {
         let case = sample(seed, i);
-        bwc_cli::out!(
+        bwc_app::out!(
             "# case {i} of seed {seed}: {:?}, v0 {}, input {:?}, {:?}",
             case.kind,
             case.v0,
@@ -33,7 +33,7 @@ fn main() {
             ("the defaults", library),
         ] {
             let d = run_with(&case, &s);
-            bwc_cli::out!(
+            bwc_app::out!(
                 "# {name} (at most {} steps): (e, t_s) {:?}, estimate {:?}, check {:?}, tighter \
                  run failed {:?}, {:.2} s",
                 s.max_steps,
@@ -44,7 +44,7 @@ fn main() {
                 d.seconds
             );
         }
-        bwc_cli::out!("method\trtol\te\tt_s\trhs_evals\taccepted\trejected\tevents\tseconds");
+        bwc_app::out!("method\trtol\te\tt_s\trhs_evals\taccepted\trejected\tevents\tseconds");
         for method in [&VERN7, &VERN9, &DOP853] {
             for &rtol in &rtols {
                 one(&case, method, rtol);
@@ -78,7 +78,7 @@ fn one(case: &Case, method: &'static Tableau, rtol: f64) {
     });
     let seconds = clock.elapsed().as_secs_f64();
     match out {
-        Ok(o) => bwc_cli::out!(
+        Ok(o) => bwc_app::out!(
             "{}\t{rtol:e}\t{}\t{}\t{}\t{}\t{}\t{}\t{seconds:.2}",
             method.name,
             o.e,
@@ -88,6 +88,6 @@ fn one(case: &Case, method: &'static Tableau, rtol: f64) {
             o.stats.rejected,
             o.stats.events
         ),
-        Err(err) => bwc_cli::out!("{}\t{rtol:e}\tfailed: {err}", method.name),
+        Err(err) => bwc_app::out!("{}\t{rtol:e}\tfailed: {err}", method.name),
     }
 }

@@ -26,7 +26,7 @@ fn main() {
     let short = sweep_with(seed, count, &short);
     let mut kinds: BTreeMap<String, usize> = BTreeMap::new();
     let e = |o: &bwc_benches::stress::Outcome| o.result.map_or(f64::NAN, |r| r.0);
-    bwc_cli::out!("case\tdefault\te\tshort_steps\te_short\tinput");
+    bwc_app::out!("case\tdefault\te\tshort_steps\te_short\tinput");
     for (i, (a, b)) in default.iter().zip(&short).enumerate() {
         let (ea, eb) = (e(a), e(b));
         let close = (ea - eb).abs() <= 1e-6 || (ea.is_nan() && eb.is_nan());
@@ -34,7 +34,7 @@ fn main() {
             continue;
         }
         let kind = format!("{} -> {}", a.class.name(), b.class.name());
-        bwc_cli::out!(
+        bwc_app::out!(
             "{i}\t{}\t{ea}\t{}\t{eb}\t{:?}",
             a.class.name(),
             b.class.name(),
@@ -42,10 +42,10 @@ fn main() {
         );
         *kinds.entry(kind).or_default() += 1;
     }
-    bwc_cli::out!(
+    bwc_app::out!(
         "# {count} cases, seed {seed}, steps of at most {max_step}: default -> short steps"
     );
     for (kind, n) in kinds {
-        bwc_cli::out!("# {n}\t{kind}");
+        bwc_app::out!("# {n}\t{kind}");
     }
 }

@@ -42,7 +42,7 @@ fn main() {
         e.4 += usize::from(o.series);
     }
     let retried = outcomes.iter().filter(|o| o.double_double).count();
-    bwc_cli::out!(
+    bwc_app::out!(
         "# {count} cases, seed {seed}, {} path, {wall:.1} s wall ({} threads), {}",
         if series {
             "Taylor-series"
@@ -56,7 +56,7 @@ fn main() {
             "double precision only".to_string()
         }
     );
-    bwc_cli::out!(
+    bwc_app::out!(
         "{:<32} {:>8} {:>8} {:>12} {:>10} {:>10} {:>8}",
         "class",
         "count",
@@ -67,7 +67,7 @@ fn main() {
         "series"
     );
     for (name, (n, total, max, switched, series)) in &classes {
-        bwc_cli::out!(
+        bwc_app::out!(
             "{name:<32} {n:>8} {:>7.3}% {:>12.3} {:>10.1} {switched:>10} {series:>8}",
             100.0 * *n as f64 / count as f64,
             1e3 * total / *n as f64,
@@ -76,9 +76,9 @@ fn main() {
     }
     let mut slow: Vec<_> = outcomes.iter().collect();
     slow.sort_by(|a, b| b.seconds.total_cmp(&a.seconds));
-    bwc_cli::out!("\n# slowest cases");
+    bwc_app::out!("\n# slowest cases");
     for o in slow.iter().take(8) {
-        bwc_cli::out!(
+        bwc_app::out!(
             "{:>8.1} ms {:>9} evals {:<28} {:?}",
             o.seconds * 1e3,
             o.rhs_evals,
@@ -90,11 +90,11 @@ fn main() {
         .iter()
         .filter(|o| matches!(o.class, Class::EnergyCreated(_) | Class::Other(_)))
         .collect();
-    bwc_cli::out!(
+    bwc_app::out!(
         "\n# energy created without input, or unclassified failures: {}",
         bugs.len()
     );
     for o in bugs.iter().take(20) {
-        bwc_cli::out!("{:?} {:?}", o.class, o.case);
+        bwc_app::out!("{:?} {:?}", o.class, o.case);
     }
 }

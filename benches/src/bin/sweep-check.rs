@@ -9,8 +9,9 @@
 //!
 //! `target/release/sweep-check [CASES] [SEED] [COUNT]` (defaults 200, 1, 400)
 
-use bwc_cli::scene::Scene;
-use bwc_cli::simulate::{self, Run};
+use bwc_app::runs::Run;
+use bwc_app::scene::Scene;
+use bwc_app::simulate;
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use std::path::Path;
@@ -111,7 +112,7 @@ fn main() {
     let none = results.iter().filter(|r| r.0 == 0).count();
     let max = |k: usize| results.iter().map(|r| r.1[k]).fold(0.0, f64::max);
     let over = results.iter().filter(|r| r.1[0] > 1.0).count();
-    bwc_cli::out!(
+    bwc_app::out!(
         "{cases} sweeps of {count} speeds ({changes} with a change of outcome): {rows} rows \
          interpolated ({none} sweeps with none)\n\
          largest difference of an interpolated row from its speed's simulation: {:.3} \
@@ -123,7 +124,7 @@ fn main() {
         max(2)
     );
     for (i, r) in results.iter().enumerate().filter(|(_, r)| r.1[0] > 1.0) {
-        bwc_cli::out!(
+        bwc_app::out!(
             "  case {i}: {} rows; difference {:.3}, errors {:.3} (interpolated), {:.3} \
              (simulated) tolerances",
             r.0,

@@ -163,7 +163,7 @@ fn case(name: &str, map: &BaseMap, n: usize) {
             .collect();
         l.join(", ")
     };
-    bwc_cli::out!(
+    bwc_app::out!(
         "# {name}, {n} speeds, plain DOP853 (rtol: error in e): every speed {}; planned {}",
         listed(&every),
         listed(&planned)
@@ -172,7 +172,7 @@ fn case(name: &str, map: &BaseMap, n: usize) {
         let s = one_run(r);
         let err = largest_error(&by_plan(map, &speeds, &s, r), &reference);
         let (Some(be), Some(bp)) = (Bracket::of(&every, err), Bracket::of(&planned, err)) else {
-            bwc_cli::out!("{name:<18} {n:>5} {r:>7.0e} {err:>9.2e}         -         -      -         -      -");
+            bwc_app::out!("{name:<18} {n:>5} {r:>7.0e} {err:>9.2e}         -         -      -         -      -");
             continue;
         };
         let (re, rp) = ([be.hi.1, be.lo.1], [bp.hi.1, bp.lo.1]);
@@ -195,7 +195,7 @@ fn case(name: &str, map: &BaseMap, n: usize) {
         ]);
         let t_every = be.time_at(err, [times[1], times[2]]);
         let t_planned = bp.time_at(err, [times[3], times[4]]);
-        bwc_cli::out!(
+        bwc_app::out!(
             "{name:<18} {n:>5} {r:>7.0e} {err:>9.2e} {:>9.3} {:>9.3} {}{:>5.2} {:>9.3} {}{:>5.2}",
             times[0] * 1e3,
             t_every * 1e3,
@@ -219,11 +219,11 @@ fn main() {
     } else {
         sizes
     };
-    bwc_cli::out!(
+    bwc_app::out!(
         "# sweeps of N speeds from 0.5 to 5 m/s, one thread; interpolants from {} speeds",
         sweep::MIN_SPEEDS
     );
-    bwc_cli::out!(
+    bwc_app::out!(
         "case                   N    rtol  err_in_e   sweep_ms  plain_ms  ratio planned_ms  ratio"
     );
     let cases = [

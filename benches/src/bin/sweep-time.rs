@@ -10,21 +10,21 @@ fn main() {
         std::process::exit(2)
     });
     let rounds: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(5);
-    let scene = bwc_cli::scene::Scene::load(std::path::Path::new(&path)).unwrap_or_else(|e| {
+    let scene = bwc_app::scene::Scene::load(std::path::Path::new(&path)).unwrap_or_else(|e| {
         eprintln!("sweep-time: {e}");
         std::process::exit(1)
     });
     let mut times: Vec<f64> = (0..rounds)
         .map(|_| {
             let clock = std::time::Instant::now();
-            let runs = bwc_cli::with_threads(Some(1), || Ok(bwc_cli::simulate::run(&scene, None)))
+            let runs = bwc_app::with_threads(Some(1), || Ok(bwc_app::simulate::run(&scene, None)))
                 .expect("one thread");
             std::hint::black_box(runs);
             clock.elapsed().as_secs_f64()
         })
         .collect();
     times.sort_by(f64::total_cmp);
-    bwc_cli::out!(
+    bwc_app::out!(
         "{} runs, median {:.4} s over {rounds} rounds",
         scene.speeds.len(),
         times[rounds / 2]

@@ -42,8 +42,8 @@ use bw_models::{
     impact, impact_at, BaseMap, BaseParams, Cor, ModelKind, Ndbwmcm, Ndbwshccm, Nondim,
     NondimParams, Settings, State, Stiffness,
 };
+use bwc_app::plot::{chart, Axis, Series, Style};
 use bwc_benches::{cor, side_by_side};
-use bwc_cli::plot::{chart, Axis, Series, Style};
 use bwc_ode::{System, Tableau, DOP853, METHODS, VERN7};
 use std::fmt::Write as _;
 

@@ -1,86 +1,73 @@
-//! # bwc-cli: the command-line front ends of bwc
+//! # bwc-cli: the command-line tools `bwc-simulate` and `bwc-identify`
 //!
-//! `bwc-simulate run SCENE.toml` simulates the impacts a scene describes and writes tables and
-//! plots; `bwc-identify run CONFIG.toml` fits base parameters to data ([`config`],
-//! [`identify`]). The crate parses files into validated settings ([`scene`]) and calls the libraries
-//! ([`simulate`]); errors ([`CliError`]) are reported once, by the binaries.
+//! Thin binaries over [`bwc_app`]: they parse arguments (clap), show progress (indicatif), print
+//! results and map errors to exit statuses. Everything they compute and write is `bwc_app`'s;
+//! this library holds only what both binaries share: the exit statuses ([`exit`]) and the one
+//! place an error is reported ([`report`]).
 //!
 //! ```
-//! use bwc_cli::scene::Scene;
-//! let scene = Scene::parse(std::path::Path::new("example.toml"), r#"
-//!     model = "shccm"
-//!     [nondimensional]
-//!     B = 0.0
-//!     Gamma = 0.0
-//!     kappa = 0.5
-//!     sigma = 0.5
-//!     n = 1.0
-//!     p = 1.5
-//! "#)?;
-//! let runs = bwc_cli::simulate::run(&scene, None);
-//! assert_eq!(runs[0].outcome, bwc_cli::simulate::Outcome::Separated);
-//! assert!((runs[0].e - 0.748434931597434).abs() < 1e-9);
-//! # Ok::<(), bwc_cli::CliError>(())
+//! use bwc_app::AppError;
+//! let err = AppError::Threads { threads: 0, message: "no threads".into() };
+//! assert_eq!(bwc_cli::report(&err, "bwc-simulate"), bwc_cli::exit::ERROR);
 //! ```
 #![deny(missing_docs)]
 
-pub mod bounces;
-pub mod config;
-mod error;
-pub mod identify;
-pub mod outdir;
-pub mod output;
-pub mod plot;
-pub mod scene;
-pub mod signal;
-pub mod simulate;
-mod tables;
+use bwc_app::AppError;
 
-pub use error::CliError;
+/// Exit statuses of `bwc-simulate` and `bwc-identify` (the user guide's reference, "Exit status").
+pub mod exit {
+    /// Everything asked for was done (runs that ended on the horizon or settled included).
+    pub const OK: u8 = 0;
+    /// Nothing was computed: bad input, unreadable file, unusable `--out`, thread pool.
+    pub const ERROR: u8 = 1;
+    /// The command line itself is wrong (clap's status).
+    pub const USAGE: u8 = 2;
+    /// Some runs or fits failed; the others were printed and written.
+    pub const SOME_FAILED: u8 = 3;
+    /// The results were printed, but writing them into `--out` failed.
+    pub const NOT_WRITTEN: u8 = 4;
+}
 
-/// Runs `work` on a rayon pool of `threads` threads, or on the global pool (all cores, or
-/// `RAYON_NUM_THREADS`) when `None`. Results do not depend on the choice.
-///
-/// # Errors
-/// [`CliError::Threads`] if the pool cannot start; otherwise `work`'s own error.
-pub fn with_threads<T: Send>(
-    threads: Option<usize>,
-    work: impl FnOnce() -> Result<T, CliError> + Send,
-) -> Result<T, CliError> {
-    match threads {
-        Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .map_err(|e| CliError::Threads {
-                threads: n,
-                message: e.to_string(),
-            })?
-            .install(work),
-        None => work(),
+/// Prints `error` on stderr as `tool: message`, one line per mistake of an
+/// [`AppError::Many`], and returns the exit status it stands for ([`exit`]): `NOT_WRITTEN`
+/// where only writing a result into `--out` failed, `ERROR` otherwise.
+pub fn report(error: &AppError, tool: &str) -> u8 {
+    match error {
+        AppError::Many(all) => {
+            eprintln!("{tool}: {} mistakes:", all.len());
+            for one in all {
+                eprintln!("{tool}: {one}");
+            }
+        }
+        _ => eprintln!("{tool}: {error}"),
+    }
+    match error {
+        AppError::Output { file: Some(_), .. } => exit::NOT_WRITTEN,
+        _ => exit::ERROR,
     }
 }
 
-/// `x` to 12 significant digits, so that a tolerance computed from another reads as written
-/// (`1e-11`, not the `1.0000000000000001e-11` of `1e-10 / 10`) in summaries and messages.
-pub fn tidy(x: f64) -> f64 {
-    format!("{x:.11e}").parse().unwrap_or(x)
-}
+#[cfg(test)]
+mod tests {
+    use super::{exit, report};
+    use bwc_app::AppError;
 
-/// `writeln!` to stdout, ignoring errors such as a closed pipe (`bwc-simulate ... | head` must
-/// not panic, as `println!` would).
-#[macro_export]
-macro_rules! out {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
-    }};
-}
+    fn output(file: Option<&str>) -> AppError {
+        AppError::Output {
+            dir: "out".into(),
+            file: file.map(str::to_string),
+            source: std::io::Error::from(std::io::ErrorKind::PermissionDenied),
+        }
+    }
 
-/// [`out!`] without the newline.
-#[macro_export]
-macro_rules! outp {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = write!(std::io::stdout().lock(), $($arg)*);
-    }};
+    #[test]
+    fn only_a_result_that_could_not_be_written_has_its_own_status() {
+        assert_eq!(
+            report(&output(Some("summary.json")), "test"),
+            exit::NOT_WRITTEN
+        );
+        assert_eq!(report(&output(None), "test"), exit::ERROR);
+        let many = AppError::Many(vec![output(None), output(Some("a.csv"))]);
+        assert_eq!(report(&many, "test"), exit::ERROR);
+    }
 }

@@ -20,10 +20,11 @@
 #![deny(missing_docs)]
 
 use bw_models::Check;
-use bwc_cli::config::Config;
-use bwc_cli::scene::Scene;
-use bwc_cli::simulate::{self, Outcome};
-use bwc_cli::CliError;
+use bwc_app::config::Config;
+use bwc_app::scene::Scene;
+use bwc_app::simulate;
+use bwc_app::runs::Outcome;
+use bwc_app::AppError;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyUserWarning, PyValueError};
@@ -50,7 +51,7 @@ create_exception!(
 /// the package's Python function (`stacklevel` 2: the native call has no frame of its own):
 /// a sweep that found no interpolant, and, one warning a kind for all runs (a sweep may have
 /// thousands), runs that met the horizon and CoRs whose check against `e_tol` was not met.
-fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[simulate::Run]) -> PyResult<()> {
+fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[bwc_app::runs::Run]) -> PyResult<()> {
     let mut notes = simulate::no_interpolant_notes(scene, runs);
     let n = runs.len();
     let (k, labels) = labels_of(runs, |r| r.outcome == Outcome::Horizon);
@@ -81,7 +82,7 @@ fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[simulate::Run]) -> PyResult
 }
 
 /// How many runs `keep` picks, and the labels of the first three.
-fn labels_of(runs: &[simulate::Run], keep: impl Fn(&simulate::Run) -> bool) -> (usize, String) {
+fn labels_of(runs: &[bwc_app::runs::Run], keep: impl Fn(&bwc_app::runs::Run) -> bool) -> (usize, String) {
     let picked: Vec<String> = runs.iter().filter(|r| keep(r)).map(|r| r.label()).collect();
     let more = if picked.len() > 3 { "; ..." } else { "" };
     (
@@ -91,9 +92,9 @@ fn labels_of(runs: &[simulate::Run], keep: impl Fn(&simulate::Run) -> bool) -> (
 }
 
 /// The CLI's error as a `BwcError` (several mistakes one per line, as the CLI prints them).
-fn error(e: CliError) -> PyErr {
+fn error(e: AppError) -> PyErr {
     let text = match &e {
-        CliError::Many(all) => all
+        AppError::Many(all) => all
             .iter()
             .map(ToString::to_string)
             .collect::<Vec<_>>()
@@ -163,7 +164,7 @@ fn cor<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let scene = scene_of(None, Some(scene_json))?;
     let runs = py
-        .allow_threads(|| bwc_cli::with_threads(threads, || Ok(simulate::run(&scene, None))))
+        .allow_threads(|| bwc_app::with_threads(threads, || Ok(simulate::run(&scene, None))))
         .map_err(error)?;
     if let Some(failed) = runs.iter().find(|r| r.outcome == Outcome::Failed) {
         return Err(BwcError::new_err(format!(
@@ -173,7 +174,7 @@ fn cor<'py>(
         )));
     }
     warn_notes(py, &scene, &runs)?;
-    let column = |f: &dyn Fn(&simulate::Run) -> f64| runs.iter().map(f).collect::<Vec<f64>>();
+    let column = |f: &dyn Fn(&bwc_app::runs::Run) -> f64| runs.iter().map(f).collect::<Vec<f64>>();
     let out = PyDict::new(py);
     out.set_item("e", column(&|r| r.e).into_pyarray(py))?;
     out.set_item(
@@ -193,7 +194,7 @@ fn cor<'py>(
         "e_error",
         column(&|r| r.e_error.unwrap_or(f64::NAN)).into_pyarray(py),
     )?;
-    let check = |r: &simulate::Run| {
+    let check = |r: &bwc_app::runs::Run| {
         let name = r.check.map_or("none", |c| c.name());
         CHECKS.iter().position(|n| *n == name).unwrap_or(4) as u8
     };
@@ -201,7 +202,7 @@ fn cor<'py>(
     out.set_item("check", checks.into_pyarray(py))?;
     out.set_item(
         "tighter_failed_rtol",
-        column(&|r| r.tighter_failed.map_or(f64::NAN, |f| bwc_cli::tidy(f.rtol))).into_pyarray(py),
+        column(&|r| r.tighter_failed.map_or(f64::NAN, |f| bwc_app::tidy(f.rtol))).into_pyarray(py),
     )?;
     let out_of_steps: Vec<bool> = runs
         .iter()
@@ -212,7 +213,7 @@ fn cor<'py>(
     out.set_item("double_double", PyArray1::from_vec(py, double_double))?;
     let phase: Vec<bool> = runs.iter().map(|r| r.phase).collect();
     out.set_item("phase", PyArray1::from_vec(py, phase))?;
-    let declined = |r: &simulate::Run| {
+    let declined = |r: &bwc_app::runs::Run| {
         let name = r.double_double_declined.map_or("none", |d| d.name());
         DECLINED.iter().position(|n| *n == name).unwrap_or(0) as u8
     };
@@ -222,7 +223,7 @@ fn cor<'py>(
     out.set_item("rhs_evals", evals.into_pyarray(py))?;
     let interpolated: Vec<bool> = runs.iter().map(|r| r.interpolation.is_some()).collect();
     out.set_item("interpolated", PyArray1::from_vec(py, interpolated))?;
-    let gave_up = |r: &simulate::Run| {
+    let gave_up = |r: &bwc_app::runs::Run| {
         let name = r.sweep_gave_up.map_or("none", |g| g.name());
         GAVE_UP.iter().position(|n| *n == name).unwrap_or(0) as u8
     };
@@ -249,10 +250,10 @@ fn simulate_json<'py>(
 ) -> PyResult<(String, Vec<Option<Bound<'py, PyDict>>>)> {
     let scene = scene_of(path, scene_json)?;
     let runs = py
-        .allow_threads(|| bwc_cli::with_threads(threads, || Ok(simulate::run(&scene, None))))
+        .allow_threads(|| bwc_app::with_threads(threads, || Ok(simulate::run(&scene, None))))
         .map_err(error)?;
     warn_notes(py, &scene, &runs)?;
-    let summary = bwc_cli::output::Summary::new(&runs, scene.sequence.is_some());
+    let summary = bwc_app::output::Summary::new(&runs, scene.sequence.is_some());
     let text = summary.provenance_json(&scene, &runs);
     let sampled = scene.output.trajectory || scene.output.loops;
     let trajectories = runs
@@ -263,10 +264,10 @@ fn simulate_json<'py>(
 }
 
 /// A run's samples as a dict of numpy arrays.
-fn trajectory<'py>(py: Python<'py>, r: &simulate::Run) -> PyResult<Bound<'py, PyDict>> {
+fn trajectory<'py>(py: Python<'py>, r: &bwc_app::runs::Run) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
     let column =
-        |f: &dyn Fn(&simulate::Sample) -> f64| r.trajectory.iter().map(f).collect::<Vec<f64>>();
+        |f: &dyn Fn(&bwc_app::runs::Sample) -> f64| r.trajectory.iter().map(f).collect::<Vec<f64>>();
     out.set_item("t", column(&|s| s.t).into_pyarray(py))?;
     out.set_item("x", column(&|s| s.x).into_pyarray(py))?;
     out.set_item("v", column(&|s| s.v).into_pyarray(py))?;
@@ -296,12 +297,12 @@ fn identify_json(
     let (file, config) = config_of(path, config_json)?;
     let (reports, loops) = py
         .allow_threads(|| {
-            bwc_cli::with_threads(threads, || {
-                bwc_cli::identify::fit_all(&file, &config, seed, &|| {})
+            bwc_app::with_threads(threads, || {
+                bwc_app::identify::fit_all(&file, &config, seed, &|| {})
             })
         })
         .map_err(error)?;
-    Ok(bwc_cli::identify::summary_of(&config, &reports, &loops).to_string())
+    Ok(bwc_app::identify::summary_of(&config, &reports, &loops).to_string())
 }
 
 /// `bwc.coverage`: the JSON text `bwc-identify coverage --json` prints for the config over the
@@ -323,13 +324,13 @@ fn coverage_json(
     let seeds = first_seed..first_seed.saturating_add(replicates);
     let reports = py
         .allow_threads(|| {
-            bwc_cli::with_threads(threads, || {
-                bwc_cli::identify::coverage_study(&file, &config, noise, fit, seeds)
+            bwc_app::with_threads(threads, || {
+                bwc_app::identify::coverage_study(&file, &config, noise, fit, seeds)
             })
         })
         .map_err(error)?;
-    let mut v = bwc_cli::outdir::provenance("bwc-identify");
-    v["coverage"] = bwc_cli::identify::coverage_summary(&reports)["coverage"].take();
+    let mut v = bwc_app::outdir::provenance("bwc-identify");
+    v["coverage"] = bwc_app::identify::coverage_summary(&reports)["coverage"].take();
     Ok(v.to_string())
 }
 

@@ -1,9 +1,10 @@
 //! `bwc-identify`: identify base parameters of the Bouc-Wen collision models from data.
 
-use bwc_cli::config::Config;
-use bwc_cli::identify::{render, render_loops, summary, FitReport, LoopReport};
-use bwc_cli::outdir::{self, exit};
-use bwc_cli::CliError;
+use bwc_app::config::Config;
+use bwc_app::identify::{render, render_loops, summary, FitReport, LoopReport};
+use bwc_app::outdir;
+use bwc_app::AppError;
+use bwc_cli::exit;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::{Path, PathBuf};
@@ -113,7 +114,7 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::from(exit::OK),
-        Err(e) => ExitCode::from(e.report("bwc-identify")),
+        Err(e) => ExitCode::from(bwc_cli::report(&e, "bwc-identify")),
     }
 }
 
@@ -123,21 +124,21 @@ fn run(
     json: bool,
     seed: Option<u64>,
     threads: Option<usize>,
-) -> Result<(), CliError> {
+) -> Result<(), AppError> {
     let config = Config::load(path)?;
     if let Some(dir) = out {
         outdir::prepare(dir)?;
     }
     let bar = progress_bar(&config, json, seed);
     let tick = || bar.inc(1);
-    let work = || bwc_cli::identify::fit_all(path, &config, seed, &tick);
-    let (reports, loop_reports) = bwc_cli::with_threads(threads, work)?;
+    let work = || bwc_app::identify::fit_all(path, &config, seed, &tick);
+    let (reports, loop_reports) = bwc_app::with_threads(threads, work)?;
     bar.finish_and_clear();
     warn(&reports, &loop_reports);
-    let summary = bwc_cli::identify::summary_of(&config, &reports, &loop_reports);
+    let summary = bwc_app::identify::summary_of(&config, &reports, &loop_reports);
     // The results are printed before the files are written: a failed write loses nothing.
     if json {
-        bwc_cli::out!("{summary}");
+        bwc_app::out!("{summary}");
     } else {
         for r in &reports {
             print_fit(&config, r);
@@ -164,7 +165,7 @@ fn run(
 /// The progress of a run's evaluations on stderr: hidden for JSON output and without a seed
 /// (where the number of evaluations is not planned).
 fn progress_bar(config: &Config, json: bool, seed: Option<u64>) -> ProgressBar {
-    let total = seed.map_or(0, |_| bwc_cli::identify::planned_evaluations(config));
+    let total = seed.map_or(0, |_| bwc_app::identify::planned_evaluations(config));
     let target = if json || seed.is_none() {
         ProgressDrawTarget::hidden()
     } else {
@@ -214,14 +215,14 @@ fn print_fit(config: &Config, r: &FitReport) {
             r.costs.j2.map_or("-".into(), |j| format!("{j:.3e} s^2"))
         ),
     };
-    bwc_cli::out!(
+    bwc_app::out!(
         "{} ({}): {costs}, {} evaluations, {:.2} s",
         r.name,
         r.model,
         r.evaluations,
         r.wall_s
     );
-    bwc_cli::outp!(
+    bwc_app::outp!(
         "    B_b = {:.6}, Gamma_b = {:.6}, kappa = {:.6}, sigma_b = {:.6e}, n = {:.6}, p = {:.6}",
         p.b_b,
         p.gamma_b,
@@ -231,23 +232,23 @@ fn print_fit(config: &Config, r: &FitReport) {
         p.p
     );
     if r.uses_input_scales {
-        bwc_cli::outp!(", U_b = {:.6e}, T_b = {:.6e}", p.u_b, p.t_b);
+        bwc_app::outp!(", U_b = {:.6e}, T_b = {:.6e}", p.u_b, p.t_b);
     }
-    bwc_cli::out!();
+    bwc_app::out!();
     if let Some(id) = &r.identifiability {
         let sv: Vec<String> = id
             .singular_values
             .iter()
             .map(|s| format!("{s:.2e}"))
             .collect();
-        bwc_cli::out!(
+        bwc_app::out!(
             "    sensitivity singular values [{}]; weakest direction: {}",
             sv.join(", "),
             id.weakest_names().join(" + ")
         );
     }
     if let Some(c) = &r.convergence {
-        bwc_cli::out!(
+        bwc_app::out!(
             "    search: {} of {} starts agree within {} %{}",
             c.agreeing,
             c.starts,
@@ -268,17 +269,17 @@ fn print_fit(config: &Config, r: &FitReport) {
                 None => format!("{n} on its bound"),
             })
             .collect();
-        bwc_cli::out!("    95 % intervals ({}): {}", u.method, iv.join(", "));
+        bwc_app::out!("    95 % intervals ({}): {}", u.method, iv.join(", "));
     }
     if let Some(s) = r.curve.first().and(predictions_summary(r)) {
-        bwc_cli::out!("    {s}");
+        bwc_app::out!("    {s}");
     }
 }
 
 /// One hysteresis-loop fit's result as text.
 fn print_loop_fit(r: &LoopReport) {
     let l = r.law;
-    bwc_cli::out!(
+    bwc_app::out!(
         "{} ({}, loops): cost = {:.3e}, {} evaluations, {:.2} s",
         r.name,
         r.model,
@@ -286,7 +287,7 @@ fn print_loop_fit(r: &LoopReport) {
         r.evaluations,
         r.wall_s
     );
-    bwc_cli::out!(
+    bwc_app::out!(
         "    k = {:.6e}, c = {:.6e}, n = {:.4}, p = {:.4}, alpha = {:.4}, beta = {:.4e}, gamma = \
          {:.4e}, A = {:.4}",
         l.k,
@@ -309,20 +310,20 @@ fn coverage_study(
     only: Option<&str>,
     json: bool,
     threads: Option<usize>,
-) -> Result<(), CliError> {
+) -> Result<(), AppError> {
     let config = Config::load(path)?;
     let seeds = first_seed..first_seed.saturating_add(replicates);
-    let work = || bwc_cli::identify::coverage_study(path, &config, noise, only, seeds);
-    let reports = bwc_cli::with_threads(threads, work)?;
+    let work = || bwc_app::identify::coverage_study(path, &config, noise, only, seeds);
+    let reports = bwc_app::with_threads(threads, work)?;
     if json {
         let mut v = outdir::provenance("bwc-identify");
-        v["coverage"] = bwc_cli::identify::coverage_summary(&reports)["coverage"].take();
-        bwc_cli::out!("{v}");
+        v["coverage"] = bwc_app::identify::coverage_summary(&reports)["coverage"].take();
+        bwc_app::out!("{v}");
         return Ok(());
     }
     for r in &reports {
         let without = r.replicates.iter().filter(|x| x.error.is_some()).count();
-        bwc_cli::out!(
+        bwc_app::out!(
             "{}: 95 % band contains the truth at {:.1} % of {} points ({} replicates, noise {:.3e}, truth from {}{})",
             r.name,
             100.0 * bwc_identify::coverage(&r.replicates),

@@ -1,9 +1,10 @@
 //! `bwc-simulate`: simulate the impacts a TOML scene describes.
 
 use bw_models::{Check, ModelKind, CHECK_METHOD, FLOOR_RTOL, TIGHTEN};
-use bwc_cli::outdir::{self, exit};
-use bwc_cli::simulate::Outcome;
-use bwc_cli::{output, scene::Scene, simulate, tidy, CliError};
+use bwc_app::outdir;
+use bwc_app::runs::Outcome;
+use bwc_app::{output, scene::Scene, simulate, tidy, AppError};
+use bwc_cli::exit;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::PathBuf;
@@ -50,7 +51,7 @@ fn main() -> ExitCode {
     } = Cli::parse().command;
     match run(&scene, out.as_deref(), json, threads.map(|t| t as usize)) {
         Ok(status) => ExitCode::from(status),
-        Err(e) => ExitCode::from(e.report("bwc-simulate")),
+        Err(e) => ExitCode::from(bwc_cli::report(&e, "bwc-simulate")),
     }
 }
 
@@ -60,7 +61,7 @@ fn run(
     out: Option<&std::path::Path>,
     json: bool,
     threads: Option<usize>,
-) -> Result<u8, CliError> {
+) -> Result<u8, AppError> {
     let scene = Scene::load(path)?;
     if let Some(dir) = out {
         outdir::prepare(dir)?;
@@ -82,13 +83,13 @@ fn run(
             bar.set_draw_target(ProgressDrawTarget::stderr());
         }
     };
-    let runs = bwc_cli::with_threads(threads, || Ok(simulate::run(&scene, Some(&tick))))?;
+    let runs = bwc_app::with_threads(threads, || Ok(simulate::run(&scene, Some(&tick))))?;
     bar.finish_and_clear();
     report(&scene, &runs);
     let summary = output::Summary::new(&runs, scene.sequence.is_some());
     // The results are printed before the files are written: a failed write loses nothing.
     if json {
-        bwc_cli::out!("{}", summary.provenance_json(&scene, &runs));
+        bwc_app::out!("{}", summary.provenance_json(&scene, &runs));
     } else if scene.sequence.is_some() {
         bounce_table(&runs);
     } else {
@@ -109,7 +110,7 @@ fn run(
 
 /// Says on stderr what is not a plain separation: failures with their reason, horizons with the
 /// setting that moves them, settled contacts with their force balance.
-fn report(scene: &Scene, runs: &[simulate::Run]) {
+fn report(scene: &Scene, runs: &[bwc_app::runs::Run]) {
     let interpolated: Vec<f64> = runs
         .iter()
         .filter_map(|r| r.interpolation.map(|i| i.estimate))
@@ -181,7 +182,7 @@ fn report(scene: &Scene, runs: &[simulate::Run]) {
 
 /// Warns where a checked CoR's own error estimate stayed above `[solver].e_tol`, or where no
 /// run at another tolerance could check it.
-fn unmet_e_tol(scene: &Scene, label: &str, r: &simulate::Run) {
+fn unmet_e_tol(scene: &Scene, label: &str, r: &bwc_app::runs::Run) {
     let (Some(e_tol), Some(check), Some(rtol)) = (scene.settings.e_tol, r.check, r.rtol) else {
         return;
     };
@@ -230,7 +231,7 @@ fn unmet_e_tol(scene: &Scene, label: &str, r: &simulate::Run) {
 }
 
 /// The human-readable table, with the unit of every column.
-fn table(runs: &[simulate::Run]) {
+fn table(runs: &[bwc_app::runs::Run]) {
     // The first column as wide as the longest label (named bases make long ones).
     let labels: Vec<String> = runs.iter().map(|r| r.label()).collect();
     let width = labels
@@ -242,7 +243,7 @@ fn table(runs: &[simulate::Run]) {
         Some(u) if runs.iter().all(|r| r.time_unit == u) => "(T, nondim.)",
         _ => "(s or T)",
     };
-    bwc_cli::out!(
+    bwc_app::out!(
         "{:<width$} {:>10} {:>12} {:>11} {:>16} {:>14} {:>10}",
         "run",
         "outcome",
@@ -269,7 +270,7 @@ fn table(runs: &[simulate::Run]) {
             Some(_) => "interp.".to_string(),
             None => r.stats.rhs_evals.to_string(),
         };
-        bwc_cli::out!(
+        bwc_app::out!(
             "{:<width$} {:>10} {:>12} {:>11} {:>16} {:>14} {:>10}",
             label,
             r.outcome.name(),
@@ -287,7 +288,7 @@ fn table(runs: &[simulate::Run]) {
         .map(|(_, l)| l.as_str())
         .collect();
     if !precise.is_empty() {
-        bwc_cli::out!(
+        bwc_app::out!(
             "double-double arithmetic ([solver] double_double), where double precision could not \
              meet [solver].e_tol: {}",
             precise.join("; ")
@@ -296,8 +297,8 @@ fn table(runs: &[simulate::Run]) {
 }
 
 /// The contacts of a sequence, with the unit of every column.
-fn bounce_table(runs: &[simulate::Run]) {
-    bwc_cli::out!(
+fn bounce_table(runs: &[bwc_app::runs::Run]) {
+    bwc_app::out!(
         "{:>4} {:>14} {:>12} {:>12} {:>10} {:>14} {:>12} {:>12} {:>10}",
         "n",
         "t_contact (s)",
@@ -312,7 +313,7 @@ fn bounce_table(runs: &[simulate::Run]) {
     for (b, _) in runs.iter().flat_map(|r| &r.bounces) {
         let opt =
             |v: Option<f64>, digits: usize| v.map_or("-".to_string(), |x| format!("{x:.digits$e}"));
-        bwc_cli::out!(
+        bwc_app::out!(
             "{:>4} {:>14.6} {:>12.6} {:>12.6} {:>10.6} {:>14} {:>12.6} {:>12} {:>10}",
             b.n,
             b.t_contact,

@@ -1,9 +1,7 @@
 //! The binaries run on good and bad scenes: `bwc-simulate` ([`simulate`]), `bwc-identify`
 //! ([`identify`]), impact sequences and drop tests ([`sequence`]), sweeps served by interpolants
-//! ([`sweep`]), and arbitrary inputs
-//! ([`fuzz`]).
+//! ([`sweep`]).
 
-mod fuzz;
 mod identify;
 mod sequence;
 mod simulate;

@@ -1,10 +1,10 @@
 //! The runs of `[sequence]` scenes: repeated impacts of a `[physical]` body on a fixed surface
 //! under gravity ([`bw_models::sequence`]), each contact an impact with input `u = -m g`.
 
+use crate::runs::{hint, scaling, Bounced, Outcome, Run};
 use crate::scene::{SequenceSpec, System, SystemSpec};
-use crate::simulate::{Outcome, Run};
 use bw_models::input::{Constant, Scaled};
-use bw_models::sequence::{drop_sequence, Bounce, BounceEnd, Contact, Resumed};
+use bw_models::sequence::{drop_sequence, BounceEnd, Contact, Resumed};
 use bw_models::{
     impact, Bwmcm, Bwshccm, CollisionModel, ModelError, ModelKind, Ndbwmcm, Ndbwshccm, Settings,
     State,
@@ -49,9 +49,6 @@ fn contact<M: CollisionModel<N>, const N: usize>(
     };
     Ok((contact, x_s * to_m))
 }
-
-/// A bounce and the displacement (m) at its separation.
-pub type Bounced = (Bounce, f64);
 
 /// The sequence of contacts made by `make(v_in)` in `units`.
 fn sequence_of<M: CollisionModel<N>, const N: usize>(
@@ -140,7 +137,7 @@ pub fn run(spec: &SystemSpec, seq: &SequenceSpec, settings: &Settings) -> Run {
                 BounceEnd::Settled => Outcome::Settled,
                 BounceEnd::Horizon => Outcome::Horizon,
             };
-            if let Ok(s) = crate::simulate::scaling(spec, Some(first.v_in)) {
+            if let Ok(s) = scaling(spec, Some(first.v_in)) {
                 run.t_c = s.t_c;
                 run.nondimensional = Some(s.nondimensional);
             }
@@ -148,7 +145,7 @@ pub fn run(spec: &SystemSpec, seq: &SequenceSpec, settings: &Settings) -> Run {
         }
         Err(e) => {
             run.outcome = Outcome::Failed;
-            run.error = Some(format!("{e}; {}", crate::simulate::hint(&e, settings)));
+            run.error = Some(format!("{e}; {}", hint(&e, settings)));
         }
     }
     run

@@ -2,10 +2,11 @@
 //! search space ([`space`]), points given in full ([`point`]), the optimizer and the solver.
 //! The data file is read only after the whole config has parsed ([`Draft::with_data`]).
 
-use super::{optimizer, param_of, RawFit, RawPoint, RawQuantities};
+use super::search::{optimizer, param_of};
+use super::{RawFit, RawPoint, RawQuantities};
 use crate::signal::Signal;
 use crate::tables::{model_kind, signal, solver_settings, span, Ctx, Num};
-use crate::CliError;
+use crate::AppError;
 use bw_models::{BaseParams, ModelKind, Settings};
 use bwc_identify::{
     Budget, Dataset, IdentifyError, KnownMassStiffness, Param, Space, Weights, NAMES,
@@ -35,13 +36,13 @@ impl Draft {
     /// Reads the data file and checks the objectives against it.
     ///
     /// # Errors
-    /// [`CliError::Identify`] for the data file's own errors; [`CliError::Invalid`] at
+    /// [`AppError::Identify`] for the data file's own errors; [`AppError::Invalid`] at
     /// `objectives` for a weight on a quantity the data lack, at `[fit.pareto]` without both.
-    pub(super) fn with_data(self, ctx: &Ctx) -> Result<FitConfig, CliError> {
+    pub(super) fn with_data(self, ctx: &Ctx) -> Result<FitConfig, AppError> {
         let mut fit = self.fit;
         if let Some(setup) = self.setup {
             let data = bwc_identify::DropData::load(&self.data_path).map_err(|source| {
-                CliError::Identify {
+                AppError::Identify {
                     path: ctx.path.to_owned(),
                     fit: fit.name.clone(),
                     source,
@@ -50,7 +51,7 @@ impl Draft {
             fit.drops = Some(super::DropFit { data, setup });
             return Ok(fit);
         }
-        fit.data = Dataset::load(&self.data_path).map_err(|source| CliError::Identify {
+        fit.data = Dataset::load(&self.data_path).map_err(|source| AppError::Identify {
             path: ctx.path.to_owned(),
             fit: fit.name.clone(),
             source,
@@ -88,7 +89,7 @@ pub(super) fn parse_fit(
     dir: &Path,
     f: &Spanned<RawFit>,
     index: usize,
-) -> Result<Draft, CliError> {
+) -> Result<Draft, AppError> {
     let t = f.span();
     let r = f.get_ref();
     let (name, kind, data_path) = head(ctx, dir, r, &t, index)?;
@@ -153,7 +154,7 @@ fn start_and_params(
     r: &RawFit,
     space: &Space,
     scales: &Scales,
-) -> Result<(Option<Vec<f64>>, Option<BaseParams>), CliError> {
+) -> Result<(Option<Vec<f64>>, Option<BaseParams>), AppError> {
     let start = r
         .start
         .as_ref()
@@ -178,7 +179,7 @@ fn search(
     ctx: &Ctx,
     r: &RawFit,
     index: usize,
-) -> Result<(Budget, u64, Settings, Option<usize>), CliError> {
+) -> Result<(Budget, u64, Settings, Option<usize>), AppError> {
     let (budget, seed) = optimizer(ctx, &r.optimizer, "[fit.optimizer]", index)?;
     let search = Settings {
         rtol: 1e-8,
@@ -190,7 +191,7 @@ fn search(
     let pareto = r
         .pareto
         .as_ref()
-        .map(|p| super::count(ctx, &p.get_ref().count, "[fit.pareto].count", 2, 1_000, 11))
+        .map(|p| super::search::count(ctx, &p.get_ref().count, "[fit.pareto].count", 2, 1_000, 11))
         .transpose()?
         .map(|n| n as usize);
     Ok((budget, seed, settings, pareto))
@@ -203,7 +204,7 @@ fn head(
     r: &RawFit,
     t: &Range<usize>,
     index: usize,
-) -> Result<(String, ModelKind, PathBuf), CliError> {
+) -> Result<(String, ModelKind, PathBuf), AppError> {
     let name = r
         .name
         .as_ref()
@@ -229,7 +230,7 @@ fn head(
 }
 
 /// `objectives = { J1 = w1, J2 = w2 }` (default: J1 alone).
-fn objectives(ctx: &Ctx, r: &RawFit) -> Result<Weights, CliError> {
+fn objectives(ctx: &Ctx, r: &RawFit) -> Result<Weights, AppError> {
     Ok(match &r.objectives {
         None => Weights { j1: 1.0, j2: 0.0 },
         Some(o) => {
@@ -245,7 +246,7 @@ fn objectives(ctx: &Ctx, r: &RawFit) -> Result<Weights, CliError> {
 /// A weight on a quantity the data file has no column for, reported before everything that
 /// depends on the weights (a `J2` weight makes `U_b` and `T_b` matter): the header is read now,
 /// the data after the whole config has parsed.
-fn columns_for(ctx: &Ctx, r: &RawFit, data: &Path, w: Weights) -> Result<(), CliError> {
+fn columns_for(ctx: &Ctx, r: &RawFit, data: &Path, w: Weights) -> Result<(), AppError> {
     let Some(columns) = header_of(data) else {
         // Unreadable: the data file's own error comes with the data.
         return Ok(());
@@ -283,7 +284,7 @@ fn header_of(path: &Path) -> Option<Vec<String>> {
 }
 
 /// A drop-test fit has one cost, `J_drop`: `objectives` must not weigh `J1` or `J2`.
-fn drop_objectives(ctx: &Ctx, r: &RawFit) -> Result<Weights, CliError> {
+fn drop_objectives(ctx: &Ctx, r: &RawFit) -> Result<Weights, AppError> {
     if let Some(o) = &r.objectives {
         return Err(ctx.invalid(
             &o.span(),
@@ -301,14 +302,14 @@ fn drop_setup(
     r: &RawFit,
     t: &Range<usize>,
     timed: bool,
-) -> Result<bwc_identify::DropSetup, CliError> {
+) -> Result<bwc_identify::DropSetup, AppError> {
     let span = r.sequence.as_ref().map_or(t.clone(), |s| s.span());
     let q = r.sequence.as_ref().map(|s| s.get_ref());
     let value = |v: Option<&Num>,
                  key: &str,
                  ok: fn(f64) -> bool,
                  allowed: &str|
-     -> Result<Option<f64>, CliError> {
+     -> Result<Option<f64>, AppError> {
         let Some(v) = v else { return Ok(None) };
         let x = ctx.num(v, key)?;
         if ok(x) {
@@ -357,7 +358,7 @@ fn drop_setup(
 }
 
 /// `[fit.known]`: `m`, `k`.
-fn known(ctx: &Ctx, r: &RawFit) -> Result<Option<KnownMassStiffness>, CliError> {
+fn known(ctx: &Ctx, r: &RawFit) -> Result<Option<KnownMassStiffness>, AppError> {
     r.known
         .as_ref()
         .map(|k| {
@@ -371,7 +372,7 @@ fn known(ctx: &Ctx, r: &RawFit) -> Result<Option<KnownMassStiffness>, CliError> 
 }
 
 /// `log = [...]`: which quantities are searched on a log scale.
-fn log_flags(ctx: &Ctx, r: &RawFit) -> Result<[bool; 8], CliError> {
+fn log_flags(ctx: &Ctx, r: &RawFit) -> Result<[bool; 8], AppError> {
     let mut log = [false; 8];
     for item in r.log.as_ref().map_or(&[][..], |l| l.get_ref()) {
         match NAMES.iter().position(|n| n == item.get_ref()) {
@@ -401,7 +402,7 @@ fn space(
     kind: ModelKind,
     known: Option<KnownMassStiffness>,
     uses_input_scales: bool,
-) -> Result<Space, CliError> {
+) -> Result<Space, AppError> {
     let empty_b = RawQuantities::default();
     let empty_v = RawQuantities::default();
     let b = r.bounds.as_ref().map_or(&empty_b, |b| b.get_ref());
@@ -465,11 +466,11 @@ fn point(
     p: &Spanned<RawPoint>,
     table: &str,
     scales: &Scales,
-) -> Result<BaseParams, CliError> {
+) -> Result<BaseParams, AppError> {
     let s = p.span();
     let q = p.get_ref();
     let key = |k: &str| format!("[fit.{table}].{k}");
-    let uf = |v: &Option<Num>, k: &str| -> Result<f64, CliError> {
+    let uf = |v: &Option<Num>, k: &str| -> Result<f64, AppError> {
         if scales.uses_input_scales {
             ctx.req(v, &s, &key(k))
         } else {

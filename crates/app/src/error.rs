@@ -1,10 +1,11 @@
-//! The errors of the command-line tools, each naming the file (and line and key where known).
+//! The errors of scenes, configs, runs and outputs, each naming the file (and line and key where
+//! known); the front ends (the command-line tools, Python) report them.
 
 use std::path::PathBuf;
 
 /// Everything that can stop a command.
 #[derive(Debug, thiserror::Error)]
-pub enum CliError {
+pub enum AppError {
     /// A file could not be read or written.
     #[error("{path}: {source}")]
     Io {
@@ -85,7 +86,7 @@ pub enum CliError {
     },
     /// Several mistakes in one file, in file order.
     #[error("{}", .0.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n"))]
-    Many(Vec<CliError>),
+    Many(Vec<AppError>),
     /// The thread pool could not be built.
     #[error("cannot start {threads} threads: {message}")]
     Threads {
@@ -94,51 +95,4 @@ pub enum CliError {
         /// Why not.
         message: String,
     },
-}
-
-impl CliError {
-    /// Prints the error on stderr as `tool: message`, one line per mistake of a
-    /// [`CliError::Many`], and returns the exit status it stands for
-    /// ([`crate::outdir::exit`]): `NOT_WRITTEN` where only writing a result into `--out`
-    /// failed, `ERROR` otherwise.
-    pub fn report(&self, tool: &str) -> u8 {
-        match self {
-            CliError::Many(all) => {
-                eprintln!("{tool}: {} mistakes:", all.len());
-                for one in all {
-                    eprintln!("{tool}: {one}");
-                }
-            }
-            _ => eprintln!("{tool}: {self}"),
-        }
-        match self {
-            CliError::Output { file: Some(_), .. } => crate::outdir::exit::NOT_WRITTEN,
-            _ => crate::outdir::exit::ERROR,
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::CliError;
-    use crate::outdir::exit;
-
-    fn output(file: Option<&str>) -> CliError {
-        CliError::Output {
-            dir: "out".into(),
-            file: file.map(str::to_string),
-            source: std::io::Error::from(std::io::ErrorKind::PermissionDenied),
-        }
-    }
-
-    #[test]
-    fn only_a_result_that_could_not_be_written_has_its_own_status() {
-        assert_eq!(
-            output(Some("summary.json")).report("test"),
-            exit::NOT_WRITTEN
-        );
-        assert_eq!(output(None).report("test"), exit::ERROR);
-        let many = CliError::Many(vec![output(None), output(Some("a.csv"))]);
-        assert_eq!(many.report("test"), exit::ERROR);
-    }
 }

@@ -4,7 +4,7 @@
 
 use super::raw::{RawScene, RawSequence};
 use crate::tables::{span, Ctx, Num};
-use crate::CliError;
+use crate::AppError;
 use bw_models::sequence::{Flight, Policy, SequenceSettings, Start};
 use std::ops::Range;
 
@@ -23,7 +23,7 @@ pub struct SequenceSpec {
 const MOST_BOUNCES: i64 = 100_000;
 
 /// The scene's `[sequence]`, if any, checked against the rest of the scene.
-pub(super) fn sequence(ctx: &Ctx, raw: &RawScene) -> Result<Option<SequenceSpec>, CliError> {
+pub(super) fn sequence(ctx: &Ctx, raw: &RawScene) -> Result<Option<SequenceSpec>, AppError> {
     let Some(seq) = &raw.sequence else {
         return Ok(None);
     };
@@ -89,7 +89,7 @@ fn with_the_scene(
     raw: &RawScene,
     r: &RawSequence,
     t: &Range<usize>,
-) -> Result<Option<f64>, CliError> {
+) -> Result<Option<f64>, AppError> {
     let conflict = |what: &Option<Range<usize>>, key: &str, why: &str| match what {
         Some(s) => Err(ctx.invalid(s, key, why.to_string())),
         None => Ok(()),
@@ -121,7 +121,7 @@ fn with_the_scene(
 }
 
 /// A positive value of `key` (in `unit`), if given.
-fn positive(ctx: &Ctx, v: &Option<Num>, key: &str, unit: &str) -> Result<Option<f64>, CliError> {
+fn positive(ctx: &Ctx, v: &Option<Num>, key: &str, unit: &str) -> Result<Option<f64>, AppError> {
     v.as_ref()
         .map(|x| {
             let value = ctx.num(x, key)?;
@@ -139,7 +139,7 @@ fn positive(ctx: &Ctx, v: &Option<Num>, key: &str, unit: &str) -> Result<Option<
 }
 
 /// The start: a drop height `h0` or a first impact speed `v0`, exactly one of them.
-fn start(ctx: &Ctx, r: &RawSequence, t: &Range<usize>) -> Result<Start, CliError> {
+fn start(ctx: &Ctx, r: &RawSequence, t: &Range<usize>) -> Result<Start, AppError> {
     match (
         positive(ctx, &r.h0, "[sequence].h0", "m")?,
         positive(ctx, &r.v0, "[sequence].v0", "m/s")?,
@@ -165,7 +165,7 @@ fn base_mass(
     raw: &RawScene,
     r: &RawSequence,
     t: &Range<usize>,
-) -> Result<Option<f64>, CliError> {
+) -> Result<Option<f64>, AppError> {
     use super::raw::SeqOrMap;
     let Some(base) = &raw.base else {
         if let Some(m) = &r.m {

@@ -4,9 +4,9 @@
 
 mod figures;
 
+use crate::runs::{Outcome, Run};
 use crate::scene::{OutputSpec, Scene, System};
-use crate::simulate::{Outcome, Run};
-use crate::CliError;
+use crate::AppError;
 use bw_models::{Check, ModelKind};
 use serde::Serialize;
 use std::path::Path;
@@ -146,7 +146,7 @@ pub struct BounceSummary {
 }
 
 impl BounceSummary {
-    fn of((b, x_s): &crate::bounces::Bounced) -> Self {
+    fn of((b, x_s): &crate::runs::Bounced) -> Self {
         use bw_models::sequence::BounceEnd;
         BounceSummary {
             n: b.n,
@@ -220,12 +220,12 @@ impl Summary {
                     t_d: r.t_d,
                     separated: r.outcome == Outcome::Separated,
                     rhs_evals: r.stats.rhs_evals,
-                    rtol: r.rtol.map(crate::tidy),
+                    rtol: r.rtol.map(crate::format::tidy),
                     e_error: r.e_error,
                     t_s_error: r.t_s_error,
                     check: r.check.map(Check::name),
                     tighter_failed: r.tighter_failed.map(|f| FailedRunSummary {
-                        rtol: crate::tidy(f.rtol),
+                        rtol: crate::format::tidy(f.rtol),
                         out_of_steps: f.out_of_steps,
                     }),
                     double_double_declined: r.double_double_declined.map(|d| d.to_string()),
@@ -355,8 +355,8 @@ pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
 /// Renders every requested output of `runs` into `(file name, bytes)` pairs.
 ///
 /// # Errors
-/// [`CliError::Csv`] or [`CliError::Plot`] if rendering fails.
-pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Vec<u8>)>, CliError> {
+/// [`AppError::Csv`] or [`AppError::Plot`] if rendering fails.
+pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Vec<u8>)>, AppError> {
     let spec: OutputSpec = scene.output;
     let mut files = Vec::new();
 
@@ -365,14 +365,14 @@ pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Ve
     let sweep = spec.sweep || scene.speeds.len() > 1;
     let csv_err = |name: &str| {
         let path = out.join(name);
-        move |source: csv::Error| CliError::Csv {
+        move |source: csv::Error| AppError::Csv {
             path: path.clone(),
             source,
         }
     };
     let plot_err = |name: &str| {
         let path = out.join(name);
-        move |message: String| CliError::Plot {
+        move |message: String| AppError::Plot {
             path: path.clone(),
             message,
         }

@@ -1,7 +1,7 @@
 //! `[solver]`-like tables: the integrator and its tolerances.
 
-use super::{span, Ctx, Num};
-use crate::CliError;
+use super::context::{span, Ctx, Num};
+use crate::AppError;
 use bw_models::{Settings, Stiffness};
 use bwc_ode::{DOP853, DOPRI5, VERN7, VERN9};
 use serde::Deserialize;
@@ -33,7 +33,7 @@ pub(crate) fn solver_settings(
     table: &Option<Spanned<RawSolver>>,
     name: &str,
     defaults: Settings,
-) -> Result<Settings, CliError> {
+) -> Result<Settings, AppError> {
     let mut s = defaults;
     let Some(sv) = table else { return Ok(s) };
     let r = sv.get_ref();
@@ -102,7 +102,7 @@ pub(crate) fn solver_settings(
 }
 
 /// Sets the Runge-Kutta method of `s` (or Rosenbrock throughout) from its name in `[solver]`.
-fn set_method(ctx: &Ctx, m: &Spanned<String>, key: &str, s: &mut Settings) -> Result<(), CliError> {
+fn set_method(ctx: &Ctx, m: &Spanned<String>, key: &str, s: &mut Settings) -> Result<(), AppError> {
     match m.get_ref().as_str() {
         "dopri5" => s.method = &DOPRI5,
         "dop853" => s.method = &DOP853,

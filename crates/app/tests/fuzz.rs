@@ -1,10 +1,13 @@
 //! Arbitrary and near-valid inputs: never a panic; every error names the file.
-use super::fixtures;
-use bwc_cli::config::Config;
-use bwc_cli::scene::Scene;
+use bwc_app::config::Config;
+use bwc_app::scene::Scene;
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+fn fixtures() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures")
+}
 
 fn config(cases: u32) -> ProptestConfig {
     ProptestConfig {
@@ -128,7 +131,7 @@ proptest! {
                 Ok(mut scene) => {
                     scene.settings.max_steps = 20_000;
                     scene.speeds.truncate(3);
-                    let _ = bwc_cli::simulate::run(&scene, None);
+                    let _ = bwc_app::simulate::run(&scene, None);
                 }
             }
         } else if let Err(e) = Config::parse(&path, &mutated) {

@@ -3,9 +3,9 @@
 //! independent task, a pure function of the config and its seed (`--first-seed` and
 //! `--replicates` shard a study over machines).
 
-use super::fail;
+use super::report::{fail, reporting};
 use crate::config::FitConfig;
-use crate::CliError;
+use crate::AppError;
 use bw_models::input::Input;
 use bw_models::BaseParams;
 use bwc_identify::{coverage, fit, study, CoverageTask, Objective, Replicate};
@@ -33,17 +33,17 @@ pub struct CoverageReport {
 /// `sqrt(sum (e_model - e)^2 / (M - 1))`), each fitted from the bounds with the fit's budget.
 ///
 /// # Errors
-/// [`CliError::Invalid`] for a fit with an input or a duration objective (studies cover CoR-only
-/// fits without input); [`CliError::Identify`] when a fit or simulation fails.
+/// [`AppError::Invalid`] for a fit with an input or a duration objective (studies cover CoR-only
+/// fits without input); [`AppError::Identify`] when a fit or simulation fails.
 pub fn run_coverage(
     config: &Path,
     f: &FitConfig,
     noise: Option<f64>,
     seeds: std::ops::Range<u64>,
-) -> Result<CoverageReport, CliError> {
+) -> Result<CoverageReport, AppError> {
     let err = fail(config, &f.name);
     if !f.input.is_zero() || f.weights.j2 > 0.0 || f.space.known().is_some() {
-        return Err(CliError::Invalid {
+        return Err(AppError::Invalid {
             path: config.to_owned(),
             line: 1,
             key: format!("[[fit]] \"{}\"", f.name),
@@ -67,7 +67,7 @@ pub fn run_coverage(
         Some(n) => n,
         None => {
             let map = f.space.map(&truth).map_err(&err)?;
-            let p = bwc_identify::predict(&map, &f.input, &f.data, &super::reporting())
+            let p = bwc_identify::predict(&map, &f.input, &f.data, &reporting())
                 .map_err(|e| err(e.into()))?;
             let r: Vec<f64> = f
                 .data
@@ -130,7 +130,7 @@ pub fn coverage_summary(reports: &[CoverageReport]) -> Value {
 /// the replicates of `seeds` (`bwc-identify coverage`).
 ///
 /// # Errors
-/// [`CliError::Invalid`] for a non-positive `noise` or no fit named `only`; as
+/// [`AppError::Invalid`] for a non-positive `noise` or no fit named `only`; as
 /// [`run_coverage`].
 pub fn coverage_study(
     path: &Path,
@@ -138,8 +138,8 @@ pub fn coverage_study(
     noise: Option<f64>,
     only: Option<&str>,
     seeds: std::ops::Range<u64>,
-) -> Result<Vec<CoverageReport>, CliError> {
-    let invalid = |key: &str, message: String| CliError::Invalid {
+) -> Result<Vec<CoverageReport>, AppError> {
+    let invalid = |key: &str, message: String| AppError::Invalid {
         path: path.to_owned(),
         line: 1,
         key: key.into(),

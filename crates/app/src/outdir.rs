@@ -1,24 +1,10 @@
-//! The `--out` folder of both tools: checked before any work, written atomically file by file,
+//! The `--out` folder of the command-line tools (and of Python's `out`): checked before any work, written atomically file by file,
 //! with `summary.json` listing what was written (and where it came from) so that the files an
 //! earlier run wrote and this one does not are removed; nothing else in the folder is touched.
 
-use crate::CliError;
+use crate::AppError;
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
-
-/// Exit statuses of `bwc-simulate` and `bwc-identify` (README, "Exit status").
-pub mod exit {
-    /// Everything asked for was done (runs that ended on the horizon or settled included).
-    pub const OK: u8 = 0;
-    /// Nothing was computed: bad input, unreadable file, unusable `--out`, thread pool.
-    pub const ERROR: u8 = 1;
-    /// The command line itself is wrong (clap's status).
-    pub const USAGE: u8 = 2;
-    /// Some runs or fits failed; the others were printed and written.
-    pub const SOME_FAILED: u8 = 3;
-    /// The results were printed, but writing them into `--out` failed.
-    pub const NOT_WRITTEN: u8 = 4;
-}
 
 /// Name of the summary in an output folder.
 pub const SUMMARY: &str = "summary.json";
@@ -27,9 +13,9 @@ pub const SUMMARY: &str = "summary.json";
 /// removes a probe file.
 ///
 /// # Errors
-/// [`CliError::Output`] naming `--out` and what the operating system said.
-pub fn prepare(dir: &Path) -> Result<(), CliError> {
-    let fail = |source: std::io::Error| CliError::Output {
+/// [`AppError::Output`] naming `--out` and what the operating system said.
+pub fn prepare(dir: &Path) -> Result<(), AppError> {
+    let fail = |source: std::io::Error| AppError::Output {
         dir: dir.to_owned(),
         file: None,
         source,
@@ -56,13 +42,13 @@ pub fn provenance(tool: &str) -> Value {
 /// `summary.json` found in `dir` listed and this run did not write.
 ///
 /// # Errors
-/// [`CliError::Output`] naming the folder and the file that could not be written; temporary
+/// [`AppError::Output`] naming the folder and the file that could not be written; temporary
 /// files are removed.
 pub fn write_all(
     dir: &Path,
     mut summary: Value,
     files: Vec<(String, Vec<u8>)>,
-) -> Result<Vec<PathBuf>, CliError> {
+) -> Result<Vec<PathBuf>, AppError> {
     let stale_candidates = listed(dir);
     let names: Vec<String> = std::iter::once(SUMMARY.to_string())
         .chain(files.iter().map(|(n, _)| n.clone()))
@@ -70,7 +56,7 @@ pub fn write_all(
     summary["files"] = json!(names);
     let text = serde_json::to_string(&summary).expect("summary serializes") + "\n";
     let all = std::iter::once((SUMMARY.to_string(), text.into_bytes())).chain(files);
-    std::fs::create_dir_all(dir).map_err(|source| CliError::Output {
+    std::fs::create_dir_all(dir).map_err(|source| AppError::Output {
         dir: dir.to_owned(),
         file: None,
         source,
@@ -82,7 +68,7 @@ pub fn write_all(
         let result = std::fs::write(&tmp, bytes).and_then(|_| std::fs::rename(&tmp, &path));
         if let Err(source) = result {
             let _ = std::fs::remove_file(&tmp);
-            return Err(CliError::Output {
+            return Err(AppError::Output {
                 dir: dir.to_owned(),
                 file: Some(name),
                 source,

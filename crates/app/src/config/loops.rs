@@ -1,8 +1,8 @@
 //! `[[loop_fit]]` tables: contact laws fitted to measured hysteresis loops.
 
-use super::{optimizer, param_of, Pair, RawOptimizer};
+use super::search::{optimizer, param_of, Pair, RawOptimizer};
 use crate::tables::{contact_law, model_kind, span, Ctx, Num};
-use crate::CliError;
+use crate::AppError;
 use bw_models::ModelKind;
 use bwc_identify::{Budget, IdentifyError, LawSpace, Param, LAW_NAMES};
 use serde::Deserialize;
@@ -90,7 +90,7 @@ pub(super) fn parse_loop_fit(
     dir: &Path,
     f: &Spanned<RawLoopFit>,
     index: usize,
-) -> Result<LoopDraft, CliError> {
+) -> Result<LoopDraft, AppError> {
     let t = f.span();
     let r = f.get_ref();
     let name = r.name.as_ref().map_or_else(
@@ -143,7 +143,7 @@ fn loop_sources(
     dir: &Path,
     r: &RawLoopFit,
     t: &Range<usize>,
-) -> Result<Vec<(PathBuf, f64)>, CliError> {
+) -> Result<Vec<(PathBuf, f64)>, AppError> {
     let refs = r.loops.as_ref().ok_or_else(|| {
         ctx.invalid(
             t,
@@ -164,7 +164,7 @@ fn loop_sources(
 }
 
 /// Which contact-law quantities are searched on a log scale (`log = [...]`).
-fn log_scales(ctx: &Ctx, r: &RawLoopFit) -> Result<[bool; 8], CliError> {
+fn log_scales(ctx: &Ctx, r: &RawLoopFit) -> Result<[bool; 8], AppError> {
     let mut log = [false; 8];
     for item in r.log.iter().flat_map(|l| l.get_ref()) {
         match LAW_NAMES.iter().position(|n| n == item.get_ref()) {
@@ -192,7 +192,7 @@ fn law_space(
     kind: ModelKind,
     name: &str,
     t: &Range<usize>,
-) -> Result<LawSpace, CliError> {
+) -> Result<LawSpace, AppError> {
     let log = log_scales(ctx, r)?;
     let (empty_b, empty_v) = (RawLaw::default(), RawLaw::default());
     let b = r.bounds.as_ref().map_or(&empty_b, |b| b.get_ref());
@@ -254,7 +254,7 @@ fn law_to_evaluate(
     ctx: &Ctx,
     p: &Spanned<RawLaw<Num>>,
     kind: ModelKind,
-) -> Result<bw_models::Physical, CliError> {
+) -> Result<bw_models::Physical, AppError> {
     let q = p.get_ref();
     let fields = [&q.k, &q.c, &q.n, &q.p, &q.alpha, &q.beta, &q.gamma, &q.a];
     let (law, _) = contact_law(ctx, "[loop_fit.params]", &p.span(), fields, kind)?;
@@ -277,11 +277,11 @@ impl LoopDraft {
     /// Reads the loop files.
     ///
     /// # Errors
-    /// [`CliError::Identify`] for a loop file's own errors (with its path and line).
-    pub(super) fn with_data(self, ctx: &Ctx) -> Result<LoopFitConfig, CliError> {
+    /// [`AppError::Identify`] for a loop file's own errors (with its path and line).
+    pub(super) fn with_data(self, ctx: &Ctx) -> Result<LoopFitConfig, AppError> {
         let mut fit = self.fit;
         for (path, v0) in &self.sources {
-            let l = bwc_identify::Loop::load(path, *v0).map_err(|source| CliError::Identify {
+            let l = bwc_identify::Loop::load(path, *v0).map_err(|source| AppError::Identify {
                 path: ctx.path.to_owned(),
                 fit: fit.name.clone(),
                 source,

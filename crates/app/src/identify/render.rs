@@ -1,9 +1,9 @@
 //! The reports of [`super`] as JSON, CSV and SVG: pure formatting, no simulation.
 
-use super::{FitReport, LoopReport};
+use super::report::{DropOutcome, FitReport, LoopReport};
 use crate::config::{FitConfig, LoopFitConfig};
 use crate::plot::{self, Axis, Series, Style};
-use crate::CliError;
+use crate::AppError;
 use bw_models::BaseParams;
 use bwc_identify::{BandPoint, Uncertainty};
 use serde_json::{json, Value};
@@ -256,12 +256,12 @@ fn model_name(key: &str) -> &'static str {
 /// front).
 ///
 /// # Errors
-/// [`CliError::Csv`] or [`CliError::Plot`] when rendering fails.
+/// [`AppError::Csv`] or [`AppError::Plot`] when rendering fails.
 pub fn render(
     fits: &[FitConfig],
     reports: &[FitReport],
     out: &Path,
-) -> Result<Vec<(String, Vec<u8>)>, CliError> {
+) -> Result<Vec<(String, Vec<u8>)>, AppError> {
     let mut files = Vec::new();
     for (f, r) in fits.iter().zip(reports) {
         let stem = slug(&r.name);
@@ -272,7 +272,7 @@ pub fn render(
         files.push(data_csv(f, r, out, &format!("{stem}.csv"))?);
         let perr = |name: &str| {
             let path = out.join(name);
-            move |message: String| CliError::Plot { path, message }
+            move |message: String| AppError::Plot { path, message }
         };
         let band_label = if r.band.is_empty() {
             ""
@@ -313,8 +313,8 @@ fn data_csv(
     r: &FitReport,
     out: &Path,
     name: &str,
-) -> Result<(String, Vec<u8>), CliError> {
-    let cerr = |source| CliError::Csv {
+) -> Result<(String, Vec<u8>), AppError> {
+    let cerr = |source| AppError::Csv {
         path: out.join(name),
         source,
     };
@@ -352,7 +352,7 @@ fn data_csv(
 }
 
 /// `<stem>_pareto.csv` and `<stem>_pareto.svg`.
-fn pareto_files(r: &FitReport, out: &Path, stem: &str) -> Result<Vec<(String, Vec<u8>)>, CliError> {
+fn pareto_files(r: &FitReport, out: &Path, stem: &str) -> Result<Vec<(String, Vec<u8>)>, AppError> {
     let name = format!("{stem}_pareto.csv");
     let mut w = csv::Writer::from_writer(Vec::new());
     let rows = std::iter::once(
@@ -369,7 +369,7 @@ fn pareto_files(r: &FitReport, out: &Path, stem: &str) -> Result<Vec<(String, Ve
         .map(|x| x.to_string())
     }));
     for row in rows {
-        w.write_record(&row).map_err(|source| CliError::Csv {
+        w.write_record(&row).map_err(|source| AppError::Csv {
             path: out.join(&name),
             source,
         })?;
@@ -418,16 +418,16 @@ pub fn loop_summary(reports: &[LoopReport]) -> Vec<Value> {
 /// Renders a loop fit: `<name>_loops.csv` (v_0, source, x, F) and `<name>_loops.svg`.
 ///
 /// # Errors
-/// [`CliError::Csv`] or [`CliError::Plot`] when rendering fails.
+/// [`AppError::Csv`] or [`AppError::Plot`] when rendering fails.
 pub fn render_loops(
     f: &LoopFitConfig,
     r: &LoopReport,
     out: &Path,
-) -> Result<Vec<(String, Vec<u8>)>, CliError> {
+) -> Result<Vec<(String, Vec<u8>)>, AppError> {
     let stem = slug(&r.name);
     let csv_name = format!("{stem}_loops.csv");
     let mut w = csv::Writer::from_writer(Vec::new());
-    let cerr = |source| CliError::Csv {
+    let cerr = |source| AppError::Csv {
         path: out.join(&csv_name),
         source,
     };
@@ -443,7 +443,7 @@ pub fn render_loops(
                     x.to_string(),
                     force.to_string(),
                 ])
-                .map_err(|source| CliError::Csv {
+                .map_err(|source| AppError::Csv {
                     path: out.join(&csv_name),
                     source,
                 })?;
@@ -506,12 +506,12 @@ pub fn units() -> serde_json::Value {
 /// (or the rebound heights against the release height).
 fn drop_files(
     r: &FitReport,
-    d: &super::DropOutcome,
+    d: &DropOutcome,
     out: &Path,
     stem: &str,
-) -> Result<Vec<(String, Vec<u8>)>, CliError> {
+) -> Result<Vec<(String, Vec<u8>)>, AppError> {
     let name = format!("{stem}_drops.csv");
-    let cerr = |source| CliError::Csv {
+    let cerr = |source| AppError::Csv {
         path: out.join(&name),
         source,
     };
@@ -561,7 +561,7 @@ fn drop_files(
 }
 
 /// Measured bounce intervals against the bounce number, and the model's, per release height.
-fn interval_series(r: &FitReport, d: &super::DropOutcome) -> Vec<Series> {
+fn interval_series(r: &FitReport, d: &DropOutcome) -> Vec<Series> {
     let mut heights: Vec<f64> = d.rows.iter().map(|(row, _)| row.h0).collect();
     heights.sort_by(f64::total_cmp);
     heights.dedup();
@@ -594,7 +594,7 @@ fn interval_series(r: &FitReport, d: &super::DropOutcome) -> Vec<Series> {
 }
 
 /// Measured rebound heights against the release height, and the model's.
-fn height_series(r: &FitReport, d: &super::DropOutcome) -> Vec<Series> {
+fn height_series(r: &FitReport, d: &DropOutcome) -> Vec<Series> {
     let mut model: Vec<(f64, f64)> = d.rows.iter().map(|(row, m)| (row.h0, *m)).collect();
     model.sort_by(|a, b| a.0.total_cmp(&b.0));
     model.dedup_by(|a, b| a.0 == b.0);
@@ -620,8 +620,8 @@ fn csv_and_chart(
     (csv_name, w): (String, csv::Writer<Vec<u8>>),
     svg_name: String,
     svg: Result<String, String>,
-) -> Result<Vec<(String, Vec<u8>)>, CliError> {
-    let svg = svg.map_err(|message| CliError::Plot {
+) -> Result<Vec<(String, Vec<u8>)>, AppError> {
+    let svg = svg.map_err(|message| AppError::Plot {
         path: out.join(&svg_name),
         message,
     })?;

@@ -4,97 +4,21 @@
 mod coverage;
 mod drops;
 mod render;
+mod report;
 
 pub use coverage::{coverage_study, coverage_summary, coverage_task, run_coverage, CoverageReport};
-pub use drops::DropOutcome;
 pub use render::{loop_summary, render, render_loops, slug, summary, units};
+use report::{fail, missing_params, reporting, search_warnings};
+pub use report::{DropOutcome, FitReport, LoopReport, ParetoPoint};
 
 use crate::config::FitConfig;
 use crate::signal::Signal;
-use crate::CliError;
-use bw_models::{BaseParams, Settings};
+use crate::AppError;
 use bwc_identify::{
-    analyse, fit, predict, uncertainty, BandPoint, Budget, Convergence, Costs, Dataset,
-    Identifiability, Objective, Prediction, Uncertainty, Weights,
+    analyse, fit, predict, uncertainty, BandPoint, Budget, Costs, Dataset, Objective, Weights,
 };
 use std::path::Path;
 use std::time::Instant;
-
-/// The settings of the evaluations that report a fit (costs, predictions, bands, loops,
-/// coverage truths): one run at rtol 1e-11, atol 1e-13. Its error in `e` (at most 1e-12 on the
-/// work-precision cases, BENCHMARKS.md) is far below any dataset's, and checking each CoR to
-/// the defaults' `e_tol` would double the cost of these evaluations (issue 21, item 3).
-pub(crate) fn reporting() -> Settings {
-    Settings {
-        rtol: 1e-11,
-        atol: 1e-13,
-        e_tol: None,
-        ..Settings::default()
-    }
-}
-
-/// One point of a Pareto front.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ParetoPoint {
-    /// Weight of the normalised `J1` (that of `J2` is `1 - w`).
-    pub w: f64,
-    /// `J1` at the optimum of this weight.
-    pub j1: f64,
-    /// `J2` at the optimum of this weight.
-    pub j2: f64,
-    /// The optimum.
-    pub params: BaseParams,
-}
-
-/// The result of one fit (or one evaluation).
-#[derive(Debug, Clone)]
-pub struct FitReport {
-    /// Fit name.
-    pub name: String,
-    /// `"shccm"` or `"mcm"`.
-    pub model: &'static str,
-    /// Base parameters.
-    pub params: BaseParams,
-    /// Whether `U_b`, `T_b` are meaningful (otherwise reported as null).
-    pub uses_input_scales: bool,
-    /// Costs at the default (accurate) solver settings.
-    pub costs: Costs,
-    /// Cost evaluations.
-    pub evaluations: u64,
-    /// Wall time (s).
-    pub wall_s: f64,
-    /// Model predictions at the data points.
-    pub predictions: Vec<Prediction>,
-    /// Identifiability at the optimum (runs only).
-    pub identifiability: Option<Identifiability>,
-    /// How the search ended (runs only).
-    pub convergence: Option<Convergence>,
-    /// Free quantities on a bound of the search (runs only).
-    pub at_bound: Vec<&'static str>,
-    /// Pareto front, if asked for.
-    pub pareto: Vec<ParetoPoint>,
-    /// Confidence intervals (runs only), or why there are none.
-    pub uncertainty: Option<Result<Uncertainty, String>>,
-    /// The model (with its band, where there are intervals) on a log grid from half the
-    /// slowest to twice the fastest measured speed.
-    pub curve: Vec<BandPoint>,
-    /// The band at the data points, in data order (empty without intervals).
-    pub band: Vec<BandPoint>,
-    /// Warnings about this fit: data, convergence, bounds, intervals.
-    pub warnings: Vec<String>,
-    /// For a drop-test fit: `J_drop` and the rows with the model's values.
-    pub drop: Option<DropOutcome>,
-}
-
-/// `eval` needs the parameters of `table` (`[fit.params]`, `[loop_fit.params]`) of fit `name`.
-fn missing_params(config: &Path, table: &str, name: &str) -> CliError {
-    CliError::Invalid {
-        path: config.to_owned(),
-        line: 1,
-        key: format!("{table} of \"{name}\""),
-        message: "missing: `eval` needs the parameters to evaluate".into(),
-    }
-}
 
 /// Speeds of a report's model curve: 60 on a log grid from half the slowest to twice the
 /// fastest measured speed (the data's range and beyond, to show what the data do not cover).
@@ -125,71 +49,16 @@ fn plain_curve(
         .collect())
 }
 
-/// Warnings on how a search ended (`s` the optimum on the unit cube).
-fn search_warnings(f: &FitConfig, c: &Convergence, at_bound: &[&str], s: &[f64]) -> Vec<String> {
-    let mut w = Vec::new();
-    // Nothing free: nothing was searched.
-    if c.agreeing < 2 && f.space.dim() > 0 {
-        w.push(format!(
-            "\"{}\": only {} of {} starts reached the best cost within {} %: the optimum may not \
-             be global; raise [fit.optimizer].max_starts or particles",
-            f.name,
-            c.agreeing,
-            c.starts,
-            f.budget.tolerance * 100.0
-        ));
-    }
-    let values = f.space.quantities(s);
-    let free = f.space.free_names();
-    for name in at_bound {
-        let i = bwc_identify::NAMES
-            .iter()
-            .position(|n| n == name)
-            .unwrap_or(0);
-        let j = free.iter().position(|n| n == name).unwrap_or(0);
-        let (lo, hi) = f.space.bounds(i).unwrap_or((f64::NAN, f64::NAN));
-        let value = values[i];
-        let upper = s[j] >= 0.5;
-        if upper && f.space.on_constraint(i, s) {
-            w.push(format!(
-                "\"{}\": {name} = {value} is on the constraint (m/k) kappa / T_b^(p+1) <= 1 of \
-                 [fit.known]",
-                f.name
-            ));
-            continue;
-        }
-        let (side, bound) = if upper { ("upper", hi) } else { ("lower", lo) };
-        w.push(format!(
-            "\"{}\": {name} = {value} is on its {side} bound {bound}: widen [fit.bounds].{name} \
-             if the model allows",
-            f.name
-        ));
-    }
-    w
-}
-
-/// Wraps a library error of the fit named `name` in the config at `path`.
-fn fail<'a>(
-    path: &'a Path,
-    name: &'a str,
-) -> impl Fn(bwc_identify::IdentifyError) -> CliError + 'a {
-    move |source| CliError::Identify {
-        path: path.to_owned(),
-        fit: name.to_owned(),
-        source,
-    }
-}
-
 /// Fits `f` from its bounds (seeded by `seed` combined with the fit's own seed).
 ///
 /// # Errors
-/// [`CliError::Identify`] if the optimizer or a final evaluation fails.
+/// [`AppError::Identify`] if the optimizer or a final evaluation fails.
 pub fn run_fit(
     config: &Path,
     f: &FitConfig,
     seed: u64,
     progress: &(dyn Fn() + Sync),
-) -> Result<FitReport, CliError> {
+) -> Result<FitReport, AppError> {
     if let Some(d) = &f.drops {
         return drops::run_drop_fit(config, f, d, seed, progress);
     }
@@ -263,7 +132,7 @@ fn pareto_front(
     progress: &(dyn Fn() + Sync),
     exact: &Objective<'_, Signal>,
     from: &[f64],
-) -> Result<(Vec<ParetoPoint>, u64), CliError> {
+) -> Result<(Vec<ParetoPoint>, u64), AppError> {
     let err = fail(config, &f.name);
     // Normalise each cost by the variance of its data so the weights are comparable.
     let var = |xs: Vec<f64>| {
@@ -303,9 +172,9 @@ fn pareto_front(
 /// Evaluates the costs of `f` at its `[fit.params]`.
 ///
 /// # Errors
-/// [`CliError::Invalid`] when the fit has no `[fit.params]`; [`CliError::Identify`] when a
+/// [`AppError::Invalid`] when the fit has no `[fit.params]`; [`AppError::Identify`] when a
 /// simulation fails.
-pub fn eval_fit(config: &Path, f: &FitConfig) -> Result<FitReport, CliError> {
+pub fn eval_fit(config: &Path, f: &FitConfig) -> Result<FitReport, AppError> {
     if let Some(d) = &f.drops {
         return drops::eval_drop_fit(config, f, d);
     }
@@ -339,39 +208,16 @@ pub fn eval_fit(config: &Path, f: &FitConfig) -> Result<FitReport, CliError> {
     })
 }
 
-/// The result of one loop fit (or evaluation).
-#[derive(Debug, Clone)]
-pub struct LoopReport {
-    /// Fit name.
-    pub name: String,
-    /// `"shccm"` or `"mcm"`.
-    pub model: &'static str,
-    /// The contact law (SI).
-    pub law: bw_models::Physical,
-    /// Loop cost at the law (see `bwc_identify::loop_cost`).
-    pub cost: f64,
-    /// Cost evaluations.
-    pub evaluations: u64,
-    /// Wall time (s).
-    pub wall_s: f64,
-    /// Simulated loops, one per measured loop.
-    pub curves: Vec<bwc_identify::Curve>,
-    /// How the search ended (runs only).
-    pub convergence: Option<Convergence>,
-    /// Free quantities on a bound of the search (runs only).
-    pub at_bound: Vec<&'static str>,
-}
-
 /// Fits the contact law of a loop fit from its bounds.
 ///
 /// # Errors
-/// [`CliError::Identify`] if the optimizer or the final evaluation fails.
+/// [`AppError::Identify`] if the optimizer or the final evaluation fails.
 pub fn run_loop_fit(
     config: &Path,
     f: &crate::config::LoopFitConfig,
     seed: u64,
     progress: &(dyn Fn() + Sync),
-) -> Result<LoopReport, CliError> {
+) -> Result<LoopReport, AppError> {
     let clock = Instant::now();
     let err = fail(config, &f.name);
     let objective =
@@ -398,11 +244,11 @@ pub fn run_loop_fit(
 /// Evaluates the loop cost at a loop fit's `[loop_fit.params]`.
 ///
 /// # Errors
-/// [`CliError::Invalid`] without `[loop_fit.params]`; [`CliError::Identify`] when a simulation fails.
+/// [`AppError::Invalid`] without `[loop_fit.params]`; [`AppError::Identify`] when a simulation fails.
 pub fn eval_loop_fit(
     config: &Path,
     f: &crate::config::LoopFitConfig,
-) -> Result<LoopReport, CliError> {
+) -> Result<LoopReport, AppError> {
     let clock = Instant::now();
     let law = f
         .params
@@ -477,7 +323,7 @@ pub fn fit_all(
     config: &crate::config::Config,
     seed: Option<u64>,
     tick: &(dyn Fn() + Sync),
-) -> Result<(Vec<FitReport>, Vec<LoopReport>), CliError> {
+) -> Result<(Vec<FitReport>, Vec<LoopReport>), AppError> {
     use rayon::prelude::*;
     let Some(seed) = seed else {
         let fits = config

@@ -3,14 +3,14 @@
 use super::raw;
 use crate::signal::Signal;
 use crate::tables::{signal, span, Ctx};
-use crate::CliError;
+use crate::AppError;
 use bw_models::Bodies;
 use toml::Spanned;
 
 pub(super) fn bodies(
     ctx: &Ctx,
     b: &Spanned<raw::RawBodies>,
-) -> Result<Bodies<Signal, Signal>, CliError> {
+) -> Result<Bodies<Signal, Signal>, AppError> {
     let t = b.span();
     let r = b.get_ref();
     let m1 = ctx.req(&r.m1, &t, "[bodies].m1")?;

@@ -4,8 +4,8 @@
 
 use super::si_states;
 use crate::plot::{self, Axis, Series, Style};
+use crate::runs::{Run, Sample};
 use crate::scene::Scene;
-use crate::simulate::{Run, Sample};
 
 /// A figure: its file name and SVG text, or the file name and the drawing error.
 type Figure = Result<(String, Vec<u8>), (String, String)>;

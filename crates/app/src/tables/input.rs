@@ -1,8 +1,8 @@
 //! `[input]`-like tables: the external force on the contact or on one body.
 
-use super::{span, Ctx, Num};
+use super::context::{span, Ctx, Num};
 use crate::signal::Signal;
-use crate::CliError;
+use crate::AppError;
 use bw_models::input::{Arctan, Table};
 use serde::Deserialize;
 use toml::Spanned;
@@ -29,7 +29,7 @@ pub(crate) fn signal(
     raw: &Spanned<RawInput>,
     table: &str,
     default_m: Option<f64>,
-) -> Result<Signal, CliError> {
+) -> Result<Signal, AppError> {
     let t = raw.span();
     let r = raw.get_ref();
     let kind = r.kind.as_ref().ok_or_else(|| {
@@ -40,7 +40,7 @@ pub(crate) fn signal(
         )
     })?;
     only_its_keys(ctx, raw, table, kind)?;
-    let mass = || -> Result<f64, CliError> {
+    let mass = || -> Result<f64, AppError> {
         let m = match ctx.opt(&r.m, &format!("{table}.m"))? {
             Some(m) => m,
             None => default_m.ok_or_else(|| {
@@ -93,7 +93,7 @@ fn only_its_keys(
     raw: &Spanned<RawInput>,
     table: &str,
     kind: &Spanned<String>,
-) -> Result<(), CliError> {
+) -> Result<(), AppError> {
     let r = raw.get_ref();
     let allowed: &[&str] = match kind.get_ref().as_str() {
         "constant" => &["value"],
@@ -135,7 +135,7 @@ fn only_its_keys(
 }
 
 /// The table of a `kind = "table"` input: `points = [[t, u], ...]`.
-fn points(ctx: &Ctx, raw: &Spanned<RawInput>, table: &str) -> Result<Table, CliError> {
+fn points(ctx: &Ctx, raw: &Spanned<RawInput>, table: &str) -> Result<Table, AppError> {
     let pts = raw.get_ref().points.as_ref().ok_or_else(|| {
         ctx.invalid(
             &raw.span(),

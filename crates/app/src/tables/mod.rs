@@ -2,102 +2,19 @@
 //! ([`crate::config`]): where a key sits in its file ([`Ctx`]), errors that name the file, the
 //! line and the key, and the tables both kinds of file hold (`[input]`, `[solver]`).
 
+mod context;
 mod input;
 mod solver;
 
+pub(crate) use context::{span, Ctx, Num};
 pub(crate) use input::{signal, RawInput};
 pub(crate) use solver::{solver_settings, RawSolver};
 
-use crate::CliError;
-use bw_models::{ModelError, ModelKind, Physical, PhysicalParams};
+use crate::AppError;
+use bw_models::{ModelKind, Physical, PhysicalParams};
 use std::ops::Range;
 use std::path::Path;
 use toml::Spanned;
-
-/// A number with its place in the file.
-pub type Num = Spanned<f64>;
-
-/// A file being parsed: its path and text, for messages.
-pub(crate) struct Ctx<'a> {
-    pub(crate) path: &'a Path,
-    pub(crate) src: &'a str,
-}
-
-impl Ctx<'_> {
-    pub(crate) fn line(&self, span: &Range<usize>) -> usize {
-        let end = span.start.min(self.src.len());
-        self.src[..end].matches('\n').count() + 1
-    }
-
-    pub(crate) fn invalid(
-        &self,
-        span: &Range<usize>,
-        key: impl Into<String>,
-        message: impl Into<String>,
-    ) -> CliError {
-        CliError::Invalid {
-            path: self.path.to_owned(),
-            line: self.line(span),
-            key: key.into(),
-            message: message.into(),
-        }
-    }
-
-    pub(crate) fn num(&self, v: &Num, key: &str) -> Result<f64, CliError> {
-        let x = *v.get_ref();
-        if x.is_finite() {
-            Ok(x)
-        } else {
-            Err(self.invalid(&v.span(), key, format!("{x} is not a finite number")))
-        }
-    }
-
-    pub(crate) fn req(
-        &self,
-        v: &Option<Num>,
-        table: &Range<usize>,
-        key: &str,
-    ) -> Result<f64, CliError> {
-        match v {
-            Some(v) => self.num(v, key),
-            None => Err(self.invalid(table, key, "missing required key")),
-        }
-    }
-
-    pub(crate) fn opt(&self, v: &Option<Num>, key: &str) -> Result<Option<f64>, CliError> {
-        v.as_ref().map(|v| self.num(v, key)).transpose()
-    }
-
-    /// Turns a model-library error into one that names the key and line.
-    pub(crate) fn model_error(
-        &self,
-        e: ModelError,
-        table: &str,
-        span_of: impl Fn(&str) -> Option<Range<usize>>,
-        fallback: &Range<usize>,
-    ) -> CliError {
-        match e {
-            ModelError::InvalidParameter {
-                name,
-                value,
-                allowed,
-            }
-            | ModelError::InvalidSetting {
-                name,
-                value,
-                allowed,
-            } => {
-                let span = span_of(name).unwrap_or_else(|| fallback.clone());
-                self.invalid(
-                    &span,
-                    format!("{table}.{name}"),
-                    format!("{value} is not admissible: {allowed}"),
-                )
-            }
-            other => self.invalid(fallback, table.to_string(), other.to_string()),
-        }
-    }
-}
 
 /// The contact law of `table` (spanning `span`) for the model `kind`, from its keys `k`, `c`,
 /// `n`, `p`, `alpha`, `beta`, `gamma` and `A` (`fields`, in that order), validated: an error
@@ -108,7 +25,7 @@ pub(crate) fn contact_law(
     span: &Range<usize>,
     fields: [&Option<Num>; 8],
     kind: ModelKind,
-) -> Result<(Physical, PhysicalParams), CliError> {
+) -> Result<(Physical, PhysicalParams), AppError> {
     const KEYS: [&str; 8] = ["k", "c", "n", "p", "alpha", "beta", "gamma", "A"];
     let mut values = [0.0; 8];
     for ((value, field), key) in values.iter_mut().zip(fields).zip(KEYS) {
@@ -138,9 +55,9 @@ pub(crate) fn contact_law(
 /// The text of an input file.
 ///
 /// # Errors
-/// [`CliError::Io`] naming the file.
-pub(crate) fn read_text(path: &Path) -> Result<String, CliError> {
-    std::fs::read_to_string(path).map_err(|source| CliError::Io {
+/// [`AppError::Io`] naming the file.
+pub(crate) fn read_text(path: &Path) -> Result<String, AppError> {
+    std::fs::read_to_string(path).map_err(|source| AppError::Io {
         path: path.to_owned(),
         source,
     })
@@ -148,7 +65,7 @@ pub(crate) fn read_text(path: &Path) -> Result<String, CliError> {
 
 /// A TOML parse error as `file:line:column: message`; a type error names its key and what the
 /// key admits.
-pub(crate) fn syntax_error(ctx: &Ctx, e: &toml::de::Error) -> CliError {
+pub(crate) fn syntax_error(ctx: &Ctx, e: &toml::de::Error) -> AppError {
     let src = ctx.src;
     let at = e.span().map_or(0, |s| s.start.min(src.len()));
     let line_start = src[..at].rfind('\n').map_or(0, |i| i + 1);
@@ -169,7 +86,7 @@ pub(crate) fn syntax_error(ctx: &Ctx, e: &toml::de::Error) -> CliError {
             message = format!("`{key}` expects {expected} ({found})");
         }
     }
-    CliError::Syntax {
+    AppError::Syntax {
         path: ctx.path.to_owned(),
         line: ctx.line(&(at..at)),
         column: src[line_start..at].chars().count() + 1,
@@ -239,14 +156,14 @@ const STAND_INS: [Option<&str>; 10] = [
 
 /// Parses `src` with `parse` and, where it fails on a `key = value` line, looks past the
 /// mistake by putting stand-in values in its place and parsing again, so that a file with
-/// several mistakes reports them all at once, in file order ([`CliError::Many`]).
+/// several mistakes reports them all at once, in file order ([`AppError::Many`]).
 ///
 /// # Errors
-/// The first error alone, or [`CliError::Many`] with every one found.
+/// The first error alone, or [`AppError::Many`] with every one found.
 pub(crate) fn every_error<T>(
     src: &str,
-    parse: impl Fn(&str) -> Result<T, CliError>,
-) -> Result<T, CliError> {
+    parse: impl Fn(&str) -> Result<T, AppError>,
+) -> Result<T, AppError> {
     let first = match parse(src) {
         Ok(v) => return Ok(v),
         Err(e) => e,
@@ -280,15 +197,15 @@ pub(crate) fn every_error<T>(
         return Err(errors.pop().expect("one error"));
     }
     errors.sort_by_key(|e| error_line(e).unwrap_or(usize::MAX));
-    Err(CliError::Many(errors))
+    Err(AppError::Many(errors))
 }
 
 /// The line of a file error that a stand-in value could get past (`key = value` errors of the
 /// file itself; not a data file's, not a missing key's).
-fn error_line(e: &CliError) -> Option<usize> {
+fn error_line(e: &AppError) -> Option<usize> {
     match e {
-        CliError::Syntax { line, .. } => Some(*line),
-        CliError::Invalid { line, message, .. } if !message.starts_with("missing") => Some(*line),
+        AppError::Syntax { line, .. } => Some(*line),
+        AppError::Invalid { line, message, .. } if !message.starts_with("missing") => Some(*line),
         _ => None,
     }
 }
@@ -312,11 +229,7 @@ fn with_value(src: &str, line: usize, value: Option<&str>) -> Option<String> {
     Some(lines.join("\n"))
 }
 
-pub(crate) fn span<T>(v: &Option<Spanned<T>>) -> Option<Range<usize>> {
-    v.as_ref().map(|s| s.span())
-}
-
-pub(crate) fn model_kind(ctx: &Ctx, v: &Spanned<String>, key: &str) -> Result<ModelKind, CliError> {
+pub(crate) fn model_kind(ctx: &Ctx, v: &Spanned<String>, key: &str) -> Result<ModelKind, AppError> {
     match v.get_ref().as_str() {
         "shccm" => Ok(ModelKind::Shccm),
         "mcm" => Ok(ModelKind::Mcm),

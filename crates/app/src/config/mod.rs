@@ -22,14 +22,16 @@
 mod describe;
 mod fit;
 mod loops;
+mod search;
 
 pub use loops::LoopFitConfig;
 
 use crate::signal::Signal;
 use crate::tables::{Ctx, Num, RawInput, RawSolver};
-use crate::CliError;
+use crate::AppError;
 use bw_models::{BaseParams, ModelKind, Settings};
-use bwc_identify::{Budget, Dataset, Param, Space, Weights};
+use bwc_identify::{Budget, Dataset, Space, Weights};
+use search::{Pair, RawOptimizer};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
@@ -78,8 +80,6 @@ struct RawObjectives {
     #[serde(rename = "J2")]
     j2: Option<Num>,
 }
-
-type Pair = Spanned<Vec<Num>>;
 
 /// Searchable base quantities (`g = Gamma_b / B_b`): bounds (`T = Pair`) or fixed values.
 #[derive(Debug, Deserialize)]
@@ -155,19 +155,6 @@ struct RawKnown {
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawOptimizer {
-    particles: Option<Spanned<i64>>,
-    iterations: Option<Spanned<i64>>,
-    polish: Option<Spanned<i64>>,
-    starts: Option<Spanned<i64>>,
-    max_starts: Option<Spanned<i64>>,
-    agree: Option<Spanned<i64>>,
-    tolerance: Option<Num>,
-    seed: Option<Spanned<i64>>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 struct RawPareto {
     count: Option<Spanned<i64>>,
 }
@@ -226,45 +213,26 @@ pub struct Config {
     pub loop_fits: Vec<LoopFitConfig>,
 }
 
-fn count(
-    ctx: &Ctx,
-    v: &Option<Spanned<i64>>,
-    key: &str,
-    min: i64,
-    max: i64,
-    default: i64,
-) -> Result<i64, CliError> {
-    match v {
-        None => Ok(default),
-        Some(x) if (min..=max).contains(x.get_ref()) => Ok(*x.get_ref()),
-        Some(x) => Err(ctx.invalid(
-            &x.span(),
-            key,
-            format!("{} is not admissible: {min} <= {key} <= {max}", x.get_ref()),
-        )),
-    }
-}
-
 impl Config {
     /// Reads and validates a config and its data files.
     ///
     /// # Errors
-    /// [`CliError::Io`], [`CliError::Syntax`] and [`CliError::Invalid`] as for scenes;
-    /// [`CliError::Identify`] for a data file's own errors (with its path and line).
-    pub fn load(path: &Path) -> Result<Self, CliError> {
+    /// [`AppError::Io`], [`AppError::Syntax`] and [`AppError::Invalid`] as for scenes;
+    /// [`AppError::Identify`] for a data file's own errors (with its path and line).
+    pub fn load(path: &Path) -> Result<Self, AppError> {
         Self::parse(path, &crate::tables::read_text(path)?)
     }
 
     /// Validates a config given as text; data files are read relative to `path`'s folder.
     ///
     /// # Errors
-    /// As [`Config::load`]; a file with several mistakes reports them all ([`CliError::Many`]).
-    pub fn parse(path: &Path, src: &str) -> Result<Self, CliError> {
+    /// As [`Config::load`]; a file with several mistakes reports them all ([`AppError::Many`]).
+    pub fn parse(path: &Path, src: &str) -> Result<Self, AppError> {
         crate::tables::every_error(src, |text| Self::parse_one(path, text))
     }
 
     /// Validates the text, stopping at its first mistake.
-    fn parse_one(path: &Path, src: &str) -> Result<Self, CliError> {
+    fn parse_one(path: &Path, src: &str) -> Result<Self, AppError> {
         let ctx = Ctx { path, src };
         let raw: RawConfig =
             toml::from_str(src).map_err(|e| crate::tables::syntax_error(&ctx, &e))?;
@@ -318,124 +286,5 @@ impl Config {
             fits: out,
             loop_fits: loops_out,
         })
-    }
-}
-
-fn optimizer(
-    ctx: &Ctx,
-    o: &Option<Spanned<RawOptimizer>>,
-    table: &str,
-    index: usize,
-) -> Result<(Budget, u64), CliError> {
-    let empty = RawOptimizer {
-        particles: None,
-        iterations: None,
-        polish: None,
-        starts: None,
-        max_starts: None,
-        agree: None,
-        tolerance: None,
-        seed: None,
-    };
-    let r = o.as_ref().map_or(&empty, |o| o.get_ref());
-    let d = Budget::default();
-    let key = |k: &str| format!("{table}.{k}");
-    let n = |v: &Option<Spanned<i64>>, k: &str, min: i64, max: i64, default: usize| {
-        count(ctx, v, &key(k), min, max, default as i64).map(|x| x as usize)
-    };
-    let starts = n(&r.starts, "starts", 1, 1_000, d.starts)?;
-    // An explicit `starts` alone keeps the old meaning: exactly that many starts.
-    let max_default = if r.starts.is_some() && r.max_starts.is_none() {
-        starts
-    } else {
-        d.max_starts.max(starts)
-    };
-    let max_starts = n(
-        &r.max_starts,
-        "max_starts",
-        starts as i64,
-        1_000,
-        max_default,
-    )?;
-    let agree = n(
-        &r.agree,
-        "agree",
-        1,
-        max_starts as i64,
-        d.agree.min(max_starts),
-    )?;
-    let tolerance = agreement(ctx, &r.tolerance, &key("tolerance"), d.tolerance)?;
-    let budget = Budget {
-        particles: n(&r.particles, "particles", 2, 10_000, d.particles)?,
-        iterations: n(
-            &r.iterations,
-            "iterations",
-            0,
-            1_000_000,
-            d.iterations as usize,
-        )? as u64,
-        polish_iterations: n(
-            &r.polish,
-            "polish",
-            0,
-            1_000_000,
-            d.polish_iterations as usize,
-        )? as u64,
-        starts,
-        max_starts,
-        agree,
-        tolerance,
-    };
-    Ok((
-        budget,
-        count(ctx, &r.seed, &key("seed"), 0, i64::MAX, index as i64)? as u64,
-    ))
-}
-
-/// `[fit.optimizer].tolerance`: how close (relative) the costs of starts that agree are.
-fn agreement(ctx: &Ctx, v: &Option<Num>, key: &str, default: f64) -> Result<f64, CliError> {
-    match ctx.opt(v, key)? {
-        None => Ok(default),
-        Some(t) if (0.0..=1.0).contains(&t) => Ok(t),
-        Some(t) => {
-            let span = v.as_ref().map(|x| x.span()).unwrap_or_default();
-            Err(ctx.invalid(
-                &span,
-                key,
-                format!("{t} is not admissible: 0 <= tolerance <= 1 (relative)"),
-            ))
-        }
-    }
-}
-
-/// A searchable quantity from `[<table>.bounds].key = [lo, hi]` or `[<table>.fixed].key`
-/// (`None` when neither is given).
-fn param_of(
-    ctx: &Ctx,
-    table: &str,
-    key: &str,
-    bound: &Option<Pair>,
-    fixed: &Option<Num>,
-    log: bool,
-) -> Result<Option<Param>, CliError> {
-    match (bound, fixed) {
-        (Some(_), Some(x)) => Err(ctx.invalid(
-            &x.span(),
-            format!("[{table}.fixed].{key}"),
-            "both bounded and fixed: give one",
-        )),
-        (Some(pair), None) => {
-            let name = format!("[{table}.bounds].{key}");
-            if pair.get_ref().len() != 2 {
-                return Err(ctx.invalid(&pair.span(), name, "give [lower, upper]"));
-            }
-            let lo = ctx.num(&pair.get_ref()[0], &name)?;
-            let hi = ctx.num(&pair.get_ref()[1], &name)?;
-            Ok(Some(Param::Free { lo, hi, log }))
-        }
-        (None, Some(x)) => Ok(Some(Param::Fixed(
-            ctx.num(x, &format!("[{table}.fixed].{key}"))?,
-        ))),
-        (None, None) => Ok(None),
     }
 }

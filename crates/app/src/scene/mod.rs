@@ -27,7 +27,7 @@ use bodies::bodies;
 pub use sequence::SequenceSpec;
 
 use crate::signal::Signal;
-use crate::CliError;
+use crate::AppError;
 use bw_models::{
     BaseMap, BaseParams, Bodies, ModelKind, Nondim, NondimParams, PhysicalParams, Settings,
 };
@@ -132,23 +132,23 @@ impl Scene {
     /// Reads and validates a scene file.
     ///
     /// # Errors
-    /// [`CliError::Io`] if the file cannot be read, [`CliError::Syntax`] for TOML errors, wrong
-    /// types and unknown keys, [`CliError::Invalid`] for missing, conflicting or inadmissible
+    /// [`AppError::Io`] if the file cannot be read, [`AppError::Syntax`] for TOML errors, wrong
+    /// types and unknown keys, [`AppError::Invalid`] for missing, conflicting or inadmissible
     /// values (with line and key).
-    pub fn load(path: &Path) -> Result<Self, CliError> {
+    pub fn load(path: &Path) -> Result<Self, AppError> {
         Self::parse(path, &read_text(path)?)
     }
 
     /// Validates a scene given as text (`path` is only used in messages).
     ///
     /// # Errors
-    /// As [`Scene::load`]; a file with several mistakes reports them all ([`CliError::Many`]).
-    pub fn parse(path: &Path, src: &str) -> Result<Self, CliError> {
+    /// As [`Scene::load`]; a file with several mistakes reports them all ([`AppError::Many`]).
+    pub fn parse(path: &Path, src: &str) -> Result<Self, AppError> {
         crate::tables::every_error(src, |text| Self::parse_one(path, text))
     }
 
     /// Validates the text, stopping at its first mistake.
-    fn parse_one(path: &Path, src: &str) -> Result<Self, CliError> {
+    fn parse_one(path: &Path, src: &str) -> Result<Self, AppError> {
         let ctx = Ctx { path, src };
         let raw: RawScene = toml::from_str(src).map_err(|e| syntax_error(&ctx, &e))?;
         let model = match &raw.model {
@@ -196,7 +196,7 @@ impl Scene {
 }
 
 /// The span of the scene's one system description; an error for none or several.
-fn description(ctx: &Ctx, raw: &RawScene) -> Result<Range<usize>, CliError> {
+fn description(ctx: &Ctx, raw: &RawScene) -> Result<Range<usize>, AppError> {
     let physical = if raw.bodies.is_some() {
         None
     } else {
@@ -234,7 +234,7 @@ fn unused_keys(
     described: &Range<usize>,
     speeds: &[f64],
     sequence: bool,
-) -> Result<(), CliError> {
+) -> Result<(), AppError> {
     let uses_speeds = raw.base.is_some() || (raw.physical.is_some() && raw.bodies.is_none());
     if uses_speeds && speeds.is_empty() && !sequence {
         return Err(ctx.invalid(
@@ -276,7 +276,7 @@ fn nondimensional_system(
     ctx: &Ctx,
     nd: &Spanned<RawNondim>,
     kind: ModelKind,
-) -> Result<SystemSpec, CliError> {
+) -> Result<SystemSpec, AppError> {
     let t = nd.span();
     let r = nd.get_ref();
     let p = Nondim {
@@ -312,7 +312,7 @@ fn base_systems(
     raw: &RawScene,
     base: &Spanned<SeqOrMap<Vec<Spanned<RawBase>>, RawBase>>,
     model: Option<ModelKind>,
-) -> Result<Vec<SystemSpec>, CliError> {
+) -> Result<Vec<SystemSpec>, AppError> {
     let entries: Vec<(&RawBase, Range<usize>)> = match base.get_ref() {
         SeqOrMap::Map(b) => vec![(b, base.span())],
         SeqOrMap::Seq(list) => list.iter().map(|b| (b.get_ref(), b.span())).collect(),
@@ -337,7 +337,7 @@ fn physical_system(
     raw: &RawScene,
     phys: &Spanned<RawPhysical>,
     kind: ModelKind,
-) -> Result<SystemSpec, CliError> {
+) -> Result<SystemSpec, AppError> {
     let t = phys.span();
     let r = phys.get_ref();
     let fields = [&r.k, &r.c, &r.n, &r.p, &r.alpha, &r.beta, &r.gamma, &r.a];
@@ -379,7 +379,7 @@ fn physical_system(
     })
 }
 
-fn parse_speeds(ctx: &Ctx, raw: &RawScene) -> Result<Vec<f64>, CliError> {
+fn parse_speeds(ctx: &Ctx, raw: &RawScene) -> Result<Vec<f64>, AppError> {
     let Some(v) = &raw.v0 else {
         return Ok(Vec::new());
     };
@@ -454,7 +454,7 @@ fn base_system(
     t: &Range<usize>,
     model: Option<ModelKind>,
     input: &Signal,
-) -> Result<SystemSpec, CliError> {
+) -> Result<SystemSpec, AppError> {
     let kind = match &b.model {
         Some(m) => model_kind(ctx, m, "[base].model")?,
         None => model.ok_or_else(|| {
@@ -513,7 +513,7 @@ fn base_system(
     })
 }
 
-fn output(ctx: &Ctx, raw: &RawScene) -> Result<OutputSpec, CliError> {
+fn output(ctx: &Ctx, raw: &RawScene) -> Result<OutputSpec, AppError> {
     let mut o = OutputSpec {
         trajectory: false,
         dt: None,
@@ -542,15 +542,15 @@ fn output(ctx: &Ctx, raw: &RawScene) -> Result<OutputSpec, CliError> {
     Ok(o)
 }
 
-/// A tenth of `t`, reading as written ([`crate::tidy`]).
+/// A tenth of `t`, reading as written ([`crate::format::tidy`]).
 fn tenth(t: f64) -> f64 {
-    crate::tidy(t / 10.0)
+    crate::format::tidy(t / 10.0)
 }
 
 /// `[sweep]`, the tolerance by default a tenth of the solver's `e_tol` (1e-11), or its `rtol`
 /// without one: about the simulations' own accuracy in `t_s`; a tighter one meets their noise
 /// and serves fewer speeds.
-fn sweep(ctx: &Ctx, raw: &RawScene, settings: &Settings) -> Result<SweepSpec, CliError> {
+fn sweep(ctx: &Ctx, raw: &RawScene, settings: &Settings) -> Result<SweepSpec, AppError> {
     let mut w = SweepSpec {
         interpolate: true,
         tolerance: settings.e_tol.map_or(settings.rtol, tenth),

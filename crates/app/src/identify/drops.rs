@@ -1,38 +1,17 @@
 //! Fits and evaluations of drop-test data ([`crate::config::DropFit`]): the bounce sequence
 //! simulated at each release height, the cost `J_drop` (s² for intervals, m² for heights).
 
-use super::{fail, search_warnings, FitReport};
+use super::report::{fail, missing_params, reporting, search_warnings, DropOutcome, FitReport};
 use crate::config::{DropFit, FitConfig};
-use crate::CliError;
-use bwc_identify::{at_bound, minimize, Costs, DropKind, DropObjective, DropRow};
+use crate::AppError;
+use bwc_identify::{at_bound, minimize, Costs, DropObjective};
 use std::path::Path;
 use std::time::Instant;
 
-/// The drop-test part of a report: the cost and every row with the model's value.
-#[derive(Debug, Clone)]
-pub struct DropOutcome {
-    /// Intervals or heights.
-    pub kind: DropKind,
-    /// `J_drop` at the default (accurate) solver settings.
-    pub cost: f64,
-    /// Each measured row and the model's value (s or m; NaN where the sequence ended first).
-    pub rows: Vec<(DropRow, f64)>,
-}
-
-impl DropOutcome {
-    /// The unit of `J_drop`.
-    pub fn unit(&self) -> &'static str {
-        match self.kind {
-            DropKind::Intervals => "s^2",
-            DropKind::Heights => "m^2",
-        }
-    }
-}
-
 /// The outcome at a point of the unit cube, at the default solver settings.
-fn outcome(f: &FitConfig, d: &DropFit, s: &[f64], config: &Path) -> Result<DropOutcome, CliError> {
+fn outcome(f: &FitConfig, d: &DropFit, s: &[f64], config: &Path) -> Result<DropOutcome, AppError> {
     let err = fail(config, &f.name);
-    let exact = DropObjective::new(&f.space, &d.data, d.setup, super::reporting()).map_err(&err)?;
+    let exact = DropObjective::new(&f.space, &d.data, d.setup, reporting()).map_err(&err)?;
     let predicted = exact.predict(s).map_err(&err)?;
     Ok(DropOutcome {
         kind: d.data.kind,
@@ -67,14 +46,14 @@ fn report(f: &FitConfig, params: bw_models::BaseParams, drop: DropOutcome) -> Fi
 /// Fits a drop-test `[[fit]]` from its bounds (the converging search of every fit).
 ///
 /// # Errors
-/// [`CliError::Identify`] naming the fit when the search or the final evaluation fails.
+/// [`AppError::Identify`] naming the fit when the search or the final evaluation fails.
 pub fn run_drop_fit(
     config: &Path,
     f: &FitConfig,
     d: &DropFit,
     seed: u64,
     progress: &(dyn Fn() + Sync),
-) -> Result<FitReport, CliError> {
+) -> Result<FitReport, AppError> {
     let clock = Instant::now();
     let err = fail(config, &f.name);
     let objective = DropObjective::new(&f.space, &d.data, d.setup, f.settings)
@@ -98,13 +77,13 @@ pub fn run_drop_fit(
 /// `J_drop` at a drop-test fit's `[fit.params]`.
 ///
 /// # Errors
-/// [`CliError::Invalid`] without `[fit.params]`; [`CliError::Identify`] when they are outside
+/// [`AppError::Invalid`] without `[fit.params]`; [`AppError::Identify`] when they are outside
 /// the space or a simulation fails.
-pub fn eval_drop_fit(config: &Path, f: &FitConfig, d: &DropFit) -> Result<FitReport, CliError> {
+pub fn eval_drop_fit(config: &Path, f: &FitConfig, d: &DropFit) -> Result<FitReport, AppError> {
     let clock = Instant::now();
     let params = f
         .params
-        .ok_or_else(|| super::missing_params(config, "[fit.params]", &f.name))?;
+        .ok_or_else(|| missing_params(config, "[fit.params]", &f.name))?;
     let s = f.space.encode(&params).map_err(fail(config, &f.name))?;
     let mut r = report(f, params, outcome(f, d, &s, config)?);
     r.wall_s = clock.elapsed().as_secs_f64();

@@ -1,0 +1,85 @@
+//! # bwc-app: scenes and configs, running them, and their outputs
+//!
+//! The application layer of bwc, between the libraries and the front ends (the command-line
+//! tools of `bwc-cli`, the Python package): it parses scene files ([`scene`]) and
+//! identification configs ([`config`]) into validated settings with line-accurate errors, runs
+//! them ([`simulate`], [`sequence`], [`identify`]), and turns the results into summaries,
+//! tables, plots ([`output`], [`plot`]) and output folders written atomically ([`outdir`]).
+//! Errors ([`AppError`]) name the file, line and key; the front ends report them once.
+//!
+//! ```
+//! use bwc_app::scene::Scene;
+//! let scene = Scene::parse(std::path::Path::new("example.toml"), r#"
+//!     model = "shccm"
+//!     [nondimensional]
+//!     B = 0.0
+//!     Gamma = 0.0
+//!     kappa = 0.5
+//!     sigma = 0.5
+//!     n = 1.0
+//!     p = 1.5
+//! "#)?;
+//! let runs = bwc_app::simulate::run(&scene, None);
+//! assert_eq!(runs[0].outcome, bwc_app::runs::Outcome::Separated);
+//! assert!((runs[0].e - 0.748434931597434).abs() < 1e-9);
+//! # Ok::<(), bwc_app::AppError>(())
+//! ```
+#![deny(missing_docs)]
+
+pub mod config;
+mod error;
+mod format;
+pub mod identify;
+pub mod outdir;
+pub mod output;
+pub mod plot;
+pub mod runs;
+pub mod scene;
+pub mod sequence;
+pub mod signal;
+pub mod simulate;
+mod tables;
+
+pub use error::AppError;
+pub use format::tidy;
+
+/// Runs `work` on a rayon pool of `threads` threads, or on the global pool (all cores, or
+/// `RAYON_NUM_THREADS`) when `None`. Results do not depend on the choice.
+///
+/// # Errors
+/// [`AppError::Threads`] if the pool cannot start; otherwise `work`'s own error.
+pub fn with_threads<T: Send>(
+    threads: Option<usize>,
+    work: impl FnOnce() -> Result<T, AppError> + Send,
+) -> Result<T, AppError> {
+    match threads {
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map_err(|e| AppError::Threads {
+                threads: n,
+                message: e.to_string(),
+            })?
+            .install(work),
+        None => work(),
+    }
+}
+
+/// `writeln!` to stdout, ignoring errors such as a closed pipe (`bwc-simulate ... | head` must
+/// not panic, as `println!` would).
+#[macro_export]
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
+/// [`out!`] without the newline.
+#[macro_export]
+macro_rules! outp {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
