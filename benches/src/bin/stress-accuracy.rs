@@ -49,7 +49,7 @@ const MISS: f64 = 1e-10;
 const REFERENCE_MAX_STEPS: u64 = 20_000_000;
 
 /// The tolerances of the double-double referee: tighter than any the library's retry takes
-/// (`bw_models::DOUBLE_DOUBLE_RTOLS`), so that it does not repeat a run reported in
+/// (`bw_models::LADDER.double_double_rtols`), so that it does not repeat a run reported in
 /// double-double.
 const REFEREE_RTOLS: [f64; 2] = [1e-21, 1e-23];
 

@@ -43,87 +43,40 @@
 #![deny(missing_docs)]
 
 mod bodies;
-mod checked;
 mod clearance;
-mod impact;
+mod cor;
+mod double_double;
+mod error;
+mod fast_paths;
 pub mod input;
 mod laws;
 mod models;
+mod outcome;
 mod params;
 pub mod phase;
 mod power;
-mod precise;
 mod scaling;
 mod separation;
 pub mod sequence;
 mod series;
+mod settings;
+mod simulate;
 pub mod sweep;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
-pub use checked::{
-    impact, impact_double_double, tighter, Check, DdDeclined, FailedRun, CHECK_METHOD,
-    DD_STEP_GROWTH, DD_STEP_SLACK, DOUBLE_DOUBLE_RTOLS, FLOOR_RTOL, TIGHTEN, TIGHTER_METHOD,
-};
-pub use impact::{simulate, Cor, Impact, Sampling, Settings, Stiffness, MAX_SAMPLES};
+pub use cor::{impact, impact_at, impact_double_double};
+pub use error::ModelError;
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};
 pub use models::{
     Bwmcm, BwmcmEarlier, Bwshccm, CollisionModel, Ndbwmcm, NdbwmcmEarlier, Ndbwshccm,
 };
+pub use outcome::{Check, Cor, DdDeclined, DdFailure, FailedRun, Impact};
 pub use params::{BaseParams, ModelKind, Nondim, NondimParams, Physical, PhysicalParams};
 pub use power::Pow;
-pub use precise::DdFailure;
-pub use scaling::{base_params, impact_at, nondimensionalize, BaseMap, InputScaling, Scales};
+pub use scaling::{base_params, nondimensionalize, BaseMap, InputScaling, Scales};
 pub use separation::{separated, Separation};
+pub use settings::{Ladder, Settings, Stiffness, LADDER};
+pub use simulate::{simulate, Sampling, MAX_SAMPLES};
 
 /// A model state on the stack.
-pub type State<const N: usize> = bwc_ode::State<N>;
-
-/// Everything that can go wrong when building or simulating a model.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum ModelError {
-    /// A model parameter is outside its admissible set.
-    #[error("parameter `{name}` = {value} is not admissible: {allowed}")]
-    InvalidParameter {
-        /// Parameter name as in the paper (`"kappa"`, `"B_b"`, ...).
-        name: &'static str,
-        /// The rejected value.
-        value: f64,
-        /// The admissible range.
-        allowed: &'static str,
-    },
-    /// A simulation setting is out of range.
-    #[error("setting `{name}` = {value} is not admissible: {allowed}")]
-    InvalidSetting {
-        /// Setting name as in [`Settings`].
-        name: &'static str,
-        /// The rejected value.
-        value: f64,
-        /// The admissible range.
-        allowed: &'static str,
-    },
-    /// Parameters of one model were given to the other.
-    #[error("parameters of the {found} model given where the {expected} model was expected")]
-    WrongModel {
-        /// The model expected.
-        expected: &'static str,
-        /// The model the parameters belong to.
-        found: &'static str,
-    },
-    /// A piecewise-linear input table is malformed.
-    #[error("input table point {index}: {reason}")]
-    InvalidTable {
-        /// Index of the offending point.
-        index: usize,
-        /// What is wrong.
-        reason: &'static str,
-    },
-    /// A method was asked for a model or parameters it does not cover.
-    #[error("not applicable: {reason}")]
-    NotApplicable {
-        /// What the method covers, or why it gave up.
-        reason: &'static str,
-    },
-    /// The integration failed.
-    #[error("simulation failed: {0}")]
-    Solver(#[from] bwc_events::Error),
-}
+pub use bwc_ode::State;

@@ -238,31 +238,3 @@ impl BaseMap {
         b.t_b * v0.powf(-(b.p - 1.0) / (b.p + 1.0))
     }
 }
-
-/// One impact of the nondimensional model `P(P*, u, v0)`: parameters from the base map and the
-/// physical input `u(t)` (N) rescaled to `U(T)`. Times in the result are nondimensional;
-/// multiply by [`BaseMap::time_scale`] for seconds (`Θ_2`, eq:Theta_2). `e` is `Θ_1`.
-///
-/// # Errors
-/// As [`BaseMap::at`] and [`crate::impact`].
-pub fn impact_at<I: crate::input::Input>(
-    map: &BaseMap,
-    u: I,
-    v0: f64,
-    settings: &crate::Settings,
-) -> Result<crate::Cor, ModelError> {
-    let (nd, s) = map.at(v0)?;
-    let input = crate::input::Scaled {
-        inner: u,
-        factor: s.factor,
-        time_scale: s.time_scale,
-    };
-    match map.kind() {
-        ModelKind::Shccm => {
-            crate::impact(&crate::Ndbwshccm::new(&nd, input)?, settings).map(|i| i.cor())
-        }
-        ModelKind::Mcm => {
-            crate::impact(&crate::Ndbwmcm::new(&nd, input)?, settings).map(|i| i.cor())
-        }
-    }
-}

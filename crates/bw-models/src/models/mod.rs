@@ -1,127 +1,17 @@
 //! The collision models with external input: BWSHCCM (eq:EBWSHCCM), BWMCM in the Lipschitz form
 //! (eq:EBWMCM), their nondimensional forms (eq:EBWSHCCM_nd, eq:EBWMCM_nd), and the earlier
-//! NDBWMCM form (eq:BWMCM_nd) for the equivalence the paper states.
+//! NDBWMCM form (eq:BWMCM_nd) for the equivalence the paper states; what they all are
+//! ([`CollisionModel`]) and the nondimensional form through which the crate's fast paths reach
+//! the built-in ones ([`form`]).
 
-use crate::params::{check, ModelKind, NondimParams};
-use crate::series::SeriesRun;
-use crate::{ModelError, Settings, State};
-use bwc_ode::{Matrix, System};
-
+mod coefficients;
+mod collision;
+pub(crate) mod form;
 mod nondim;
 mod si;
 
-pub(crate) use nondim::NdCoefficients;
+pub(crate) use coefficients::NdCoefficients;
+pub(crate) use collision::at_rest;
+pub use collision::CollisionModel;
 pub use nondim::{Ndbwmcm, NdbwmcmEarlier, Ndbwshccm};
 pub use si::{Bwmcm, BwmcmEarlier, Bwshccm};
-
-/// A collision model: a right-hand side with the outputs the impact analysis needs.
-pub trait CollisionModel<const N: usize>: System<N> {
-    /// State at the instant of impact: all displacements zero, relative velocity `-v0`.
-    fn initial_state(&self) -> State<N>;
-    /// Contact force `F` (positive pushes the bodies apart).
-    fn force(&self, y: &State<N>) -> f64;
-    /// Relative displacement `x` (`x < 0` is compression).
-    fn displacement(&self, y: &State<N>) -> f64;
-    /// Relative velocity `v`.
-    fn velocity(&self, y: &State<N>) -> f64;
-    /// The external input at `t`.
-    fn input(&self, t: f64) -> f64;
-    /// A time from which the input is constant (model time units; `-inf` for a constant
-    /// input), if any (see [`Input::constant_after`](crate::input::Input::constant_after)).
-    fn input_constant_after(&self) -> Option<f64>;
-    /// The crate's Taylor-series fast path of the nondimensional models (a private detail:
-    /// its argument cannot be named outside the crate, so other models keep the default,
-    /// `None`, and the Runge-Kutta path).
-    #[doc(hidden)]
-    fn series_impact(
-        &self,
-        _: crate::series::Private,
-        _settings: &Settings,
-    ) -> Option<SeriesRun<N>> {
-        None
-    }
-    /// The crate's double-double path of the nondimensional models, and of the SI models
-    /// through them ([`Settings::double_double`]; private as [`Self::series_impact`]): `None`
-    /// where the model has none.
-    #[doc(hidden)]
-    fn double_double_impact(
-        &self,
-        _: crate::series::Private,
-        _ext: bwc_ode::Extrapolation,
-        _settings: &Settings,
-    ) -> Option<Result<crate::Impact<N>, crate::precise::DdFailure>> {
-        None
-    }
-    /// The crate's phase path of the nondimensional models for unforced impacts
-    /// ([`Settings::phase`]; private as [`Self::series_impact`]): the impact where the path
-    /// applies and its check (if any) is met, `None` otherwise.
-    #[doc(hidden)]
-    fn phase_impact(
-        &self,
-        _: crate::series::Private,
-        _settings: &Settings,
-    ) -> Option<crate::Impact<N>> {
-        None
-    }
-    /// Whether the input is constant at all times.
-    fn input_is_constant(&self) -> bool {
-        self.input_constant_after() == Some(f64::NEG_INFINITY)
-    }
-    /// Impact speed `v0` (1 for nondimensional models), so that `e = v(t_s) / v0`.
-    fn impact_speed(&self) -> f64;
-    /// Natural magnitude of each state component (ones for nondimensional models; the scales
-    /// of Table 1 for SI models): absolute tolerances are multiplied by these.
-    fn state_scale(&self) -> State<N>;
-    /// Natural time scale (1 for nondimensional models, `T_c` in seconds for SI models).
-    fn time_scale(&self) -> f64;
-    /// Functions whose zeros are the non-smooth points of the right-hand side: the velocity
-    /// across the hysteretic element (`|v|` or `|ẏ|`) and `z`, in natural (nondimensional)
-    /// units so that they compare with the absolute tolerance.
-    fn kinks(&self, t: f64, y: &State<N>) -> [f64; 2];
-    /// How long (model time) the state `y`, moving with derivative `f`, stays clear of a point
-    /// where the right-hand side is not analytic (the base of a term `c |s|^q` reaching 0), to
-    /// first order, while that term matters at tolerance `rtol`; `+inf` where none does (the
-    /// default). The Runge-Kutta path with [`Settings::stop_at_kinks`] keeps its steps to half
-    /// of it: an embedded error estimate assumes the solution analytic over a few step lengths
-    /// and passes steps that end close to such a point with errors of a hundred tolerances
-    /// (STABILITY.md, "Session 20"). The NDBWSHCCM and the BWSHCCM say it for `X` and `Z`; the
-    /// MCMs keep the default (measured: it moved a flat separation of the NDBWMCM by up to 1e-9
-    /// at rtol 1e-9).
-    fn clearance(&self, y: &State<N>, f: &State<N>, rtol: f64) -> f64 {
-        let _ = (y, f, rtol);
-        f64::INFINITY
-    }
-    /// The Jacobian `∂f/∂y` for implicit methods. Analytic for the nondimensional models; by
-    /// default forward differences with steps `√ε max(|y_i|, scale_i)` (relative accuracy about
-    /// `1e-8`, enough for the step-size control of RODAS4, which then behaves like a method
-    /// of lower order on the affected steps).
-    fn jacobian(&self, t: f64, y: &State<N>) -> Matrix<N> {
-        let f0 = self.rhs(t, y);
-        let scale = self.state_scale();
-        let mut j = Matrix::<N>::zeros();
-        for c in 0..N {
-            let d = f64::EPSILON.sqrt() * y[c].abs().max(scale[c]);
-            let mut yc = *y;
-            yc[c] += d;
-            j.set_column(c, &((self.rhs(t, &yc) - f0) / (yc[c] - y[c])));
-        }
-        j
-    }
-}
-
-/// Which nondimensional model a parameter set belongs to.
-fn expect_nd(p: &NondimParams, kind: ModelKind) -> Result<(), ModelError> {
-    if p.kind() == kind {
-        Ok(())
-    } else {
-        Err(ModelError::WrongModel {
-            expected: kind.name(),
-            found: p.kind().name(),
-        })
-    }
-}
-
-fn check_mass_speed(m: f64, v0: f64) -> Result<(), ModelError> {
-    check("m", m, m > 0.0, "m > 0 (kg)")?;
-    check("v0", v0, v0 > 0.0, "v0 > 0 (m/s)")
-}

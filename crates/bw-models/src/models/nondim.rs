@@ -2,77 +2,16 @@
 //! eq:BWMCM_nd): Table 1's scales, `V(0) = -1`, the right-hand sides the series and
 //! double-double paths expand.
 
-use super::{expect_nd, CollisionModel};
+use super::coefficients::NdCoefficients;
+use super::collision::CollisionModel;
+use super::form::NdForm;
 use crate::clearance::shccm_clearance;
+use crate::error::ModelError;
 use crate::input::Input;
 use crate::laws::hysteresis;
 use crate::params::{ModelKind, NondimParams};
 use crate::power::{Pow, Powers};
-use crate::series::SeriesRun;
-use crate::{Impact, ModelError, Nondim, Settings, State};
-use bwc_ode::{Matrix, System};
-
-/// The nondimensional parameters both ND models use, with the exponents classified once.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct NdCoefficients {
-    pub(crate) b: f64,
-    pub(crate) gamma: f64,
-    pub(crate) kappa: f64,
-    pub(crate) sigma: f64,
-    pub(crate) n: Pow,
-    pub(crate) p: Pow,
-    /// `n - 1` and `p - 1`, for the Jacobians.
-    nm1: Pow,
-    pm1: Pow,
-}
-
-impl NdCoefficients {
-    /// The parameters as given.
-    fn nondim(&self) -> Nondim {
-        Nondim {
-            b: self.b,
-            gamma: self.gamma,
-            kappa: self.kappa,
-            sigma: self.sigma,
-            n: self.n.exponent(),
-            p: self.p.exponent(),
-        }
-    }
-
-    /// `(d/ds |s|^(p-1) s, d/dz ż)` pieces: `p |s|^(p-1)`.
-    #[inline]
-    pub(crate) fn dpow_p(&self, s: f64) -> f64 {
-        self.p.exponent() * self.pm1.of_abs(s.abs())
-    }
-
-    /// `∂ż/∂w` and `∂ż/∂z` of `ż = w - |z|^n (B sgn(z) |w| + Γ w)` for the driving rate `w`.
-    #[inline]
-    fn dhysteresis(&self, z: f64, w: f64) -> (f64, f64) {
-        let zn = self.n.of_abs(z.abs());
-        let sz = if z == 0.0 { 0.0 } else { z.signum() };
-        let sw = if w == 0.0 { 0.0 } else { w.signum() };
-        let d_w = 1.0 - zn * (self.gamma + self.b * sz * sw);
-        let d_z = -self.n.exponent()
-            * self.nm1.of_abs(z.abs())
-            * (self.b * w.abs() + self.gamma * w * sz);
-        (d_w, d_z)
-    }
-
-    fn new(params: &NondimParams, kind: ModelKind) -> Result<Self, ModelError> {
-        expect_nd(params, kind)?;
-        let p = params.get();
-        Ok(Self {
-            b: p.b,
-            gamma: p.gamma,
-            kappa: p.kappa,
-            sigma: p.sigma,
-            n: Pow::new(p.n),
-            p: Pow::new(p.p),
-            nm1: Pow::new(p.n - 1.0),
-            pm1: Pow::new(p.p - 1.0),
-        })
-    }
-}
+use bwc_ode::{Matrix, State, System};
 
 /// NDBWSHCCM (eq:EBWSHCCM_nd), states `(X, Z, V)`:
 /// `X' = V`, `Z' = V - B|Z|^(n-1) Z |V| - Γ|Z|^n V`,
@@ -86,6 +25,11 @@ pub struct Ndbwshccm<I> {
 }
 
 impl<I: Input> Ndbwshccm<I> {
+    /// The model with coefficients already classified (the fast paths' view of a form).
+    pub(crate) fn of(k: NdCoefficients, input: I) -> Self {
+        Self { k, input }
+    }
+
     /// The model with validated parameters and input `U(T)`.
     ///
     /// # Errors
@@ -131,14 +75,8 @@ impl<I: Input> System<3> for Ndbwshccm<I> {
 }
 
 impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
-    fn double_double_impact(
-        &self,
-        _: crate::series::Private,
-        ext: bwc_ode::Extrapolation,
-        settings: &Settings,
-    ) -> Option<Result<crate::Impact<3>, crate::precise::DdFailure>> {
-        let model = (ModelKind::Shccm, self.k.nondim(), &self.input);
-        crate::precise::run_model(model, ext, settings, |y| State::<3>::new(y[1], y[2], y[3]))
+    fn nondimensional_form(&self) -> Option<NdForm<'_, 3>> {
+        Some(NdForm::shccm(self.k, &self.input, None))
     }
     fn initial_state(&self) -> State<3> {
         State::<3>::new(0.0, 0.0, -1.0)
@@ -173,19 +111,6 @@ impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
     fn clearance(&self, y: &State<3>, f: &State<3>, rtol: f64) -> f64 {
         shccm_clearance(&self.k.nondim(), (*y).into(), (*f).into(), rtol)
     }
-    fn series_impact(
-        &self,
-        _: crate::series::Private,
-        settings: &Settings,
-    ) -> Option<SeriesRun<3>> {
-        crate::series::impact(self, settings)
-    }
-    fn phase_impact(&self, _: crate::series::Private, settings: &Settings) -> Option<Impact<3>> {
-        let params = NondimParams::new(ModelKind::Shccm, self.k.nondim()).ok()?;
-        let cor = crate::phase::for_impact(&params, &self.input, settings)?;
-        let state = State::<3>::new(cor.q_s, cor.z_s, cor.e);
-        Some(crate::phase::impact_of(&cor, state, settings))
-    }
     fn jacobian(&self, _t: f64, y: &State<3>) -> Matrix<3> {
         let k = &self.k;
         let (x, z, v) = (y[0], y[1], y[2]);
@@ -219,6 +144,11 @@ pub struct Ndbwmcm<I> {
 }
 
 impl<I: Input> Ndbwmcm<I> {
+    /// The model with coefficients already classified (the fast paths' view of a form).
+    pub(crate) fn of(k: NdCoefficients, input: I) -> Self {
+        Self { k, input }
+    }
+
     /// The model with validated parameters and input `U(T)`.
     ///
     /// # Errors
@@ -269,14 +199,8 @@ impl<I: Input> System<4> for Ndbwmcm<I> {
 }
 
 impl<I: Input> CollisionModel<4> for Ndbwmcm<I> {
-    fn double_double_impact(
-        &self,
-        _: crate::series::Private,
-        ext: bwc_ode::Extrapolation,
-        settings: &Settings,
-    ) -> Option<Result<crate::Impact<4>, crate::precise::DdFailure>> {
-        let model = (ModelKind::Mcm, self.k.nondim(), &self.input);
-        crate::precise::run_model(model, ext, settings, State::<4>::from)
+    fn nondimensional_form(&self) -> Option<NdForm<'_, 4>> {
+        Some(NdForm::mcm(self.k, &self.input, None))
     }
     fn initial_state(&self) -> State<4> {
         State::<4>::new(0.0, 0.0, 0.0, -1.0)
@@ -307,21 +231,6 @@ impl<I: Input> CollisionModel<4> for Ndbwmcm<I> {
     }
     fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
         [y[3] + self.k.sigma * self.force_of(y), y[2]]
-    }
-    fn series_impact(
-        &self,
-        _: crate::series::Private,
-        settings: &Settings,
-    ) -> Option<SeriesRun<4>> {
-        crate::series::impact(self, settings)
-    }
-    fn phase_impact(&self, _: crate::series::Private, settings: &Settings) -> Option<Impact<4>> {
-        let params = NondimParams::new(ModelKind::Mcm, self.k.nondim()).ok()?;
-        let cor = crate::phase::for_impact(&params, &self.input, settings)?;
-        // With no input `R' = -σF = -σV'`, so `R = -σ (V + 1)` from `V(0) = -1`.
-        let r = -self.k.sigma * (cor.e + 1.0);
-        let state = State::<4>::new(r, cor.q_s, cor.z_s, cor.e);
-        Some(crate::phase::impact_of(&cor, state, settings))
     }
     fn jacobian(&self, _t: f64, y: &State<4>) -> Matrix<4> {
         let k = &self.k;

@@ -2,15 +2,17 @@
 //! driven by the relative motion of a mass `m`, with CoRs taken through their nondimensional
 //! forms (Table 1) where the input is constant.
 
-use super::{check_mass_speed, CollisionModel, Ndbwmcm, Ndbwshccm};
+use super::coefficients::NdCoefficients;
+use super::collision::CollisionModel;
+use super::form::NdForm;
 use crate::clearance::{in_natural_units, shccm_clearance};
-use crate::input::{Constant, Input, Scaled};
+use crate::error::ModelError;
+use crate::input::Input;
 use crate::laws::{hysteresis, Bwmcl, Bwshccl};
-use crate::params::{ModelKind, NondimParams, PhysicalParams};
+use crate::params::{check, ModelKind, NondimParams, PhysicalParams};
 use crate::power::Pow;
-use crate::series::SeriesRun;
-use crate::{Impact, ModelError, Settings, State};
-use bwc_ode::System;
+use crate::scaling::{nondimensionalize, Scales};
+use bwc_ode::{State, System};
 
 /// BWSHCCM (eq:EBWSHCCM) in SI units, states `(x, z, v)`: the BWSHCCL driven by `v`, and
 /// `m v̇ = F + u(t)`.
@@ -22,7 +24,7 @@ pub struct Bwshccm<I> {
     law: Bwshccl,
     m: f64,
     v0: f64,
-    scales: crate::Scales,
+    scales: Scales,
     nd: NondimParams,
     input: I,
 }
@@ -36,7 +38,7 @@ impl<I: Input> Bwshccm<I> {
     /// or `v0`.
     pub fn new(params: &PhysicalParams, m: f64, v0: f64, input: I) -> Result<Self, ModelError> {
         check_mass_speed(m, v0)?;
-        let (nd, scales) = crate::scaling::nondimensionalize(params, m, v0)?;
+        let (nd, scales) = nondimensionalize(params, m, v0)?;
         Ok(Self {
             law: Bwshccl::new(params)?,
             m,
@@ -57,6 +59,10 @@ impl<I: Input> System<3> for Bwshccm<I> {
 }
 
 impl<I: Input> CollisionModel<3> for Bwshccm<I> {
+    fn nondimensional_form(&self) -> Option<NdForm<'_, 3>> {
+        let k = NdCoefficients::new(&self.nd, ModelKind::Shccm).ok()?;
+        Some(NdForm::shccm(k, &self.input, Some(self.scales)))
+    }
     fn initial_state(&self) -> State<3> {
         State::<3>::new(0.0, 0.0, -self.v0)
     }
@@ -92,42 +98,6 @@ impl<I: Input> CollisionModel<3> for Bwshccm<I> {
         let (y, f) = in_natural_units(y, f, self.state_scale(), t_c);
         t_c * shccm_clearance(self.nd.get(), y.into(), f.into(), rtol)
     }
-    fn series_impact(
-        &self,
-        key: crate::series::Private,
-        settings: &Settings,
-    ) -> Option<SeriesRun<3>> {
-        let u = nondimensional_input(&self.input, &self.scales)?;
-        let run = Ndbwshccm::new(&self.nd, u)
-            .ok()?
-            .series_impact(key, settings)?;
-        Some(in_si(run, self.state_scale(), self.scales.t_c))
-    }
-    fn phase_impact(&self, key: crate::series::Private, settings: &Settings) -> Option<Impact<3>> {
-        if !self.input.is_zero() {
-            return None;
-        }
-        let out = Ndbwshccm::new(&self.nd, crate::input::Zero)
-            .ok()?
-            .phase_impact(key, settings)?;
-        Some(phase_in_si(out, self.state_scale(), self.scales.t_c))
-    }
-    fn double_double_impact(
-        &self,
-        _: crate::series::Private,
-        ext: bwc_ode::Extrapolation,
-        settings: &Settings,
-    ) -> Option<Result<crate::Impact<3>, crate::precise::DdFailure>> {
-        let scale = self.state_scale();
-        let state_of = |y: [f64; 4]| State::<3>::new(y[1], y[2], y[3]).component_mul(&scale);
-        dd_in_si(
-            (ModelKind::Shccm, &self.nd, &self.input),
-            &self.scales,
-            ext,
-            settings,
-            state_of,
-        )
-    }
 }
 
 /// BWMCM in the Lipschitz form (eq:EBWMCM) in SI units, states `(r, y, z, v)`: the BWMCL
@@ -140,7 +110,7 @@ pub struct Bwmcm<I> {
     law: Bwmcl,
     m: f64,
     v0: f64,
-    scales: crate::Scales,
+    scales: Scales,
     nd: NondimParams,
     input: I,
 }
@@ -154,7 +124,7 @@ impl<I: Input> Bwmcm<I> {
     /// `m` or `v0`.
     pub fn new(params: &PhysicalParams, m: f64, v0: f64, input: I) -> Result<Self, ModelError> {
         check_mass_speed(m, v0)?;
-        let (nd, scales) = crate::scaling::nondimensionalize(params, m, v0)?;
+        let (nd, scales) = nondimensionalize(params, m, v0)?;
         Ok(Self {
             law: Bwmcl::new(params)?,
             m,
@@ -175,6 +145,10 @@ impl<I: Input> System<4> for Bwmcm<I> {
 }
 
 impl<I: Input> CollisionModel<4> for Bwmcm<I> {
+    fn nondimensional_form(&self) -> Option<NdForm<'_, 4>> {
+        let k = NdCoefficients::new(&self.nd, ModelKind::Mcm).ok()?;
+        Some(NdForm::mcm(k, &self.input, Some(self.scales)))
+    }
     fn initial_state(&self) -> State<4> {
         State::<4>::new(0.0, 0.0, 0.0, -self.v0)
     }
@@ -206,108 +180,6 @@ impl<I: Input> CollisionModel<4> for Bwmcm<I> {
         let (d, _) = self.law.eval(&State::<3>::new(y[0], y[1], y[2]), y[3]);
         [d[1] / self.v0, y[2] / self.scales.z_c]
     }
-    fn series_impact(
-        &self,
-        key: crate::series::Private,
-        settings: &Settings,
-    ) -> Option<SeriesRun<4>> {
-        let u = nondimensional_input(&self.input, &self.scales)?;
-        let run = Ndbwmcm::new(&self.nd, u)
-            .ok()?
-            .series_impact(key, settings)?;
-        Some(in_si(run, self.state_scale(), self.scales.t_c))
-    }
-    fn phase_impact(&self, key: crate::series::Private, settings: &Settings) -> Option<Impact<4>> {
-        if !self.input.is_zero() {
-            return None;
-        }
-        let out = Ndbwmcm::new(&self.nd, crate::input::Zero)
-            .ok()?
-            .phase_impact(key, settings)?;
-        Some(phase_in_si(out, self.state_scale(), self.scales.t_c))
-    }
-    fn double_double_impact(
-        &self,
-        _: crate::series::Private,
-        ext: bwc_ode::Extrapolation,
-        settings: &Settings,
-    ) -> Option<Result<crate::Impact<4>, crate::precise::DdFailure>> {
-        let scale = self.state_scale();
-        let state_of = |y: [f64; 4]| State::<4>::from(y).component_mul(&scale);
-        dd_in_si(
-            (ModelKind::Mcm, &self.nd, &self.input),
-            &self.scales,
-            ext,
-            settings,
-            state_of,
-        )
-    }
-}
-
-/// A constant input `u` (N) as the nondimensional models' `U = u T_c² / (m X_c)` (Table 1);
-/// `None` for an input that varies (the series path takes constant inputs only).
-fn nondimensional_input<I: Input>(input: &I, scales: &crate::Scales) -> Option<Constant> {
-    input
-        .is_constant()
-        .then(|| Constant(input.at(0.0) * scales.u_factor))
-}
-
-/// The double-double run of an SI model: its nondimensional model `kind` with parameters `nd`
-/// under the input `u(t)` (N) as `U(T) = u(T T_c) T_c² / (m X_c)` (Table 1), with the state
-/// `state_of` the run's `(R, Y, Z, V)` and the times in seconds.
-fn dd_in_si<I: Input, const N: usize>(
-    (kind, nd, input): (ModelKind, &NondimParams, &I),
-    scales: &crate::Scales,
-    ext: bwc_ode::Extrapolation,
-    settings: &Settings,
-    state_of: impl Fn([f64; 4]) -> State<N>,
-) -> Option<Result<crate::Impact<N>, crate::precise::DdFailure>> {
-    let u = Scaled {
-        inner: input,
-        factor: scales.u_factor,
-        time_scale: scales.t_c,
-    };
-    let run = crate::precise::run_model((kind, *nd.get(), &u), ext, settings, state_of)?;
-    Some(run.map(|out| Impact {
-        t_s: out.t_s.map(|t| t * scales.t_c),
-        ..out
-    }))
-}
-
-/// A phase impact of the nondimensional model in the SI model's units: times times `T_c`,
-/// each state component times its scale (Table 1).
-fn phase_in_si<const N: usize>(out: Impact<N>, scale: State<N>, t_c: f64) -> Impact<N> {
-    Impact {
-        t_s: out.t_s.map(|t| t * t_c),
-        t_s_error: out.t_s_error.map(|t| t * t_c),
-        state: out.state.component_mul(&scale),
-        ..out
-    }
-}
-
-/// A series run of the nondimensional model in the SI model's units: times times `T_c`, each
-/// state component times its scale (Table 1; `e = V(T_s) = v(t_s) / v0` is the same).
-fn in_si<const N: usize>(run: SeriesRun<N>, scale: State<N>, t_c: f64) -> SeriesRun<N> {
-    match run {
-        SeriesRun::Done(out) => SeriesRun::Done(Impact {
-            t_s: out.t_s.map(|t| t * t_c),
-            state: out.state.component_mul(&scale),
-            settled_at: out.settled_at.map(|t| t * t_c),
-            stiff_from: out.stiff_from.map(|t| t * t_c),
-            ..out
-        }),
-        SeriesRun::HandOver {
-            t,
-            state,
-            stats,
-            series_steps,
-        } => SeriesRun::HandOver {
-            t: t * t_c,
-            state: state.component_mul(&scale),
-            stats,
-            series_steps,
-        },
-    }
 }
 
 /// The earlier BWMCM form (eq:BWMCM, no input) in SI units, states `(r, y, z, w)`:
@@ -319,7 +191,7 @@ pub struct BwmcmEarlier {
     law: Bwmcl,
     m: f64,
     v0: f64,
-    scales: crate::Scales,
+    scales: Scales,
     pm1: Pow,
 }
 
@@ -331,7 +203,7 @@ impl BwmcmEarlier {
     /// `m` or `v0`.
     pub fn new(params: &PhysicalParams, m: f64, v0: f64) -> Result<Self, ModelError> {
         check_mass_speed(m, v0)?;
-        let (_, scales) = crate::scaling::nondimensionalize(params, m, v0)?;
+        let (_, scales) = nondimensionalize(params, m, v0)?;
         Ok(Self {
             law: Bwmcl::new(params)?,
             m,
@@ -392,4 +264,9 @@ impl CollisionModel<4> for BwmcmEarlier {
     fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
         [y[3] / self.v0, y[2] / self.scales.z_c]
     }
+}
+
+fn check_mass_speed(m: f64, v0: f64) -> Result<(), ModelError> {
+    check("m", m, m > 0.0, "m > 0 (kg)")?;
+    check("v0", v0, v0 > 0.0, "v0 > 0 (m/s)")
 }

@@ -107,9 +107,10 @@ pub(super) fn picard(
             g_last[k] = image;
         }
     }
-    Err(super::not_applicable(
-        "the damping's fixed-point iteration did not settle (sigma too large for the phase path)",
-    ))
+    Err(ModelError::NotApplicable {
+        reason: "the damping's fixed-point iteration did not settle (sigma too large for the \
+                 phase path)",
+    })
 }
 
 /// Chebyshev points of the first kind on `[-1, 1]` and the matrices that act on values there.

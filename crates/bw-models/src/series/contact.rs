@@ -18,11 +18,11 @@
 //! loop, in the variable `s`. Where the velocity reaches zero inside the step (the maximum
 //! compression), the step ends on that root.
 
-use super::jet::Series;
+use super::polynomial::{eval_d, jorba_zou, root, Series, ORDER};
 use super::recurrence::{Base, Power};
-use super::{eval_d, jorba_zou, root, ORDER, TOLERANCE_SCALE};
-use crate::impact::Settings;
+use super::steps::TOLERANCE_SCALE;
 use crate::power::Pow;
+use crate::settings::Settings;
 
 /// Where the contact step ends: time `T`, `X = Z` and `V` there (`V = 0` exactly at the
 /// maximum compression).

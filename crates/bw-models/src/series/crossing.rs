@@ -25,13 +25,14 @@
 //! inside it, where the other base's zero is within a tenth of the step (both bases vanishing
 //! together), and where its values are not finite.
 
+use super::polynomial::{class, coarse_log2, root, ORDER};
 use super::recurrence::dot2;
-use super::{class, coarse_log2, root, START_TOLERANCE};
+use super::steps::START_TOLERANCE;
 use crate::models::NdCoefficients;
 use crate::State;
 
 /// Largest weight `a + j p` of the monomials, and the largest `a` and `j`.
-const K: usize = super::ORDER;
+const K: usize = ORDER;
 
 /// Coefficients `c[j][a]` of `D^(a + j p)`.
 type Lattice = [[f64; K + 1]; K + 1];

@@ -2,15 +2,14 @@
 //! about the start of a step, in time or in logarithmic time ([`Clock`]), by
 //! the recurrences of the powers and Cauchy products ([`super::recurrence`]).
 
+use super::crossing;
+use super::polynomial::{Series, ORDER};
 use super::recurrence::{clocked, Base, JetPowers, Power, INVERSE};
-use super::{crossing, ORDER};
-use crate::impact::Settings;
+use super::steps::{step_tolerance, START_TOLERANCE};
 use crate::input::Input;
 use crate::models::{CollisionModel, NdCoefficients, Ndbwmcm, Ndbwshccm};
+use crate::settings::Settings;
 use crate::State;
-
-/// Taylor coefficients `c_0 ..= c_ORDER` of one function about the start of a step.
-pub(crate) type Series = [f64; ORDER + 1];
 
 /// The Taylor polynomials of one step.
 pub(crate) struct Jet<const N: usize> {
@@ -326,7 +325,7 @@ impl<I: Input> Expand<4> for Ndbwmcm<I> {
         let c = super::contact::hunt_crossley_step(k.p, 0.0, settings, true)?;
         let lipschitz = k.dpow_p(c.x);
         let bound = lipschitz * k.sigma * c.t * c.t * (lipschitz.sqrt() * c.t).exp();
-        let tol = super::START_TOLERANCE * super::step_tolerance(&self.initial_state(), settings);
+        let tol = START_TOLERANCE * step_tolerance(&self.initial_state(), settings);
         let r = -k.sigma * (c.v + 1.0);
         let y = c.x - r;
         // The step ends inside the loading branch: Y' = V + σ |Y|^p < 0.

@@ -3,15 +3,50 @@
 //! else an expansion in time, its step size, the earliest event inside the step and what that
 //! event does) until the separation, rest, or a hand-over to the Runge-Kutta path.
 
-use super::jet::{Clock, Expand, Jet, Series};
-use super::{
-    class, eval_d, reach_root, root, start_step, step_size, step_tolerance, SeriesRun, Target,
-    FORCE_MARGIN, LOG_STEP_MIN, MAX_GROWTH, MAX_SERIES_STEPS, MAX_STALLED, RETRY_SPAN,
-    START_TOLERANCE,
+use super::jet::{Clock, Expand, Jet};
+use super::polynomial::{class, eval_d, jorba_zou, root, Series, ORDER};
+use super::steps::{
+    reach_root, start_step, step_tolerance, Target, FORCE_MARGIN, LOG_STEP_MIN, MAX_GROWTH,
+    MAX_SERIES_STEPS, MAX_STALLED, RETRY_SPAN, START_TOLERANCE,
 };
-use crate::impact::{at_rest, Impact, Settings};
+use crate::models::at_rest;
+use crate::outcome::Impact;
+use crate::settings::Settings;
 use crate::{separated, State};
 use bwc_ode::Stats;
+
+/// What the series path made of an impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SeriesRun<const N: usize> {
+    /// The impact, finished by the series.
+    Done(Impact<N>),
+    /// The series declined at time `t` (a stiff or sliding contact, an ill-conditioned root,
+    /// more than [`MAX_SERIES_STEPS`] steps, the horizon): the Runge-Kutta path continues from
+    /// the state there, adding its work to `stats`.
+    HandOver {
+        /// Time reached (0: nothing done).
+        t: f64,
+        /// State there.
+        state: State<N>,
+        /// Work done so far.
+        stats: Stats,
+        /// Series steps taken so far.
+        series_steps: u64,
+    },
+}
+
+/// Jorba & Zou's step size for the coefficients of `jet` about `y`, made robust to series whose
+/// last coefficients happen to be small (nearly polynomial stretches, integer exponents):
+/// `0.9 min_k ρ_k` over the last [`ESTIMATE_TERMS`] orders, `ρ_k = (tol / |c_k|_∞)^(1/k)` over the
+/// state and the force, with the local tolerance `tol` ([`step_tolerance`]).
+fn step_size<const N: usize>(jet: &Jet<N>, tol: f64) -> f64 {
+    jorba_zou(tol, ORDER, |k| {
+        jet.state
+            .iter()
+            .chain([&jet.force])
+            .fold(0.0f64, |m, s| m.max(s[k].abs()))
+    })
+}
 
 /// Whether the root at `a.0` of the function `watch[a.1]` comes before the root at `b.0` of
 /// `watch[b.1]`. Roots within a few ulps of each other are a tie: a zero of a base (set exactly

@@ -2,8 +2,7 @@
 //! the Cauchy products, order by order, from the coefficients before them (the scratch of
 //! [`super::jet::Jet`]).
 
-use super::jet::Series;
-use super::ORDER;
+use super::polynomial::{Series, ORDER};
 use crate::models::NdCoefficients;
 use crate::power::Pow;
 

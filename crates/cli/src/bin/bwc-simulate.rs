@@ -1,6 +1,6 @@
 //! `bwc-simulate`: simulate the impacts a TOML scene describes.
 
-use bw_models::{Check, ModelKind, CHECK_METHOD, FLOOR_RTOL, TIGHTEN};
+use bw_models::{Check, ModelKind, LADDER};
 use bwc_app::outdir;
 use bwc_app::runs::Outcome;
 use bwc_app::{output, scene::Scene, simulate, tidy, AppError};
@@ -195,7 +195,7 @@ fn unmet_e_tol(scene: &Scene, label: &str, r: &bwc_app::runs::Run) {
             scene.settings.max_steps
         ),
         Some(f) => format!("the run at rtol {:e} failed", tidy(f.rtol)),
-        None => format!("rtol {FLOOR_RTOL:e} is the tightest"),
+        None => format!("rtol {:e} is the tightest", LADDER.floor_rtol),
     };
     match (check, r.e_error) {
         (Check::Unmet, Some(estimate)) => {
@@ -212,18 +212,21 @@ fn unmet_e_tol(scene: &Scene, label: &str, r: &bwc_app::runs::Run) {
             )
         }
         (Check::Unverified, _) => {
-            let tighter = if rtol > FLOOR_RTOL {
+            let tighter = if rtol > LADDER.floor_rtol {
                 format!("so did the tighter one ({stop})")
             } else {
-                format!("rtol is at the floor, {FLOOR_RTOL:e}, with no tighter run")
+                format!(
+                    "rtol is at the floor, {:e}, with no tighter run",
+                    LADDER.floor_rtol
+                )
             };
             eprintln!(
                 "bwc-simulate: warning: {label}: e is one unchecked run at rtol {rtol:e}: the \
                  check against [solver].e_tol = {e_tol:e} failed at rtol {check:e}, and \
                  {tighter}; [solver] method = \"{method}\", rtol = {check:e} with e_tol = 0 \
                  shows why the check failed",
-                check = tidy(TIGHTEN * rtol),
-                method = CHECK_METHOD.name.to_lowercase()
+                check = tidy(LADDER.tighten * rtol),
+                method = LADDER.check_method.name.to_lowercase()
             )
         }
         _ => {}

@@ -28,9 +28,10 @@
 //!
 //! [`CollisionModel::kinks`]: crate::CollisionModel::kinks
 
-use crate::impact::{Impact, Settings};
 use crate::input::Input;
+use crate::outcome::{DdFailure, Impact};
 use crate::params::{ModelKind, Nondim};
+use crate::settings::Settings;
 use crate::State;
 use bwc_ode::dd::{copysign, ln_abs, pow_abs_ln, Dd};
 use bwc_ode::{DdSystem, DdTrial, Extrapolation, Stats};
@@ -39,7 +40,7 @@ use bwc_ode::{DdSystem, DdTrial, Extrapolation, Stats};
 /// [`crate::Ndbwmcm`], always in states `(R, Y, Z, V)`: the NDBWSHCCM's `X` is `Y`, with `R`
 /// held at 0.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Model<'a, I> {
+pub(crate) struct Model<'a, I: ?Sized> {
     /// Which model.
     pub kind: ModelKind,
     /// Parameters.
@@ -80,7 +81,7 @@ fn hysteresis(k: &Nondim, z: Dd, zn: Dd, w: Dd, abs_w: Dd) -> Dd {
     w - zn * (copysign(abs_w * k.b, z) + w * k.gamma)
 }
 
-impl<I: Input> DdSystem<4> for Model<'_, I> {
+impl<I: Input + ?Sized> DdSystem<4> for Model<'_, I> {
     fn rhs(&self, t: Dd, y: &DdState) -> DdState {
         self.rhs_on(t, y, None)
     }
@@ -90,18 +91,18 @@ impl<I: Input> DdSystem<4> for Model<'_, I> {
 /// before a root of `w`: the branch's analytic continuation past the root, so that the event
 /// function is smooth where the root is searched for and the Illinois method converges
 /// superlinearly (across the kink itself each trial step would lose its order).
-struct Frozen<'m, 'a, I> {
+struct Frozen<'m, 'a, I: ?Sized> {
     m: &'m Model<'a, I>,
     sign: f64,
 }
 
-impl<I: Input> DdSystem<4> for Frozen<'_, '_, I> {
+impl<I: Input + ?Sized> DdSystem<4> for Frozen<'_, '_, I> {
     fn rhs(&self, t: Dd, y: &DdState) -> DdState {
         self.m.rhs_on(t, y, Some(self.sign))
     }
 }
 
-impl<I: Input> Model<'_, I> {
+impl<I: Input + ?Sized> Model<'_, I> {
     /// The right-hand side, on the branch of the rate's sign `frozen` where given.
     fn rhs_on(&self, t: Dd, y: &DdState, frozen: Option<f64>) -> DdState {
         let abs = |w: Dd| frozen.map_or(w.abs(), |s| w * s);
@@ -220,24 +221,10 @@ pub(crate) struct DdRun {
     pub kinks: u64,
 }
 
-/// Why a double-double run ([`crate::impact_double_double`]) stopped short of the separation.
-#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
-pub enum DdFailure {
-    /// More than the step limit of accepted steps.
-    #[error("more than max_steps steps; a larger [solver].max_steps lets it finish")]
-    TooManySteps,
-    /// The step size fell below `1e-28 max(1, T)`, at `T`.
-    #[error("step size underflow at T = {0}")]
-    StepSizeTooSmall(f64),
-    /// No separation by the horizon.
-    #[error("no separation by t_max")]
-    NoSeparation,
-}
-
 /// The double-double run of a nondimensional model `kind` with parameters `k` under `input`,
 /// as an [`Impact`] whose state is `state_of` the run's `(R, Y, Z, V)`; `None` where the input
 /// has no double-double form.
-pub(crate) fn run_model<I: Input, const N: usize>(
+pub(crate) fn run_model<I: Input + ?Sized, const N: usize>(
     (kind, k, input): (ModelKind, Nondim, &I),
     ext: Extrapolation,
     settings: &Settings,
@@ -278,13 +265,13 @@ struct Crossing {
 }
 
 /// A run's fixed parts: the model, the method, and the counter of evaluations.
-struct Run<'m, 'a, I> {
+struct Run<'m, 'a, I: ?Sized> {
     m: &'m Model<'a, I>,
     ext: Extrapolation,
     evals: u64,
 }
 
-impl<I: Input> Run<'_, '_, I> {
+impl<I: Input + ?Sized> Run<'_, '_, I> {
     /// One extrapolation step of size `h` from `(t, y)` with `f0 = f(t, y)`, on the branch
     /// `frozen` (a sign of the rate) where given.
     fn step(
@@ -628,7 +615,7 @@ fn shrunk(h: Dd, factor: f64, t: Dd) -> Result<Dd, DdFailure> {
 ///
 /// # Errors
 /// [`DdFailure`] where the run cannot reach the separation.
-pub(crate) fn impact<I: Input>(
+pub(crate) fn impact<I: Input + ?Sized>(
     m: &Model<'_, I>,
     ext: Extrapolation,
     max_steps: u64,

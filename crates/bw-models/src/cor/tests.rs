@@ -2,7 +2,6 @@
 
 use super::*;
 use crate::input::Zero;
-use crate::series::SeriesRun;
 use crate::{ModelKind, Ndbwshccm, Nondim, NondimParams, State};
 use bwc_ode::System;
 use std::cell::Cell;
@@ -67,26 +66,6 @@ impl System<3> for Failing {
 }
 
 impl CollisionModel<3> for Failing {
-    fn double_double_impact(
-        &self,
-        _: crate::series::Private,
-        ext: Extrapolation,
-        settings: &Settings,
-    ) -> Option<Result<Impact<3>, DdFailure>> {
-        let mut runs = self.dd_runs.borrow_mut();
-        let run = *self.dd.get(runs.len())?;
-        runs.push((ext.rtol, settings.max_steps));
-        Some(run.map(|(e, accepted)| {
-            let stats = bwc_ode::Stats {
-                accepted,
-                ..Default::default()
-            };
-            Impact {
-                double_double: true,
-                ..Impact::unchecked((Some(1.0), e, State::<3>::zeros()), stats, ext.rtol)
-            }
-        }))
-    }
     fn initial_state(&self) -> State<3> {
         self.inner.initial_state()
     }
@@ -105,17 +84,6 @@ impl CollisionModel<3> for Failing {
     fn input_constant_after(&self) -> Option<f64> {
         self.inner.input_constant_after()
     }
-    fn series_impact(
-        &self,
-        _: crate::series::Private,
-        settings: &Settings,
-    ) -> Option<SeriesRun<3>> {
-        self.rtol.set(settings.rtol);
-        self.runs
-            .borrow_mut()
-            .push((settings.rtol, settings.method.name));
-        None
-    }
     fn impact_speed(&self) -> f64 {
         1.0
     }
@@ -130,7 +98,45 @@ impl CollisionModel<3> for Failing {
     }
 }
 
-fn checked(rtol: f64) -> Settings {
+impl Runs<3> for Failing {
+    fn run(&self, settings: &Settings) -> Result<Impact<3>, ModelError> {
+        self.rtol.set(settings.rtol);
+        self.runs
+            .borrow_mut()
+            .push((settings.rtol, settings.method.name));
+        simulate(self, settings, Sampling::None, |_, _| {})
+    }
+    fn double_double(
+        &self,
+        rtol: f64,
+        settings: &Settings,
+    ) -> Option<Result<Impact<3>, DdFailure>> {
+        let mut runs = self.dd_runs.borrow_mut();
+        let run = *self.dd.get(runs.len())?;
+        runs.push((rtol, settings.max_steps));
+        Some(run.map(|(e, accepted)| {
+            let stats = bwc_ode::Stats {
+                accepted,
+                ..Default::default()
+            };
+            Impact {
+                double_double: true,
+                ..Impact::unchecked((Some(1.0), e, State::<3>::zeros()), stats, rtol)
+            }
+        }))
+    }
+}
+
+/// [`crate::impact`] with `model`'s runs, which it records (and scripts, in double-double).
+fn impact(model: &Failing, settings: &Settings) -> Result<Impact<3>, ModelError> {
+    let Some(e_tol) = settings.e_tol else {
+        return model.run(settings);
+    };
+    settings.validate()?;
+    checked(model, settings, e_tol)
+}
+
+fn checked_at(rtol: f64) -> Settings {
     Settings {
         rtol,
         atol: rtol / 100.0,
@@ -142,7 +148,7 @@ fn checked(rtol: f64) -> Settings {
 #[test]
 fn a_cor_no_other_run_could_check_says_so() {
     // The check at 100 rtol and the tighter run at rtol / 100 both fail.
-    let out = impact(&Failing::new(&[1e-6, 1e-10]), &checked(1e-8)).unwrap();
+    let out = impact(&Failing::new(&[1e-6, 1e-10]), &checked_at(1e-8)).unwrap();
     assert_eq!(
         (out.check, out.e_error, out.rtol),
         (Check::Unverified, None, 1e-8)
@@ -151,7 +157,7 @@ fn a_cor_no_other_run_could_check_says_so() {
     let failed = out.tighter_failed.unwrap();
     assert!((failed.rtol / 1e-10 - 1.0).abs() < 1e-9 && !failed.out_of_steps);
     // At the floor there is no tighter run to try.
-    let out = impact(&Failing::new(&[1e-12]), &checked(1e-14)).unwrap();
+    let out = impact(&Failing::new(&[1e-12]), &checked_at(1e-14)).unwrap();
     assert_eq!(
         (out.check, out.e_error, out.tighter_failed),
         (Check::Unverified, None, None)
@@ -165,17 +171,20 @@ fn a_tighter_run_out_of_steps_says_that_more_steps_would_help() {
         let single = Settings {
             method,
             e_tol: None,
-            ..checked(rtol)
+            ..checked_at(rtol)
         };
         let out = impact(&Failing::new(&[]), &single).unwrap();
         out.stats.accepted + out.stats.rejected
     };
-    let (at_rtol, tighter) = (steps(&bwc_ode::DOP853, 1e-5), steps(TIGHTER_METHOD, 1e-7));
+    let (at_rtol, tighter) = (
+        steps(&bwc_ode::DOP853, 1e-5),
+        steps(LADDER.tighter_method, 1e-7),
+    );
     assert!(tighter > at_rtol, "{tighter} {at_rtol}");
     let settings = Settings {
         e_tol: Some(1e-30),
         max_steps: at_rtol,
-        ..checked(1e-5)
+        ..checked_at(1e-5)
     };
     let out = impact(&Failing::new(&[]), &settings).unwrap();
     let failed = out.tighter_failed.unwrap();
@@ -185,7 +194,7 @@ fn a_tighter_run_out_of_steps_says_that_more_steps_would_help() {
     );
     assert_eq!((out.check, out.rtol), (Check::Unmet, 1e-5));
     // Met, or down to the floor: nothing failed.
-    let out = impact(&Failing::new(&[]), &checked(1e-8)).unwrap();
+    let out = impact(&Failing::new(&[]), &checked_at(1e-8)).unwrap();
     assert_eq!((out.check, out.tighter_failed), (Check::Met, None));
 }
 
@@ -196,7 +205,7 @@ fn the_check_and_the_tighter_runs_take_other_methods_down_to_the_floor() {
     let model = Failing::new(&[]);
     let settings = Settings {
         e_tol: Some(1e-30),
-        ..checked(1e-5)
+        ..checked_at(1e-5)
     };
     let out = impact(&model, &settings).unwrap();
     let want = [
@@ -216,17 +225,17 @@ fn the_check_and_the_tighter_runs_take_other_methods_down_to_the_floor() {
             "{runs:?}"
         );
     }
-    assert_eq!((out.rtol, out.check), (FLOOR_RTOL, Check::Unmet));
+    assert_eq!((out.rtol, out.check), (LADDER.floor_rtol, Check::Unmet));
 }
 
 #[test]
 fn a_check_says_whether_it_met_e_tol() {
     // Only the check fails: the tighter run checks the run at rtol instead.
-    let out = impact(&Failing::new(&[1e-6]), &checked(1e-8)).unwrap();
+    let out = impact(&Failing::new(&[1e-6]), &checked_at(1e-8)).unwrap();
     assert_eq!(out.check, Check::Met);
     assert!(out.rtol < 1e-8 && out.e_error.unwrap() <= 1e-11, "{out:?}");
     // A run that differs from its check by more than e_tol, with no tighter run possible.
-    let out = impact(&Failing::new(&[1e-6]), &checked(1e-4)).unwrap();
+    let out = impact(&Failing::new(&[1e-6]), &checked_at(1e-4)).unwrap();
     let (estimate, check) = (out.e_error.unwrap(), out.check);
     assert!(
         estimate > 1e-10 && check == Check::Unmet,
@@ -236,7 +245,7 @@ fn a_check_says_whether_it_met_e_tol() {
         &Failing::new(&[]),
         &Settings {
             e_tol: None,
-            ..checked(1e-8)
+            ..checked_at(1e-8)
         },
     );
     assert_eq!(single.unwrap().check, Check::Off);
@@ -263,7 +272,7 @@ fn mcm_under_sine(
 /// contact 50 time units long under a sinusoid, whose `e` double precision gets only to
 /// about 1e-9. Its reference, 0.017492850063003707, is the double-double path at rtol 1e-20
 /// and 1e-24 (agreeing to 1e-17); that path meets the closed forms to 1e-25
-/// (`precise.rs`).
+/// (`double_double/tests.rs`).
 #[test]
 fn double_double_settles_what_double_precision_cannot() {
     use crate::{impact_at, BaseParams};
@@ -293,7 +302,7 @@ fn double_double_settles_what_double_precision_cannot() {
     };
     let out = impact_at(&map, u, v0, &precise).unwrap();
     assert_eq!((out.check, out.double_double), (Check::Met, true));
-    assert_eq!(out.rtol, DOUBLE_DOUBLE_RTOLS[1]);
+    assert_eq!(out.rtol, LADDER.double_double_rtols[1]);
     assert!((out.e - reference).abs() < 1e-12, "{out:?}");
     assert!(out.e_error.unwrap() < 1e-10);
     // To 1e-14, the runs at rtol 1e-16 and 1e-18 differ by 6.3e-14: the third settles it.
@@ -303,7 +312,7 @@ fn double_double_settles_what_double_precision_cannot() {
     };
     let out = impact_at(&map, u, v0, &tight).unwrap();
     assert_eq!((out.check, out.double_double), (Check::Met, true));
-    assert_eq!(out.rtol, DOUBLE_DOUBLE_RTOLS[2]);
+    assert_eq!(out.rtol, LADDER.double_double_rtols[2]);
     assert!((out.e - reference).abs() < 1e-14, "{out:?}");
 }
 
@@ -335,7 +344,11 @@ fn a_check_met_only_at_the_floor_is_retried_in_double_double() {
     };
     let out = impact_at(&map, u, v0, &double).unwrap();
     let estimate = out.e_error.unwrap();
-    assert_eq!((out.check, out.rtol), (Check::Met, FLOOR_RTOL), "{out:?}");
+    assert_eq!(
+        (out.check, out.rtol),
+        (Check::Met, LADDER.floor_rtol),
+        "{out:?}"
+    );
     assert!(estimate > 1e-11 && estimate <= 1e-10, "{out:?}");
     assert!((out.e - reference).abs() > 5e-10, "{out:?}");
     let out = impact_at(&map, u, v0, &Settings::default()).unwrap();
@@ -390,7 +403,7 @@ fn a_stiff_run_is_not_retried_in_double_double() {
 fn double_double_runs_go_on_until_two_agree() {
     let settings = Settings {
         e_tol: Some(1e-12),
-        ..checked(1e-12)
+        ..checked_at(1e-12)
     };
     let (e, steps) = (0.5, 100);
     // The first pair differs by 1e-9, the second by 1e-13: the third run is reported, with
@@ -402,13 +415,13 @@ fn double_double_runs_go_on_until_two_agree() {
     ]);
     let out = impact(&model, &settings).unwrap();
     assert_eq!((out.check, out.double_double), (Check::Met, true));
-    assert_eq!(out.rtol, DOUBLE_DOUBLE_RTOLS[2]);
+    assert_eq!(out.rtol, LADDER.double_double_rtols[2]);
     assert!((out.e_error.unwrap() - 1e-13).abs() < 1e-16, "{out:?}");
     assert_eq!(out.double_double_declined, None);
     let f64_steps = model.runs.borrow().len() as u64;
     assert!(out.stats.accepted >= 3 * steps + f64_steps, "{out:?}");
-    // Each run after the first is held to DD_STEP_GROWTH times its predecessor's steps.
-    let limit = DD_STEP_GROWTH * steps + DD_STEP_SLACK;
+    // Each run after the first is held to the step limit of its predecessor's steps.
+    let limit = LADDER.dd_step_limit(steps);
     let dd_runs = model.dd_runs.take();
     let limits: Vec<u64> = dd_runs.iter().map(|r| r.1).collect();
     assert_eq!(limits, [settings.max_steps, limit, limit]);
@@ -417,7 +430,7 @@ fn double_double_runs_go_on_until_two_agree() {
     let out = impact(&model, &settings).unwrap();
     assert_eq!((out.check, out.double_double), (Check::Unmet, false));
     assert!(
-        out.rtol >= FLOOR_RTOL && (out.e - e).abs() > 1e-6,
+        out.rtol >= LADDER.floor_rtol && (out.e - e).abs() > 1e-6,
         "{out:?}"
     );
     match out.double_double_declined {
@@ -430,7 +443,7 @@ fn double_double_runs_go_on_until_two_agree() {
 fn a_double_double_run_whose_steps_grow_past_the_limit_is_stopped() {
     let settings = Settings {
         e_tol: Some(1e-12),
-        ..checked(1e-12)
+        ..checked_at(1e-12)
     };
     // The second run hits its limit (growth, not the user's max_steps); a first run that
     // fails says so with its own reason.
@@ -440,18 +453,15 @@ fn a_double_double_run_whose_steps_grow_past_the_limit_is_stopped() {
     assert_eq!(
         out.double_double_declined,
         Some(DdDeclined::StepsGrew {
-            rtol: DOUBLE_DOUBLE_RTOLS[1],
+            rtol: LADDER.double_double_rtols[1],
             steps_before: 40
         })
     );
-    assert_eq!(
-        model.dd_runs.take()[1].1,
-        DD_STEP_GROWTH * 40 + DD_STEP_SLACK
-    );
+    assert_eq!(model.dd_runs.take()[1].1, LADDER.dd_step_limit(40));
     let model = Failing::scripted(&[Err(DdFailure::TooManySteps)]);
     let out = impact(&model, &settings).unwrap();
     let failed = DdDeclined::Failed {
-        rtol: DOUBLE_DOUBLE_RTOLS[0],
+        rtol: LADDER.double_double_rtols[0],
         failure: DdFailure::TooManySteps,
     };
     assert_eq!(out.double_double_declined, Some(failed));
@@ -468,6 +478,6 @@ fn a_double_double_run_whose_steps_grow_past_the_limit_is_stopped() {
         (out.check, out.double_double_declined),
         (Check::Unmet, None)
     );
-    let out = impact(&Failing::new(&[]), &checked(1e-8)).unwrap();
+    let out = impact(&Failing::new(&[]), &checked_at(1e-8)).unwrap();
     assert_eq!((out.check, out.double_double_declined), (Check::Met, None));
 }
