@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 /// Everything that can stop a command.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum AppError {
     /// A file could not be read or written.
     #[error("{path}: {source}")]

@@ -88,6 +88,7 @@ pub struct Interpolation {
 
 /// How a run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Outcome {
     /// The bodies separated: `t_s = inf{t : F <= 0 <= v}` was reached.
     Separated,

@@ -6,6 +6,7 @@ use bwc_ode::dd::Dd;
 /// An external input `u(t)` built from a scene: a constant (including gravity `-m g`), the
 /// paper's arctan ramp, a piecewise-linear table, or a sum of these.
 #[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
 pub enum Signal {
     /// `u = value`.
     Constant(f64),

@@ -144,6 +144,7 @@ fn gave_up_because(scene: &Scene, runs: &[Run], why: GaveUp) -> Option<String> {
                               to interpolate"
             .to_string(),
         GaveUp::Budget => "the trials reached their budget, a quarter of the speeds".to_string(),
+        other => format!("the sweep gave up interpolating ({})", other.name()),
     })
 }
 

@@ -2,6 +2,7 @@
 
 /// Everything that can go wrong when building or simulating a model.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum ModelError {
     /// A model parameter is outside its admissible set.
     #[error("parameter `{name}` = {value} is not admissible: {allowed}")]

@@ -9,6 +9,7 @@ use bwc_ode::{State, Stats};
 /// nondimensional for the ND models. `e = v(t_s) / v0 >= 0` with the relative velocity `v`
 /// positive as the bodies part.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct Impact<const N: usize> {
     /// Separation time `t_s` in the model's time unit (s for SI models), `None` when the bodies
     /// had not separated by the horizon.
@@ -153,6 +154,7 @@ impl<const N: usize> Impact<N> {
 /// An impact's outcome without its state: what a CoR evaluation of either model gives
 /// ([`crate::impact_at`]). Fields as in [`Impact`].
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct Cor {
     /// Separation time in the model's time unit, `None` without separation.
     pub t_s: Option<f64>,
@@ -193,6 +195,7 @@ impl Cor {
 
 /// What the check of an impact under [`Settings::e_tol`](crate::Settings::e_tol) found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Check {
     /// Not checked: one run at `rtol` (no `e_tol`, or a sampled run), without an estimate.
     Off,
@@ -221,6 +224,7 @@ impl Check {
 /// A run under [`Settings::e_tol`](crate::Settings::e_tol) tighter than the reported one that failed, so that the
 /// check stopped there ([`Impact::tighter_failed`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct FailedRun {
     /// Its relative tolerance.
     pub rtol: f64,
@@ -233,6 +237,7 @@ pub struct FailedRun {
 /// [`Check::Unmet`] reported nothing ([`Impact::double_double_declined`]); the reported `e` is
 /// then the double-precision one, flagged.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum DdDeclined {
     /// The reported double-precision run (the tightest) switched to RODAS4 at `from` (model
     /// time units; [`Impact::stiff_from`]): the double-double path is explicit, and on such
@@ -315,6 +320,7 @@ impl std::fmt::Display for DdDeclined {
 
 /// Why a double-double run ([`crate::impact_double_double`]) stopped short of the separation.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum DdFailure {
     /// More than the step limit of accepted steps.
     #[error("more than max_steps steps; a larger [solver].max_steps lets it finish")]

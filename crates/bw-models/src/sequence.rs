@@ -53,6 +53,13 @@ pub struct Arc {
     pub v_land: f64,
 }
 
+impl Default for Flight {
+    /// Standard gravity, 9.81 m/s², and no drag (as a `[sequence]` scene's defaults).
+    fn default() -> Self {
+        Flight { g: 9.81, drag: 0.0 }
+    }
+}
+
 impl Flight {
     /// `sqrt(g drag)` (1/s) and `sqrt(drag / g)` (s/m), the scales of the drag solutions.
     fn rates(&self) -> (f64, f64) {
@@ -134,6 +141,17 @@ pub struct SequenceSettings {
     pub bounces: usize,
     /// The law's state at each new contact.
     pub policy: Policy,
+}
+
+impl Default for SequenceSettings {
+    /// A `[sequence]` scene's defaults: [`Flight::default`], 10 bounces, [`Policy::Reset`].
+    fn default() -> Self {
+        SequenceSettings {
+            flight: Flight::default(),
+            bounces: 10,
+            policy: Policy::Reset,
+        }
+    }
 }
 
 /// How the body starts.

@@ -90,6 +90,7 @@ pub struct Settings {
 
 /// How a run treats stiff dynamics.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum Stiffness {
     /// The explicit `method` throughout (the paper's setup; a stiff run crawls until
     /// `max_steps`).

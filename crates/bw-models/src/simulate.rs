@@ -22,6 +22,7 @@ const CLEARANCE: f64 = 0.5;
 
 /// Which intermediate states to pass to the sink of [`simulate`].
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub enum Sampling {
     /// None (a CoR evaluation).
     None,

@@ -72,6 +72,14 @@ pub struct SweepSettings {
     pub tolerance: f64,
 }
 
+impl Default for SweepSettings {
+    /// A tolerance of 1e-11, a tenth of the default [`crate::Settings::e_tol`] (as a scene's
+    /// `[sweep].tolerance` defaults to a tenth of its `[solver].e_tol`).
+    fn default() -> Self {
+        SweepSettings { tolerance: 1e-11 }
+    }
+}
+
 /// Where one speed's values come from.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Row {
@@ -106,6 +114,7 @@ pub struct Piece {
 
 /// Why [`plan`] left speeds it tried to interpolate to be simulated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum GaveUp {
     /// Doubling the degree no longer halved an error within a thousand tolerances: the values
     /// are smooth only to about the tolerance (the simulations' own error).

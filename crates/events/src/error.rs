@@ -2,6 +2,7 @@
 
 /// Failures of an integration with events.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum Error {
     /// The underlying integration failed.
     #[error(transparent)]

@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 /// Everything that can go wrong in an identification.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum IdentifyError {
     /// A data file could not be read.
     #[error("{path}: {source}")]

@@ -5,6 +5,7 @@
 /// States are carried as `Vec<f64>` so that the error type does not depend on the dimension;
 /// they are only built on the failure path, never per step.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum Error {
     /// A solver option is outside its admissible range.
     #[error("invalid solver option `{name}` = {value}: {allowed}")]

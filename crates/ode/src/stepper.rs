@@ -112,6 +112,7 @@ delegate_stepper!(Rosenbrock, Jacobian);
 
 /// Which integrator a [`Solver`] uses.
 #[derive(Debug, Clone, Copy)]
+#[non_exhaustive]
 pub enum Method {
     /// An explicit method throughout (stiffness is ignored: the run may crawl).
     Explicit(&'static Tableau),
