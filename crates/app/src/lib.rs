@@ -83,3 +83,46 @@ macro_rules! outp {
         let _ = write!(std::io::stdout().lock(), $($arg)*);
     }};
 }
+
+/// The Rust snippets of the README and the user guide (`docs/`), compiled and run as doc tests.
+#[cfg(doctest)]
+mod guide {
+    #[doc = include_str!("../../../README.md")]
+    struct ReadMe;
+    #[doc = include_str!("../../../docs/src/explanation/identification.md")]
+    struct ExplanationIdentification;
+    #[doc = include_str!("../../../docs/src/explanation/models.md")]
+    struct ExplanationModels;
+    #[doc = include_str!("../../../docs/src/explanation/numerics.md")]
+    struct ExplanationNumerics;
+    #[doc = include_str!("../../../docs/src/howto/dask.md")]
+    struct HowtoDask;
+    #[doc = include_str!("../../../docs/src/howto/embed.md")]
+    struct HowtoEmbed;
+    #[doc = include_str!("../../../docs/src/howto/fit-measurements.md")]
+    struct HowtoFitMeasurements;
+    #[doc = include_str!("../../../docs/src/howto/uncertainty.md")]
+    struct HowtoUncertainty;
+    #[doc = include_str!("../../../docs/src/introduction.md")]
+    struct Introduction;
+    #[doc = include_str!("../../../docs/src/reference/commands.md")]
+    struct ReferenceCommands;
+    #[doc = include_str!("../../../docs/src/reference/config.md")]
+    struct ReferenceConfig;
+    #[doc = include_str!("../../../docs/src/reference/outputs.md")]
+    struct ReferenceOutputs;
+    #[doc = include_str!("../../../docs/src/reference/python.md")]
+    struct ReferencePython;
+    #[doc = include_str!("../../../docs/src/reference/scene.md")]
+    struct ReferenceScene;
+    #[doc = include_str!("../../../docs/src/reference/warnings.md")]
+    struct ReferenceWarnings;
+    #[doc = include_str!("../../../docs/src/tutorial/first-cor.md")]
+    struct TutorialFirstCor;
+    #[doc = include_str!("../../../docs/src/tutorial/first-drop.md")]
+    struct TutorialFirstDrop;
+    #[doc = include_str!("../../../docs/src/tutorial/first-fit.md")]
+    struct TutorialFirstFit;
+    #[doc = include_str!("../../../docs/src/tutorial/first-sweep.md")]
+    struct TutorialFirstSweep;
+}
