@@ -1,5 +1,5 @@
-"""The work-precision cases at the default settings (issue 21, item 2; BENCHMARKS.md, session
-19): Table 3's DSS (1) and DSA (1), both models, v0 = 0.5, 2, 5 m/s, each CoR checked to
+"""The work-precision cases at the default settings (BENCHMARKS.md, "The cost of a
+checked CoR"): Table 3's DSS (1) and DSA (1), both models, v0 = 0.5, 2, 5 m/s, each CoR checked to
 `e_tol` = 1e-10 by default, against Vern9 at rtol 1e-14 (checked by DOP853 at rtol 1e-14), all
 through the whole `bwc-simulate run --json` process.
 

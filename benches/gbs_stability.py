@@ -3,7 +3,7 @@ its steps (midpoint sequences n = 2, 4, ..., 2k, no smoothing step, Aitken-Nevil
 where the amplification |T_kk(z)| of y' = lambda y, z = lambda H, first exceeds 1 on the
 negative real axis, for k = 2..8; and the amplification on the imaginary axis at order 16.
 
-An independent implementation in floats, for BENCHMARKS.md ("Session 29"): the double-double
+An independent implementation in floats, for BENCHMARKS.md ("The double-double path"): the double-double
 path's stability check trips at |lambda H| = 8 (its second sequence), just past order 16's
 boundary of 7.3.
 

@@ -1,5 +1,5 @@
 """How far Taylor-Pade steps could reach over an unloading, against Taylor steps from the same
-coefficients (BENCHMARKS.md, session 28): DSS (1)'s NDBWSHCCM at v0 = 2 m/s, from the maximum
+coefficients (BENCHMARKS.md, "One CoR: the series path", tried and dropped): DSS (1)'s NDBWSHCCM at v0 = 2 m/s, from the maximum
 compression to the root of Z, where the series path's steps are shortest.
 
 A ceiling, not a solver: every step starts on the truth (SciPy's DOP853 at rtol 2.3e-14, dense

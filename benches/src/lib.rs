@@ -163,7 +163,7 @@ pub mod cor {
         }
     }
 
-    /// Issue 21's plain path, one run per CoR: `[solver] series = false, stop_at_kinks =
+    /// The plain path the speed figures are measured against, one run per CoR: `[solver] series = false, stop_at_kinks =
     /// false, method = "dop853"` (and no switch to RODAS4).
     pub fn plain(rtol: f64) -> Settings {
         Settings {

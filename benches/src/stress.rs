@@ -1,5 +1,5 @@
 //! Stress sweep: random admissible parameter sets of both models, including the edges of the
-//! admissible sets, each run classified (issue 7, STABILITY.md).
+//! admissible sets, each run classified (STABILITY.md, "The stress sweep").
 
 use bw_models::input::{Constant, Scaled, Sine};
 use bw_models::{

@@ -1,4 +1,4 @@
-//! Double-double references for single stress cases (STABILITY.md, "Session 23"): `e` and
+//! Double-double references for single stress cases (STABILITY.md, "Double-double"): `e` and
 //! `T_s` of each case by the library's double-double path (`bw_models::impact_double_double`:
 //! Gragg-Bulirsch-Stoer extrapolation of order 16 in double-double arithmetic) at each of a
 //! list of tolerances, beside the defaults' run (at the library's step limit, with and without

@@ -1,4 +1,4 @@
-//! Item 1 of issue 21 for the phase path (`bw_models::phase`), on Table 3's DSS (1) and DSA (1)
+//! Speed at equal error for the phase path (`bw_models::phase`), on Table 3's DSS (1) and DSA (1)
 //! fits of both models with no input: the largest error in `e` over 19 speeds from 0.5 to
 //! 5 m/s against the time of the sweep, one thread, for
 //!

@@ -1,4 +1,4 @@
-//! Accuracy of `e` on the stress sweep (issue 21, item 2; STABILITY.md): for each setting, the
+//! Accuracy of `e` on the stress sweep (STABILITY.md, "Global error control"): for each setting, the
 //! separated runs that miss the reference by more than 1e-10 where a second reference agrees
 //! with it to a tenth of that miss (so the miss is the run's), how many of them the series
 //! path finished, the largest miss, and the wall time of the sweep. The reference is Verner's
@@ -8,20 +8,19 @@
 //! double-double path referees it (rtol 1e-21 and 1e-23, where the model has that path and the
 //! two agree to a tenth of the miss threshold): the references themselves can be off by about
 //! 1e-10 where rounding decides, and a run within 1e-10 of the referee is not a miss
-//! (`refereed`; STABILITY.md, "Session 26"). The last column counts the runs reported by the
+//! (`refereed`; STABILITY.md, "Global error control"). The last column counts the runs reported by the
 //! double-double retry.
 //!
 //! `cargo run --release -p bwc-benches --bin stress-accuracy -- [COUNT] [SEED] [RTOL | default |
 //! library | double-double | double | e_tol=TOL ...] [fine=RTOL] [check=RTOL] [list] [audit=K]` (default 30000, 1, `default` and
 //! rtol 1e-11 1e-12 1e-13, references at rtol 3e-15: with compensated summation the references
-//! agree to about 1e-11 there, STABILITY.md, "Session 21"). An RTOL is one run at that tolerance
+//! agree to about 1e-11 there, STABILITY.md, "Checks by other methods"). An RTOL is one run at that tolerance
 //! (`e_tol` off, atol = rtol / 100); `default` is the sweep's settings, the defaults, whose CoRs
 //! are checked to `e_tol` = 1e-10: for it the table also counts the runs whose own estimate exceeds
 //! `e_tol`, or that have none (`flagged`), the misses among the rest (`silent`) and the runs no
 //! other tolerance could check (`unverified`, among the flagged); `library` is the defaults with
 //! the library's step limit (`Settings::default().max_steps`) in place of the sweep's 200,000;
-//! `double-double` is `library` with `Settings::double_double` on (the library's default since
-//! session 24) and `double` is `library` with it off (double precision only);
+//! `double-double` is `library` with `Settings::double_double` on (the library's default) and `double` is `library` with it off (double precision only);
 //! `e_tol=TOL` is the defaults with that target (the misses still counted above 1e-10). `list`
 //! prints each miss, and each flagged run of a setting with `double_double` on.
 //!

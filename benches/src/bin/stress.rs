@@ -1,4 +1,4 @@
-//! Stress sweep over random admissible parameter sets of both models (issue 7): counts and time
+//! Stress sweep over random admissible parameter sets of both models (STABILITY.md, "The stress sweep"): counts and time
 //! per class, the slowest cases, and any energy created without input.
 //!
 //! `cargo run --release -p bwc-benches --bin stress -- [COUNT] [SEED] [series|rk] [double]`

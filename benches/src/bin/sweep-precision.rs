@@ -1,4 +1,4 @@
-//! Issue 21's item 1 measured over whole sweeps, in one process: the largest error in `e` over
+//! Speed at equal error measured over whole sweeps, in one process: the largest error in `e` over
 //! a sweep of `N` speeds (0.5 to 5 m/s, evenly spaced) against the time of the sweep, for the
 //! default path (series, interpolants to the tolerance `rtol` where the sweep has at least
 //! `sweep::MIN_SPEEDS` speeds, every other speed simulated) and for plain DOP853 (`series =

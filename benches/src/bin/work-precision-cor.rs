@@ -29,7 +29,7 @@
 //! whose errors bracket its error and, for a series row, with the right-hand side, so that the
 //! machine's drift within a run cancels from both ratios. "Error" there is the larger of the
 //! errors in `e` and `T_s`; a series row also has `in_time_e`, the ratio in time at equal error
-//! in `e` alone (issue 21's measure), timed beside the plain runs that bracket that error.
+//! in `e` alone (the measure of BENCHMARKS.md), timed beside the plain runs that bracket that error.
 //!
 //! Side by side in the same run: the paper's setup in SciPy (benches/scipy_cor.py, skipped with a
 //! message when python3 is absent). Writes `cor.csv` and SVG plots into the directory given as
@@ -70,7 +70,7 @@ struct Row {
     /// Plain DOP853's time at this row's error over the row's time, both timed side by side
     /// (rows with stops whose error plain DOP853's rows bracket).
     in_time: Option<f64>,
-    /// The same at equal error in `e` alone (issue 21's measure; series rows only).
+    /// The same at equal error in `e` alone (series rows only).
     in_time_e: Option<f64>,
 }
 

@@ -242,7 +242,7 @@ pub enum DdDeclined {
     /// The reported double-precision run (the tightest) switched to RODAS4 at `from` (model
     /// time units; [`Impact::stiff_from`]): the double-double path is explicit, and on such
     /// runs its error estimate does not hold (on three seeds of the stress sweep it settled
-    /// none of the five, after up to 139 s; STABILITY.md, "Session 25"). Not tried.
+    /// none of the five, after up to 139 s; STABILITY.md, "Double-double"). Not tried.
     Stiff {
         /// When the run switched.
         from: f64,

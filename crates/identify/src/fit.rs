@@ -418,7 +418,7 @@ fn one_start<P: CubeProblem>(
 enum Polish {
     /// A start's end: Nelder-Mead only where Levenberg-Marquardt did not converge (or the
     /// problem has no residuals). Over the fixtures' starts, a Nelder-Mead round after a
-    /// converged Levenberg-Marquardt polish never lowered the cost (BENCHMARKS.md, session 15);
+    /// converged Levenberg-Marquardt polish never lowered the cost (BENCHMARKS.md, "Identification: convergence");
     /// the agreement of independent starts and the verification of the best check them instead.
     Start,
     /// The verification of a start's end: a Nelder-Mead round from a fresh simplex first (its

@@ -81,7 +81,7 @@ impl<const N: usize> Dense<N> {
 /// integrators add it to the next step's increment (compensated summation). Without it each
 /// step's rounding of the state, about `ε |y|`, stays in it; over the tens of thousands of steps
 /// of a long contact at tight tolerances these add up to more than the tolerance (STABILITY.md,
-/// "Session 21").
+/// "Checks by other methods").
 #[inline]
 pub(crate) fn compensated<const N: usize>(y: &State<N>, d: &State<N>) -> (State<N>, State<N>) {
     let sum = y + d;

@@ -123,7 +123,7 @@ def test_each_cor_carries_its_error_estimate():
 
 
 def test_a_stiff_unmet_cor_says_why_double_double_was_not_tried():
-    # Case 5523 of the stress sweep's seed 3 (STABILITY.md, "Session 25"); the reference
+    # Case 5523 of the stress sweep's seed 3 (STABILITY.md, "Double-double"); the reference
     # 0.127578645362 is Verner's 9(8), Verner's 7(6) and DOP853 at rtol 3e-15.
     base = {"B_b": 35.85524463149488, "Gamma_b": -35.85524463149488,
             "kappa": 0.2754451940192927, "sigma_b": 0.012827185718774515, "n": 10,

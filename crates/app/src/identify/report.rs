@@ -13,7 +13,7 @@ use std::path::Path;
 /// The settings of the evaluations that report a fit (costs, predictions, bands, loops,
 /// coverage truths): one run at rtol 1e-11, atol 1e-13. Its error in `e` (at most 1e-12 on the
 /// work-precision cases, BENCHMARKS.md) is far below any dataset's, and checking each CoR to
-/// the defaults' `e_tol` would double the cost of these evaluations (issue 21, item 3).
+/// the defaults' `e_tol` would double the cost of these evaluations (BENCHMARKS.md, "Identification: time").
 pub(crate) fn reporting() -> Settings {
     Settings {
         rtol: 1e-11,

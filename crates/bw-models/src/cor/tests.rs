@@ -268,7 +268,7 @@ fn mcm_under_sine(
     (map, u)
 }
 
-/// Case 7221 of the stress sweep's seed 1 (STABILITY.md, "Session 23"): an NDBWMCM
+/// Case 7221 of the stress sweep's seed 1 (STABILITY.md, "Double-double"): an NDBWMCM
 /// contact 50 time units long under a sinusoid, whose `e` double precision gets only to
 /// about 1e-9. Its reference, 0.017492850063003707, is the double-double path at rtol 1e-20
 /// and 1e-24 (agreeing to 1e-17); that path meets the closed forms to 1e-25
@@ -316,7 +316,7 @@ fn double_double_settles_what_double_precision_cannot() {
     assert!((out.e - reference).abs() < 1e-14, "{out:?}");
 }
 
-/// Case 15913 of the stress sweep's seed 9 (STABILITY.md, "Session 27"): an NDBWMCM contact
+/// Case 15913 of the stress sweep's seed 9 (STABILITY.md, "Double-double"): an NDBWMCM contact
 /// 37 time units long under a sinusoid, where rounding scatters the Runge-Kutta runs' `e` by
 /// about 6e-10 at rtol 1e-12 to 3e-15. DOP853 at rtol 1e-12 and Verner's 7(6) at the floor
 /// agree to 5e-11, under `e_tol`, and are both 6e-10 off. The reference, 0.0354873325102081291,
@@ -361,7 +361,7 @@ fn a_check_met_only_at_the_floor_is_retried_in_double_double() {
     assert!(out.e_error.unwrap() < 1e-10, "{out:?}");
 }
 
-/// Case 5523 of the stress sweep's seed 3 (STABILITY.md, "Session 25"): an NDBWMCM impact
+/// Case 5523 of the stress sweep's seed 3 (STABILITY.md, "Double-double"): an NDBWMCM impact
 /// without input at 507 m/s whose double-precision runs switch to RODAS4 and agree to only
 /// 1.2e-10. The explicit double-double path crosses spurious kinks there (30 and 34 at rtol
 /// 1e-16 and 1e-18, against 3 events of every double-precision run) and misses `e` by 5e-3

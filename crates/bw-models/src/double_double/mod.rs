@@ -3,7 +3,7 @@
 //! extrapolation ([`bwc_ode::Extrapolation`]), with their non-smooth points and the separation
 //! located to double-double precision.
 //!
-//! Why: in a few long, forced, stiff contacts (STABILITY.md, "Session 23") double precision
+//! Why: in a few long, forced, stiff contacts (STABILITY.md, "Double-double") double precision
 //! gets `e` no closer than about 1e-9. Their `e` hardly depends on the parameters (1.6e-13 for a
 //! change of 1e-15 in `σ`), but the same double-double integration with the right-hand side
 //! evaluated from states rounded to double precision misses by 3e-9 to 2e-8; the same

@@ -54,7 +54,7 @@
 //!
 //! On Table 3's DSS (1) and DSA (1) fits of both models this is 5.7-12 times faster than plain
 //! DOP853 at equal error in `e`, from 6e-5 down to 1e-12 and beyond (BENCHMARKS.md,
-//! "Session 31").
+//! "The phase path").
 //!
 //! ```
 //! use bw_models::phase::{self, PhaseSettings};

@@ -56,8 +56,7 @@
 //! the horizon) it hands the impact over ([`SeriesRun::HandOver`]) and the Runge-Kutta path
 //! continues from the last state the series reached.
 //!
-//! Accuracy and cost are measured, not claimed here: BENCHMARKS.md, "Session 8: the target timed
-//! side by side" (time at equal error against plain DOP853 on the paper's DSS (1) cases) and
+//! Accuracy and cost are measured, not claimed here: BENCHMARKS.md, "One CoR: the series path" (time at equal error against plain DOP853 on the paper's DSS (1) cases) and
 //! STABILITY.md (accuracy on the stress sweep's extreme parameters against the Runge-Kutta
 //! path), which is why it is the default for CoR evaluations.
 

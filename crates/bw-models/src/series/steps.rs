@@ -27,7 +27,7 @@ pub const MAX_GROWTH: f64 = 2.0;
 /// `σ = ln(T - T_a)` (a growth of `e` in `T - T_a`): from there on the steps are bounded by the
 /// solution's other singularities, not by the branch point at `T_a`, and a step in time, with no
 /// products by `dT/dσ`, costs less. Chosen on the search box of the fits and Table 3's DSA (1)
-/// (BENCHMARKS.md, session 15).
+/// (BENCHMARKS.md, "One CoR: the series path").
 pub const LOG_STEP_MIN: f64 = 1.0;
 
 /// Most series steps of one impact before it is handed to the Runge-Kutta path.

@@ -530,8 +530,8 @@ fn fast_hysteresis_corners_take_few_steps() {
 /// and a ramp of steps: the answers of the Runge-Kutta path at rtol 1e-14, for exponents from 1
 /// to 6, with and without a constant input, with a DOP853 step fewer and fewer series steps than
 /// without it (the RHS evaluations and series steps in the table were measured with the
-/// series in `D` turned off, that is with the start step and the steps after it, on the code of
-/// session 15).
+/// series in `D` turned off, that is with the start step and the steps after it, on the code
+/// that introduced it).
 #[test]
 fn the_root_of_z_is_left_by_a_series_in_d_and_d_to_the_p() {
     for (kind, p, u, (rhs_without, steps_without)) in [

@@ -631,7 +631,7 @@ fn two_balls_meet_a_tight_target_in_double_double() {
     );
 }
 
-/// Case 5523 of the stress sweep's seed 3 (STABILITY.md, "Session 25"): its double-precision
+/// Case 5523 of the stress sweep's seed 3 (STABILITY.md, "Double-double"): its double-precision
 /// runs go stiff and agree to only 1.2e-10, and the double-double retry is not tried there.
 /// The output says so, and `e` is within the estimate of the reference 0.127578645362
 /// (Verner's 9(8), Verner's 7(6) and DOP853 at rtol 3e-15).
