@@ -139,57 +139,86 @@ fn series_key_and_series_steps() {
     }
 }
 
+/// The Hunt-Crossley limit (`B = Γ = 0`, `σ = 0.5`, closed form `e_exact`) in a scratch folder, on
+/// the Runge-Kutta path, run with extra keys in its `[solver]` table.
+struct HuntCrossley {
+    dir: Scratch,
+}
+
+impl HuntCrossley {
+    const E_EXACT: f64 = 0.748434931597434;
+
+    fn new(name: &str) -> Self {
+        HuntCrossley { dir: scratch(name) }
+    }
+
+    /// The scene with `extra` in its `[solver]`, run with `--json` (or without, for the table).
+    fn output(&self, extra: &str, json_out: bool) -> Output {
+        let hc = "model = \"shccm\"\n[nondimensional]\nB = 0\nGamma = 0\nkappa = 0.5\nsigma = 0.5\nn = 1\np = 1.5\n";
+        let scene = self.dir.join("hc.toml");
+        std::fs::write(&scene, format!("{hc}[solver]\nseries = false\n{extra}")).unwrap();
+        let path = scene.to_str().unwrap();
+        simulate(&if json_out {
+            vec!["run", path, "--json"]
+        } else {
+            vec!["run", path]
+        })
+    }
+
+    /// The run of the scene with `extra`.
+    fn run(&self, extra: &str) -> serde_json::Value {
+        json(&self.output(extra, true))["runs"][0].clone()
+    }
+}
+
 /// `[solver] e_tol`: by default a CoR is checked against a run at 100 times its rtol and
 /// reports the difference (`e_error`); a loose `rtol` is tightened until the check meets
 /// `e_tol`; `e_tol = 0` is one run at `rtol`. The Hunt-Crossley limit's closed form
 /// (`σ - ln(1 + σ) = -σ e - ln(1 - σ e)`, σ = 0.5) is the reference.
 #[test]
 fn e_tol_checks_each_cor() {
-    let dir = scratch("e-tol");
-    let hc = "model = \"shccm\"\n[nondimensional]\nB = 0\nGamma = 0\nkappa = 0.5\nsigma = 0.5\nn = 1\np = 1.5\n";
-    let e_exact = 0.748434931597434;
-    let scene = dir.join("hc.toml");
-    // The scene with `extra` in its [solver] table, run with --json.
-    let output_of = |extra: &str| {
-        std::fs::write(&scene, format!("{hc}[solver]\nseries = false\n{extra}")).unwrap();
-        simulate(&["run", scene.to_str().unwrap(), "--json"])
-    };
-    let run_of = |extra: &str| json(&output_of(extra))["runs"][0].clone();
-    let checked = run_of("");
+    let hc = HuntCrossley::new("e-tol");
+    let e_exact = HuntCrossley::E_EXACT;
+    let checked = hc.run("");
     assert!(checked["e_error"].as_f64().unwrap() <= 1e-11, "{checked}");
     assert!(checked["rtol"].as_f64().unwrap() <= 1e-12, "{checked}");
     assert_eq!(checked["check"], "met", "{checked}");
+    assert_eq!(checked["arithmetic"], "double", "{checked}");
     assert!(
         (checked["e"].as_f64().unwrap() - e_exact).abs() <= 1e-11,
         "{checked}"
     );
-    let single = run_of("e_tol = 0\n");
+    let single = hc.run("e_tol = 0\n");
     assert!(single["e_error"].is_null(), "{single}");
     assert_eq!(single["check"], "off", "{single}");
     assert!(single["rhs_evals"].as_u64() < checked["rhs_evals"].as_u64());
-    let loose = run_of("rtol = 1e-5\n");
+    let loose = hc.run("rtol = 1e-5\n");
     assert!(loose["rtol"].as_f64().unwrap() < 1e-5, "{loose}");
     assert!(loose["e_error"].as_f64().unwrap() <= 1e-11, "{loose}");
     assert!(
         (loose["e"].as_f64().unwrap() - e_exact).abs() <= 1e-10,
         "{loose}"
     );
-    let loose_single = run_of("rtol = 1e-5\ne_tol = 0\n");
+    let loose_single = hc.run("rtol = 1e-5\ne_tol = 0\n");
     assert!(
         (loose_single["e"].as_f64().unwrap() - e_exact).abs() > 1e-9,
         "{loose_single}"
     );
     // The table shows the estimate next to e.
-    std::fs::write(&scene, format!("{hc}[solver]\nseries = false\n")).unwrap();
-    let table = simulate(&["run", scene.to_str().unwrap()]);
+    let table = hc.output("", false);
     let text = String::from_utf8_lossy(&table.stdout);
     let estimate = format!("{:.1e}", checked["e_error"].as_f64().unwrap());
     assert!(
         text.contains("e_error") && text.contains(&estimate),
         "{text}"
     );
+}
+
+#[test]
+fn an_unmet_e_tol_says_why_and_which_setting_helps() {
+    let hc = HuntCrossley::new("e-tol-unmet");
     // A target below rounding is not met, and the run says so.
-    let out = output_of("e_tol = 1e-18\n");
+    let out = hc.output("e_tol = 1e-18\n", true);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         err.contains("warning")
@@ -201,13 +230,13 @@ fn e_tol_checks_each_cor() {
     assert_eq!(json(&out)["runs"][0]["check"], "unmet");
     assert!(json(&out)["runs"][0]["tighter_failed"].is_null());
     // A tighter run that runs out of steps: the warning names the setting that lets it finish.
-    let steps = |run: &serde_json::Value| {
-        run["accepted"].as_u64().unwrap() + run["rejected"].as_u64().unwrap()
-    };
-    let limit = steps(&loose_single);
-    let out = output_of(&format!(
-        "rtol = 1e-5\ne_tol = 1e-18\nmax_steps = {limit}\n"
-    ));
+    let loose_single = hc.run("rtol = 1e-5\ne_tol = 0\n");
+    let limit =
+        loose_single["accepted"].as_u64().unwrap() + loose_single["rejected"].as_u64().unwrap();
+    let out = hc.output(
+        &format!("rtol = 1e-5\ne_tol = 1e-18\nmax_steps = {limit}\n"),
+        true,
+    );
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         err.contains("the run at rtol 1e-7 needed more than [solver].max_steps")
@@ -221,9 +250,12 @@ fn e_tol_checks_each_cor() {
     );
     assert_eq!(run["tighter_failed"]["out_of_steps"], true, "{run}");
     assert_eq!(run["tighter_failed"]["rtol"].as_f64(), Some(1e-7), "{run}");
-    assert_eq!(checked["arithmetic"], "double", "{checked}");
-    // A target double precision cannot check is met in double-double (the default).
-    let precise = run_of("e_tol = 1e-15\n");
+}
+
+#[test]
+fn a_target_double_precision_cannot_check_is_met_in_double_double() {
+    let hc = HuntCrossley::new("e-tol-dd");
+    let precise = hc.run("e_tol = 1e-15\n");
     assert_eq!(
         (&precise["arithmetic"], &precise["check"]),
         (&"double-double".into(), &"met".into()),
@@ -231,10 +263,10 @@ fn e_tol_checks_each_cor() {
     );
     assert_eq!(precise["rtol"].as_f64(), Some(1e-18), "{precise}");
     assert!(
-        (precise["e"].as_f64().unwrap() - e_exact).abs() <= 1e-15,
+        (precise["e"].as_f64().unwrap() - HuntCrossley::E_EXACT).abs() <= 1e-15,
         "{precise}"
     );
-    let double = run_of("e_tol = 1e-15\ndouble_double = false\n");
+    let double = hc.run("e_tol = 1e-15\ndouble_double = false\n");
     assert_eq!(double["arithmetic"], "double", "{double}");
     assert!(double["rtol"].as_f64().unwrap() >= 1e-14, "{double}");
 }
@@ -271,127 +303,61 @@ fn rosenbrock_method_and_the_stiffness_switch() {
 
 const GOOD_PHYSICAL: &str = "model = \"shccm\"\nv0 = [1.0]\n[physical]\nm = 0.145\nk = 117080063.0\nc = 5854003.0\nn = 1.1\np = 1.7\nalpha = 0.1\nbeta = 981.05\ngamma = -961.4\nA = 0.925\n";
 
+/// How a bad scene is made: the good one with replacements or an appended table, or a whole
+/// text.
+enum Edit {
+    Replace(&'static [(&'static str, &'static str)]),
+    Append(&'static str),
+    Whole(&'static str),
+}
+
+impl Edit {
+    fn scene(&self) -> String {
+        match self {
+            Edit::Replace(pairs) => pairs
+                .iter()
+                .fold(GOOD_PHYSICAL.to_string(), |s, (from, to)| {
+                    s.replace(from, to)
+                }),
+            Edit::Append(text) => format!("{GOOD_PHYSICAL}{text}"),
+            Edit::Whole(text) => text.to_string(),
+        }
+    }
+}
+
+/// Bad scenes: name, how it is made, the line the error names (if any), and what it says.
+type BadScene = (&'static str, Edit, Option<usize>, &'static [&'static str]);
+
+const BAD_SCENES: &[BadScene] = &[
+    ("unknown-key", Edit::Replace(&[("A = 0.925", "A = 0.925\nstiffness = 3")]), Some(13), &["stiffness"]),
+    ("missing-key", Edit::Replace(&[("k = 117080063.0\n", "")]), Some(3), &["[physical].k", "missing"]),
+    ("two-systems", Edit::Append("[nondimensional]\nB = 0\n"), None, &["two system descriptions"]),
+    ("wrong-type", Edit::Replace(&[("n = 1.1", "n = \"one\"")]), Some(7), &["n"]),
+    ("nan", Edit::Replace(&[("c = 5854003.0", "c = nan")]), Some(6), &["[physical].c", "finite"]),
+    ("inf", Edit::Replace(&[("k = 117080063.0", "k = inf")]), Some(5), &["[physical].k", "finite"]),
+    ("inadmissible", Edit::Replace(&[("alpha = 0.1", "alpha = 1.5")]), Some(9), &["[physical].alpha", "1.5", "0 < alpha < 1"]),
+    ("gamma-range", Edit::Replace(&[("gamma = -961.4", "gamma = -2000")]), Some(11), &["[physical].gamma", "-beta <= gamma <= beta"]),
+    ("negative-speed", Edit::Replace(&[("v0 = [1.0]", "v0 = [1.0, -2.0]")]), Some(2), &["v0", "-2"]),
+    ("no-speeds", Edit::Replace(&[("v0 = [1.0]\n", "")]), None, &["v0", "missing"]),
+    ("bad-model", Edit::Replace(&[("\"shccm\"", "\"maxwell\"")]), Some(1), &["model", "maxwell"]),
+    ("bad-method", Edit::Append("[solver]\nmethod = \"euler\"\n"), Some(14), &["[solver].method", "euler", "rosenbrock"]),
+    ("bad-rtol", Edit::Append("[solver]\nrtol = 0.0\n"), Some(14), &["[solver].rtol"]),
+    ("e-tol", Edit::Append("[solver]\ne_tol = -1e-10\n"), Some(14), &["[solver].e_tol", "-0.0000000001", "> 0"]),
+    ("not-toml", Edit::Whole("model = \n"), Some(1), &[]),
+    ("empty", Edit::Whole(""), None, &["no system description"]),
+    ("mcm-c-zero", Edit::Replace(&[("\"shccm\"", "\"mcm\""), ("c = 5854003.0", "c = 0.0")]), Some(6), &["[physical].c", "c > 0"]),
+    ("nd-kappa", Edit::Whole("model = \"mcm\"\n[nondimensional]\nB = 1\nGamma = 0\nkappa = 1.0\nsigma = 0.1\nn = 1\np = 1\n"), Some(5), &["[nondimensional].kappa", "0 < kappa < 1"]),
+    ("base-input-needs-scales", Edit::Whole("model = \"shccm\"\nv0 = [1]\n[base]\nB_b = 1\nGamma_b = 0\nkappa = 0.5\nsigma_b = 0.1\nn = 1\np = 1\n[input]\nkind = \"gravity\"\nm = 1\n"), Some(3), &["U_b"]),
+    ("input-key-for-other-kind", Edit::Append("[input]\nkind = \"constant\"\nvalue = 1\nomega = 3\n"), Some(16), &["[input].omega", "does not apply"]),
+    ("bodies-apart", Edit::Whole("model = \"shccm\"\n[bodies]\nm1 = 1\nm2 = \"inf\"\nv1 = 1\nv2 = 0\n[physical]\nk = 1e6\nc = 1e3\nn = 1.5\np = 1.5\nalpha = 0.5\nbeta = 1e4\ngamma = 0\nA = 1\n"), Some(5), &["v0 = v2 - v1 > 0"]),
+    ("missing-file", Edit::Whole(""), None, &[]),
+];
+
 #[test]
 fn bad_scenes_are_clear_errors() {
-    rejects(
-        "unknown-key",
-        &GOOD_PHYSICAL.replace("A = 0.925", "A = 0.925\nstiffness = 3"),
-        Some(13),
-        &["stiffness"],
-    );
-    rejects(
-        "missing-key",
-        &GOOD_PHYSICAL.replace("k = 117080063.0\n", ""),
-        Some(3),
-        &["[physical].k", "missing"],
-    );
-    rejects(
-        "two-systems",
-        &format!("{GOOD_PHYSICAL}[nondimensional]\nB = 0\n"),
-        None,
-        &["two system descriptions"],
-    );
-    rejects(
-        "wrong-type",
-        &GOOD_PHYSICAL.replace("n = 1.1", "n = \"one\""),
-        Some(7),
-        &["n"],
-    );
-    rejects(
-        "nan",
-        &GOOD_PHYSICAL.replace("c = 5854003.0", "c = nan"),
-        Some(6),
-        &["[physical].c", "finite"],
-    );
-    rejects(
-        "inf",
-        &GOOD_PHYSICAL.replace("k = 117080063.0", "k = inf"),
-        Some(5),
-        &["[physical].k", "finite"],
-    );
-    rejects(
-        "inadmissible",
-        &GOOD_PHYSICAL.replace("alpha = 0.1", "alpha = 1.5"),
-        Some(9),
-        &["[physical].alpha", "1.5", "0 < alpha < 1"],
-    );
-    rejects(
-        "gamma-range",
-        &GOOD_PHYSICAL.replace("gamma = -961.4", "gamma = -2000"),
-        Some(11),
-        &["[physical].gamma", "-beta <= gamma <= beta"],
-    );
-    rejects(
-        "negative-speed",
-        &GOOD_PHYSICAL.replace("v0 = [1.0]", "v0 = [1.0, -2.0]"),
-        Some(2),
-        &["v0", "-2"],
-    );
-    rejects(
-        "no-speeds",
-        &GOOD_PHYSICAL.replace("v0 = [1.0]\n", ""),
-        None,
-        &["v0", "missing"],
-    );
-    rejects(
-        "bad-model",
-        &GOOD_PHYSICAL.replace("\"shccm\"", "\"maxwell\""),
-        Some(1),
-        &["model", "maxwell"],
-    );
-    rejects(
-        "bad-method",
-        &format!("{GOOD_PHYSICAL}[solver]\nmethod = \"euler\"\n"),
-        Some(14),
-        &["[solver].method", "euler", "rosenbrock"],
-    );
-    rejects(
-        "bad-rtol",
-        &format!("{GOOD_PHYSICAL}[solver]\nrtol = 0.0\n"),
-        Some(14),
-        &["[solver].rtol"],
-    );
-    rejects(
-        "e-tol",
-        &format!("{GOOD_PHYSICAL}[solver]\ne_tol = -1e-10\n"),
-        Some(14),
-        &["[solver].e_tol", "-0.0000000001", "> 0"],
-    );
-    rejects("not-toml", "model = \n", Some(1), &[]);
-    rejects("empty", "", None, &["no system description"]);
-    rejects(
-        "mcm-c-zero",
-        &GOOD_PHYSICAL
-            .replace("\"shccm\"", "\"mcm\"")
-            .replace("c = 5854003.0", "c = 0.0"),
-        Some(6),
-        &["[physical].c", "c > 0"],
-    );
-    rejects(
-        "nd-kappa",
-        "model = \"mcm\"\n[nondimensional]\nB = 1\nGamma = 0\nkappa = 1.0\nsigma = 0.1\nn = 1\np = 1\n",
-        Some(5),
-        &["[nondimensional].kappa", "0 < kappa < 1"],
-    );
-    rejects(
-        "base-input-needs-scales",
-        "model = \"shccm\"\nv0 = [1]\n[base]\nB_b = 1\nGamma_b = 0\nkappa = 0.5\nsigma_b = 0.1\nn = 1\np = 1\n[input]\nkind = \"gravity\"\nm = 1\n",
-        Some(3),
-        &["U_b"],
-    );
-    rejects(
-        "input-key-for-other-kind",
-        &format!("{GOOD_PHYSICAL}[input]\nkind = \"constant\"\nvalue = 1\nomega = 3\n"),
-        Some(16),
-        &["[input].omega", "does not apply"],
-    );
-    rejects(
-        "bodies-apart",
-        "model = \"shccm\"\n[bodies]\nm1 = 1\nm2 = \"inf\"\nv1 = 1\nv2 = 0\n[physical]\nk = 1e6\nc = 1e3\nn = 1.5\np = 1.5\nalpha = 0.5\nbeta = 1e4\ngamma = 0\nA = 1\n",
-        Some(5),
-        &["v0 = v2 - v1 > 0"],
-    );
-    rejects("missing-file", "", None, &[]);
+    for (name, edit, line, needles) in BAD_SCENES {
+        rejects(name, &edit.scene(), *line, needles);
+    }
     let out = simulate(&["run", "/nonexistent/scene.toml"]);
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/scene.toml"));
@@ -491,6 +457,14 @@ fn each_run_stands_alone_and_the_output_says_what_it_is() {
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
             .unwrap();
+    each_run_says_how_it_ended(&v);
+    the_summary_says_where_it_came_from(&v);
+    the_folder_holds_this_run_and_the_users_files(&out_dir);
+}
+
+/// The two runs of `each_run_stands_alone_and_the_output_says_what_it_is`: one separated and
+/// checked, one failed, each with its scales.
+fn each_run_says_how_it_ended(v: &serde_json::Value) {
     let runs = v["runs"].as_array().unwrap();
     assert_eq!(runs[0]["outcome"], "separated");
     assert!(runs[0]["error"].is_null() && runs[0]["e"].as_f64().unwrap() > 0.5);
@@ -506,7 +480,11 @@ fn each_run_stands_alone_and_the_output_says_what_it_is() {
         runs[0]["nondimensional"]["kappa"].as_f64().unwrap(),
         alpha / d
     );
-    // Provenance: the files written, the version, the command, the scene with its defaults.
+}
+
+/// Provenance: the files written, the version, the command, the scene with its defaults.
+fn the_summary_says_where_it_came_from(v: &serde_json::Value) {
+    let runs = v["runs"].as_array().unwrap();
     assert_eq!(v["files"], serde_json::json!(["summary.json", "sweep.csv"]));
     assert_eq!(v["version"], env!("CARGO_PKG_VERSION"));
     assert_eq!(v["command"][1], "run");
@@ -520,9 +498,16 @@ fn each_run_stands_alone_and_the_output_says_what_it_is() {
     assert!(runs[0]["rtol"].as_f64().unwrap() <= 1e-12);
     assert!(runs[1]["e_error"].is_null() && runs[1]["rtol"].is_null());
     assert_eq!(v["units"]["runs"]["t_s_error"], "s");
-    assert_eq!(v["scene"]["systems"][0]["physical"]["k"].as_f64(), Some(k));
+    assert_eq!(
+        v["scene"]["systems"][0]["physical"]["k"].as_f64(),
+        Some(117080063.0)
+    );
     assert_eq!(v["units"]["sweep.csv"]["t_s"], "s");
     assert_eq!(v["units"]["runs"]["T_c"], "s");
+}
+
+/// `sweep.csv` as written; the earlier run's trajectory gone, the user's file kept.
+fn the_folder_holds_this_run_and_the_users_files(out_dir: &Path) {
     let sweep_csv = std::fs::read_to_string(out_dir.join("sweep.csv")).unwrap();
     assert!(
         sweep_csv.starts_with("v_0,e,t_d,t_s,separated,outcome,source\n"),
