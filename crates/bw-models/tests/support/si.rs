@@ -299,7 +299,12 @@ fn two_balls_section_6() {
             assert!((b.v_m_1 - b.v_m_2 - v).abs() < 1e-12);
         }
     }
-    // A fixed body 2: m = m1 and u = u1.
+}
+
+/// Section 3 with a fixed body 2 (`m2 = inf`): the effective mass is `m1`, the relative input
+/// `u1`, and body 2 does not move; bodies moving apart are rejected.
+#[test]
+fn a_fixed_body_takes_the_whole_impact() {
     let fixed = Bodies::new(
         2.0,
         f64::INFINITY,
