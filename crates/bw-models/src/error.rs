@@ -17,7 +17,7 @@ pub enum ModelError {
     /// A simulation setting is out of range.
     #[error("setting `{name}` = {value} is not admissible: {allowed}")]
     InvalidSetting {
-        /// Setting name as in [`Settings`].
+        /// Setting name as in [`Settings`](crate::Settings).
         name: &'static str,
         /// The rejected value.
         value: f64,

@@ -21,7 +21,7 @@ pub struct Impact<const N: usize> {
     /// Without separation: the time at which the contact had settled (at rest with the force
     /// balancing a constant input, an equilibrium), if the simulation stopped there early.
     pub settled_at: Option<f64>,
-    /// When the run switched to RODAS4 because it had become stiff ([`Stiffness::Switch`]).
+    /// When the run switched to RODAS4 because it had become stiff ([`Stiffness::Switch`](crate::Stiffness::Switch)).
     pub stiff_from: Option<f64>,
     /// Steps taken by Taylor series ([`Settings::series`](crate::Settings::series); 0 on the Runge-Kutta path, and
     /// counted also where the series handed the impact over to it). The statistics count them
@@ -247,7 +247,7 @@ pub enum DdDeclined {
         /// When the run switched.
         from: f64,
     },
-    /// The model, or its input, has no double-double form ([`impact_double_double`]).
+    /// The model, or its input, has no double-double form ([`impact_double_double`](crate::impact_double_double)).
     NoPath,
     /// The run at `rtol` stopped short of the separation.
     Failed {

@@ -14,7 +14,7 @@ pub enum Error {
         what: &'static str,
         /// Declared count.
         len: usize,
-        /// [`MAX_FUNCTIONS`].
+        /// [`MAX_FUNCTIONS`](crate::MAX_FUNCTIONS).
         max: usize,
     },
 }

@@ -45,7 +45,7 @@ pub trait CollisionModel<const N: usize>: System<N> {
     /// How long (model time) the state `y`, moving with derivative `f`, stays clear of a point
     /// where the right-hand side is not analytic (the base of a term `c |s|^q` reaching 0), to
     /// first order, while that term matters at tolerance `rtol`; `+inf` where none does (the
-    /// default). The Runge-Kutta path with [`Settings::stop_at_kinks`] keeps its steps to half
+    /// default). The Runge-Kutta path with [`Settings::stop_at_kinks`](crate::Settings::stop_at_kinks) keeps its steps to half
     /// of it: an embedded error estimate assumes the solution analytic over a few step lengths
     /// and passes steps that end close to such a point with errors of a hundred tolerances
     /// (STABILITY.md, "Stops at the non-smooth points"). The NDBWSHCCM and the BWSHCCM say it for `X` and `Z`; the
