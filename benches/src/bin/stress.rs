@@ -8,7 +8,7 @@
 //! whose check stays unmet, which takes most of the defaults' time)
 
 use bw_models::Settings;
-use bwc_benches::stress::{settings, sweep_with, Class};
+use bwc_benches::stress::{settings, sweep_with, Class, Outcome};
 use std::collections::BTreeMap;
 use std::time::Instant;
 
@@ -32,15 +32,6 @@ fn main() {
     let clock = Instant::now();
     let outcomes = sweep_with(seed, count, &settings);
     let wall = clock.elapsed().as_secs_f64();
-    let mut classes: BTreeMap<&str, (usize, f64, f64, usize, usize)> = BTreeMap::new();
-    for o in &outcomes {
-        let e = classes.entry(o.class.name()).or_default();
-        e.0 += 1;
-        e.1 += o.seconds;
-        e.2 = e.2.max(o.seconds);
-        e.3 += usize::from(o.switched);
-        e.4 += usize::from(o.series);
-    }
     let retried = outcomes.iter().filter(|o| o.double_double).count();
     bwc_app::out!(
         "# {count} cases, seed {seed}, {} path, {wall:.1} s wall ({} threads), {}",
@@ -56,6 +47,22 @@ fn main() {
             "double precision only".to_string()
         }
     );
+    print_classes(&outcomes, count);
+    print_slowest(&outcomes);
+    print_unexpected(&outcomes);
+}
+
+/// Count, share, mean and largest time, switches to RODAS4 and series runs per class.
+fn print_classes(outcomes: &[Outcome], count: u64) {
+    let mut classes: BTreeMap<&str, (usize, f64, f64, usize, usize)> = BTreeMap::new();
+    for o in outcomes {
+        let e = classes.entry(o.class.name()).or_default();
+        e.0 += 1;
+        e.1 += o.seconds;
+        e.2 = e.2.max(o.seconds);
+        e.3 += usize::from(o.switched);
+        e.4 += usize::from(o.series);
+    }
     bwc_app::out!(
         "{:<32} {:>8} {:>8} {:>12} {:>10} {:>10} {:>8}",
         "class",
@@ -74,6 +81,10 @@ fn main() {
             1e3 * max
         );
     }
+}
+
+/// The eight slowest cases.
+fn print_slowest(outcomes: &[Outcome]) {
     let mut slow: Vec<_> = outcomes.iter().collect();
     slow.sort_by(|a, b| b.seconds.total_cmp(&a.seconds));
     bwc_app::out!("\n# slowest cases");
@@ -86,6 +97,10 @@ fn main() {
             o.case
         );
     }
+}
+
+/// Energy created without input, and failures the sweep cannot classify: bugs, if any.
+fn print_unexpected(outcomes: &[Outcome]) {
     let bugs: Vec<_> = outcomes
         .iter()
         .filter(|o| matches!(o.class, Class::EnergyCreated(_) | Class::Other(_)))

@@ -19,6 +19,34 @@ fn free(lo: f64, hi: f64) -> Param {
     Param::Free { lo, hi, log: false }
 }
 
+/// The search space of `recovers_known_parameters_with_input_and_durations`: `kappa`,
+/// `sigma_b`, `n` and `U_b` free, `T_b = m U_b` under the known mass and stiffness.
+fn villegas_space(kind: ModelKind, m: f64, k: f64) -> Space {
+    Space::new(
+        kind,
+        [
+            Param::Fixed(2.0),
+            Param::Fixed(0.5),
+            free(0.2, 0.8),
+            Param::Free {
+                lo: 0.01,
+                hi: 0.5,
+                log: true,
+            },
+            free(1.0, 2.0),
+            Param::Fixed(1.0),
+            Param::Free {
+                lo: 0.02,
+                hi: 0.2,
+                log: true,
+            },
+            Param::Derived,
+        ],
+        Some(KnownMassStiffness { m, k }),
+    )
+    .unwrap()
+}
+
 /// With an input, a duration objective and the Villegas constraints (T_b = m U_b), four free
 /// quantities are recovered from noise-free data of both models.
 #[test]
@@ -39,29 +67,7 @@ fn recovers_known_parameters_with_input_and_durations() {
         assert!(m / k * truth.kappa / truth.t_b.powi(2) < 1.0);
         let u = -0.431;
         let data = synthetic(kind, truth, u, &[0.08, 0.15, 0.3, 0.6, 1.0]);
-        let space = Space::new(
-            kind,
-            [
-                Param::Fixed(2.0),
-                Param::Fixed(0.5),
-                free(0.2, 0.8),
-                Param::Free {
-                    lo: 0.01,
-                    hi: 0.5,
-                    log: true,
-                },
-                free(1.0, 2.0),
-                Param::Fixed(1.0),
-                Param::Free {
-                    lo: 0.02,
-                    hi: 0.2,
-                    log: true,
-                },
-                Param::Derived,
-            ],
-            Some(KnownMassStiffness { m, k }),
-        )
-        .unwrap();
+        let space = villegas_space(kind, m, k);
         let input = Constant(u);
         let objective = Objective::new(
             &space,

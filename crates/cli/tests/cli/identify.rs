@@ -161,12 +161,13 @@ fn identify_rejects(name: &str, config: &str, data: Option<&str>, needles: &[&st
     assert!(!out_dir.exists(), "{name}: output written");
 }
 
+const GOOD_DATA: &str = "v_0,e\n0.5,0.9\n1.0,0.8\n";
+const HEAD: &str = "[[fit]]\nname = \"f\"\nmodel = \"shccm\"\ndata = \"d.csv\"\n";
+const BOUNDS: &str = "[fit.bounds]\nB_b = [0.0, 2.0]\ng = [-1.0, 1.0]\nkappa = [0.1, 0.9]\nsigma_b = [0.0, 0.1]\nn = [1.0, 2.0]\np = [1.0, 2.0]\n";
+
 #[test]
-fn bad_identification_inputs_are_clear_errors() {
-    let good_data = "v_0,e\n0.5,0.9\n1.0,0.8\n";
-    let head = "[[fit]]\nname = \"f\"\nmodel = \"shccm\"\ndata = \"d.csv\"\n";
-    let bounds = "[fit.bounds]\nB_b = [0.0, 2.0]\ng = [-1.0, 1.0]\nkappa = [0.1, 0.9]\nsigma_b = [0.0, 0.1]\nn = [1.0, 2.0]\np = [1.0, 2.0]\n";
-    let good = format!("{head}{bounds}");
+fn bad_identification_data_are_clear_errors() {
+    let good = format!("{HEAD}{BOUNDS}");
     identify_rejects("missing-data-file", &good, None, &["d.csv"]);
     identify_rejects(
         "malformed-row",
@@ -187,6 +188,12 @@ fn bad_identification_inputs_are_clear_errors() {
         &["d.csv:2", "not finite"],
     );
     identify_rejects("empty-data", &good, Some("v_0,e\n"), &["no data rows"]);
+}
+
+#[test]
+fn bad_identification_configs_are_clear_errors() {
+    let (head, bounds, good_data) = (HEAD, BOUNDS, GOOD_DATA);
+    let good = format!("{head}{bounds}");
     identify_rejects(
         "swapped-bounds",
         &good.replace("kappa = [0.1, 0.9]", "kappa = [0.9, 0.1]"),
