@@ -14,22 +14,10 @@ fn fixtures() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures")
 }
 
-/// `e` of the Hunt-Crossley limit (`B = Γ = 0`) at `σ` (`σ_b v0` for base parameters): the
-/// root in `(0, min(1, 1/σ))` of `σ - ln(1 + σ) = -σe - ln(1 - σe)` (energy balance of
-/// `V dV/dX = -X^p (1 + σV)`), by bisection (the right side increases in `e`).
-fn hunt_crossley_e(sigma: f64) -> f64 {
-    let g = |e: f64| sigma - sigma.ln_1p() + sigma * e + (-sigma * e).ln_1p();
-    let (mut lo, mut hi) = (1e-12, (1.0f64).min(1.0 / sigma) * (1.0 - 1e-12));
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if g(mid) > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
+// The closed form the examples check against, `e` of the Hunt-Crossley limit at `σ`.
+#[path = "../../../../examples/support/hunt_crossley.rs"]
+mod hunt_crossley;
+use hunt_crossley::hunt_crossley_e;
 
 fn simulate(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_bwc-simulate"))
