@@ -28,27 +28,13 @@ pub(crate) fn series<M: CollisionModel<N>, const N: usize>(
     }
     let u = form.input.at(0.0);
     let u = Constant(form.scales.map_or(u, |s| u * s.u_factor));
-    let run = match form.kind {
-        ModelKind::Shccm => restate_run(series::impact(&Ndbwshccm::of(form.k, u), settings)?),
-        ModelKind::Mcm => restate_run(series::impact(&Ndbwmcm::of(form.k, u), settings)?),
-    };
-    Some(match (run, form.scales) {
-        (run, None) => run,
-        (SeriesRun::Done(out), Some(_)) => SeriesRun::Done(in_units(model, out)),
-        (
-            SeriesRun::HandOver {
-                t,
-                state,
-                stats,
-                series_steps,
-            },
-            Some(_),
-        ) => SeriesRun::HandOver {
-            t: t * model.time_scale(),
-            state: state.component_mul(&model.state_scale()),
-            stats,
-            series_steps,
-        },
+    Some(match form.kind {
+        ModelKind::Shccm => {
+            series_in_units(model, series::impact(&Ndbwshccm::of(form.k, u), settings)?)
+        }
+        ModelKind::Mcm => {
+            series_in_units(model, series::impact(&Ndbwmcm::of(form.k, u), settings)?)
+        }
     })
 }
 
@@ -68,11 +54,7 @@ pub(crate) fn phase<M: CollisionModel<N>, const N: usize>(
     // `R' = -σF = -σV'`, so `R = -σ (V + 1)` from `V(0) = -1`.
     let r = -form.k.sigma * (cor.e + 1.0);
     let state = restate(&[r, cor.q_s, cor.z_s, cor.e]);
-    let out = phase::impact_of(&cor, state, settings);
-    Some(match form.scales {
-        None => out,
-        Some(_) => in_units(model, out),
-    })
+    Some(in_units(model, phase::impact_of(&cor, state, settings)))
 }
 
 /// One run of the double-double path of `model` at `ext`'s tolerances, with
@@ -84,23 +66,24 @@ pub(crate) fn double_double<M: CollisionModel<N>, const N: usize>(
     settings: &Settings,
 ) -> Option<Result<Impact<N>, DdFailure>> {
     let form = model.nondimensional_form()?;
-    let nd = (form.kind, form.k.nondim());
+    let (kind, k) = (form.kind, form.k.nondim());
     let state_of = |y: [f64; 4]| restate(&y);
-    Some(match form.scales {
-        None => double_double::run_model((nd.0, nd.1, form.input), ext, settings, state_of)?,
+    let run = match form.scales {
+        None => double_double::run_model((kind, k, form.input), ext, settings, state_of)?,
         Some(s) => {
             let u = Scaled {
                 inner: form.input,
                 factor: s.u_factor,
                 time_scale: s.t_c,
             };
-            double_double::run_model((nd.0, nd.1, &u), ext, settings, state_of)?
-                .map(|out| in_units(model, out))
+            double_double::run_model((kind, k, &u), ext, settings, state_of)?
         }
-    })
+    };
+    Some(run.map(|out| in_units(model, out)))
 }
 
-/// A nondimensional form's impact in `model`'s units.
+/// A nondimensional form's impact in `model`'s units (for a nondimensional model the scales
+/// are ones, and the products exact).
 fn in_units<M: CollisionModel<N>, const N: usize>(model: &M, out: Impact<N>) -> Impact<N> {
     out.in_units(&model.state_scale(), model.time_scale())
 }
@@ -111,12 +94,16 @@ fn restate<const N: usize>(y: &[f64]) -> State<N> {
     State::<N>::from_column_slice(&y[y.len() - N..])
 }
 
-/// A series run of the nondimensional model with `A` states as the run of the model with `N`
-/// states whose form it is (`A = N`: an NDBWSHCCM form has 3 states, an NDBWMCM form 4).
-fn restate_run<const A: usize, const N: usize>(run: SeriesRun<A>) -> SeriesRun<N> {
+/// A series run of the nondimensional model with `A` states as the run of `model`, with `N`
+/// states (`A = N`: an NDBWSHCCM form has 3 states, an NDBWMCM form 4), in `model`'s units.
+fn series_in_units<M: CollisionModel<N>, const A: usize, const N: usize>(
+    model: &M,
+    run: SeriesRun<A>,
+) -> SeriesRun<N> {
     match run {
         SeriesRun::Done(out) => {
-            SeriesRun::Done(Impact::from_cor(out.cor(), restate(out.state.as_slice())))
+            let out = Impact::from_cor(out.cor(), restate(out.state.as_slice()));
+            SeriesRun::Done(in_units(model, out))
         }
         SeriesRun::HandOver {
             t,
@@ -124,8 +111,8 @@ fn restate_run<const A: usize, const N: usize>(run: SeriesRun<A>) -> SeriesRun<N
             stats,
             series_steps,
         } => SeriesRun::HandOver {
-            t,
-            state: restate(state.as_slice()),
+            t: t * model.time_scale(),
+            state: restate::<N>(state.as_slice()).component_mul(&model.state_scale()),
             stats,
             series_steps,
         },

@@ -9,7 +9,7 @@ use crate::clearance::{in_natural_units, shccm_clearance};
 use crate::error::ModelError;
 use crate::input::Input;
 use crate::laws::{hysteresis, Bwmcl, Bwshccl};
-use crate::params::{check, ModelKind, NondimParams, PhysicalParams};
+use crate::params::{check, ModelKind, PhysicalParams};
 use crate::power::Pow;
 use crate::scaling::{nondimensionalize, Scales};
 use bwc_ode::{State, System};
@@ -25,7 +25,8 @@ pub struct Bwshccm<I> {
     m: f64,
     v0: f64,
     scales: Scales,
-    nd: NondimParams,
+    /// The nondimensional form's coefficients (Table 1), classified once.
+    k: NdCoefficients,
     input: I,
 }
 
@@ -39,12 +40,13 @@ impl<I: Input> Bwshccm<I> {
     pub fn new(params: &PhysicalParams, m: f64, v0: f64, input: I) -> Result<Self, ModelError> {
         check_mass_speed(m, v0)?;
         let (nd, scales) = nondimensionalize(params, m, v0)?;
+        let law = Bwshccl::new(params)?;
         Ok(Self {
-            law: Bwshccl::new(params)?,
+            law,
             m,
             v0,
             scales,
-            nd,
+            k: NdCoefficients::new(&nd, ModelKind::Shccm)?,
             input,
         })
     }
@@ -60,8 +62,7 @@ impl<I: Input> System<3> for Bwshccm<I> {
 
 impl<I: Input> CollisionModel<3> for Bwshccm<I> {
     fn nondimensional_form(&self) -> Option<NdForm<'_, 3>> {
-        let k = NdCoefficients::new(&self.nd, ModelKind::Shccm).ok()?;
-        Some(NdForm::shccm(k, &self.input, Some(self.scales)))
+        Some(NdForm::shccm(self.k, &self.input, Some(self.scales)))
     }
     fn initial_state(&self) -> State<3> {
         State::<3>::new(0.0, 0.0, -self.v0)
@@ -96,7 +97,7 @@ impl<I: Input> CollisionModel<3> for Bwshccm<I> {
     fn clearance(&self, y: &State<3>, f: &State<3>, rtol: f64) -> f64 {
         let t_c = self.scales.t_c;
         let (y, f) = in_natural_units(y, f, self.state_scale(), t_c);
-        t_c * shccm_clearance(self.nd.get(), y.into(), f.into(), rtol)
+        t_c * shccm_clearance(&self.k.nondim(), y.into(), f.into(), rtol)
     }
 }
 
@@ -111,7 +112,8 @@ pub struct Bwmcm<I> {
     m: f64,
     v0: f64,
     scales: Scales,
-    nd: NondimParams,
+    /// The nondimensional form's coefficients (Table 1), classified once.
+    k: NdCoefficients,
     input: I,
 }
 
@@ -125,12 +127,13 @@ impl<I: Input> Bwmcm<I> {
     pub fn new(params: &PhysicalParams, m: f64, v0: f64, input: I) -> Result<Self, ModelError> {
         check_mass_speed(m, v0)?;
         let (nd, scales) = nondimensionalize(params, m, v0)?;
+        let law = Bwmcl::new(params)?;
         Ok(Self {
-            law: Bwmcl::new(params)?,
+            law,
             m,
             v0,
             scales,
-            nd,
+            k: NdCoefficients::new(&nd, ModelKind::Mcm)?,
             input,
         })
     }
@@ -146,8 +149,7 @@ impl<I: Input> System<4> for Bwmcm<I> {
 
 impl<I: Input> CollisionModel<4> for Bwmcm<I> {
     fn nondimensional_form(&self) -> Option<NdForm<'_, 4>> {
-        let k = NdCoefficients::new(&self.nd, ModelKind::Mcm).ok()?;
-        Some(NdForm::mcm(k, &self.input, Some(self.scales)))
+        Some(NdForm::mcm(self.k, &self.input, Some(self.scales)))
     }
     fn initial_state(&self) -> State<4> {
         State::<4>::new(0.0, 0.0, 0.0, -self.v0)
