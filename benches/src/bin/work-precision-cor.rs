@@ -505,21 +505,12 @@ fn measure(case: &Case, plain: &[Plain], m: &Method, rtol: f64, csv: &mut String
     let bracketed_e = bracket_by(plain, ee.max(1e-17), |p| p.err_e)
         .filter(|_| series)
         .map(|(a, b, f)| (a.rtol, b.rtol, f));
-    let mut fs: Vec<Box<dyn FnMut() + '_>> = vec![Box::new(|| {
-        let _ = std::hint::black_box(run(&s));
-    })];
-    for (a, b, _) in bracketed.iter().chain(&bracketed_e) {
-        for rtol in [*a, *b] {
-            let plain = plain_dop853(rtol);
-            fs.push(Box::new(move || {
-                let _ = std::hint::black_box(run(&plain));
-            }));
-        }
-    }
-    if series {
-        fs.push(rhs_batch(unit));
-    }
-    let times = side_by_side(&mut fs);
+    let ends: Vec<f64> = bracketed
+        .iter()
+        .chain(&bracketed_e)
+        .flat_map(|&(a, b, _)| [a, b])
+        .collect();
+    let times = timed(run, &s, &ends, series.then_some(unit));
     let secs = times[0];
     let in_time = bracketed.map(|(_, _, f)| between(times[1], times[2], f) / secs);
     let at = if bracketed.is_some() { 3 } else { 1 };
@@ -551,6 +542,27 @@ fn measure(case: &Case, plain: &[Plain], m: &Method, rtol: f64, csv: &mut String
         in_time,
         in_time_e,
     })
+}
+
+/// Seconds per call of `run` at `s`, then of the plain DOP853 runs at each tolerance of
+/// `plain`, then (where given) of one right-hand side of `unit`'s model, timed side by side.
+fn timed(
+    run: &dyn Fn(&Settings) -> Result<Vec<Cor>, String>,
+    s: &Settings,
+    plain: &[f64],
+    unit: Option<&BaseMap>,
+) -> Vec<f64> {
+    let mut fs: Vec<Box<dyn FnMut() + '_>> = vec![Box::new(|| {
+        let _ = std::hint::black_box(run(s));
+    })];
+    for &rtol in plain {
+        let plain = plain_dop853(rtol);
+        fs.push(Box::new(move || {
+            let _ = std::hint::black_box(run(&plain));
+        }));
+    }
+    fs.extend(unit.map(rhs_batch));
+    side_by_side(&mut fs)
 }
 
 /// A case's plots: error against RHS evaluations and against time.

@@ -378,15 +378,12 @@ fn bad_settings_and_parameters_are_errors() {
     assert!(nondimensionalize(&cross(ModelKind::Shccm), 0.0, 1.0).is_err());
 }
 
-/// A CoR evaluation allocates nothing on the heap.
+/// A CoR evaluation allocates nothing on the heap, on every path: the Runge-Kutta path, the
+/// Taylor series (jets on the stack), RODAS4 (the Jacobian and `M^-1` on the stack) and the
+/// phase path (panels on the stack, once its tables, one per node count, are built on first
+/// use).
 #[test]
 fn cor_evaluation_does_not_allocate() {
-    // The Runge-Kutta path first; the Taylor-series path (the default) below.
-    let s = Settings {
-        series: false,
-        e_tol: None,
-        ..Settings::default()
-    };
     let shccm = Ndbwshccm::new(
         &nd(ModelKind::Shccm, 2.38, -2.38, 0.677, 0.07, 2.93, 2.62),
         Zero,
@@ -397,67 +394,60 @@ fn cor_evaluation_does_not_allocate() {
         Zero,
     )
     .unwrap();
-    let map = BaseMap::new(ModelKind::Shccm, table3("dss")[0].1).unwrap();
-    let ((a, b, c), allocations) = alloc_counter::count(|| {
-        (
-            impact(&shccm, &s).unwrap(),
-            impact(&mcm, &s).unwrap(),
-            impact_at(&map, Zero, 2.0, &s).unwrap(),
-        )
-    });
-    assert!(a.separated() && b.separated() && c.separated());
-    assert_eq!(allocations, 0, "heap allocations in three CoR evaluations");
-    // Nor does the Taylor-series path (its jets live on the stack).
-    let series = Settings::default();
-    let ((a, b), allocations) = alloc_counter::count(|| {
-        (
-            impact(&shccm, &series).unwrap(),
-            impact(&mcm, &series).unwrap(),
-        )
-    });
-    assert!(a.series_steps > 0 && b.series_steps > 0);
-    assert_eq!(
-        allocations, 0,
-        "heap allocations in two series CoR evaluations"
-    );
-    // Nor does RODAS4 (the Jacobian and M^-1 live on the stack).
-    let rodas = Settings {
-        stiffness: Stiffness::Rosenbrock,
+    let runge_kutta = Settings {
+        series: false,
         e_tol: None,
         ..Settings::default()
     };
-    let ((d, e), allocations) = alloc_counter::count(|| {
+    // (path, settings, warm-up first)
+    let paths = [
+        ("Runge-Kutta", runge_kutta, false),
+        ("series", Settings::default(), false),
         (
-            impact(&shccm, &rodas).unwrap(),
-            impact(&mcm, &rodas).unwrap(),
-        )
-    });
-    assert!(d.separated() && e.separated() && d.stats.jacobians > 0);
-    assert_eq!(
-        allocations, 0,
-        "heap allocations in two RODAS4 CoR evaluations"
-    );
-    // Nor does the phase path, once its tables (one per node count, built on first use) are
-    // in place: its panels live on the stack.
-    let phase = Settings {
-        phase: true,
-        ..Settings::default()
-    };
-    let warm = (
-        impact(&shccm, &phase).unwrap(),
-        impact(&mcm, &phase).unwrap(),
-    );
-    let ((f, g), allocations) = alloc_counter::count(|| {
+            "RODAS4",
+            Settings {
+                stiffness: Stiffness::Rosenbrock,
+                e_tol: None,
+                ..Settings::default()
+            },
+            false,
+        ),
         (
-            impact(&shccm, &phase).unwrap(),
-            impact(&mcm, &phase).unwrap(),
-        )
-    });
-    assert!(warm.0.phase && warm.1.phase && f.phase && g.phase);
-    assert_eq!(
-        allocations, 0,
-        "heap allocations in two phase-path CoR evaluations"
-    );
+            "phase-path",
+            Settings {
+                phase: true,
+                ..Settings::default()
+            },
+            true,
+        ),
+    ];
+    // Whether an impact took the path it was meant to.
+    fn took<const N: usize>(path: &str, i: &Impact<N>) -> bool {
+        match path {
+            "series" => i.series_steps > 0,
+            "RODAS4" => i.stats.jacobians > 0,
+            "phase-path" => i.phase,
+            _ => i.series_steps == 0 && !i.phase,
+        }
+    }
+    for (path, s, warm) in &paths {
+        if *warm {
+            let _ = (impact(&shccm, s).unwrap(), impact(&mcm, s).unwrap());
+        }
+        let ((a, b), allocations) =
+            alloc_counter::count(|| (impact(&shccm, s).unwrap(), impact(&mcm, s).unwrap()));
+        assert!(a.separated() && b.separated(), "{path}");
+        assert!(took(path, &a) && took(path, &b), "{path}: not taken");
+        assert_eq!(
+            allocations, 0,
+            "heap allocations in two {path} CoR evaluations"
+        );
+    }
+    // A whole CoR evaluation from base parameters neither.
+    let map = BaseMap::new(ModelKind::Shccm, table3("dss")[0].1).unwrap();
+    let (c, allocations) = alloc_counter::count(|| impact_at(&map, Zero, 2.0, &runge_kutta));
+    assert!(c.unwrap().separated());
+    assert_eq!(allocations, 0, "heap allocations in impact_at");
     // The counter does count: a Vec allocates.
     assert!(alloc_counter::count(|| vec![1u8; 16]).1 >= 1);
 }

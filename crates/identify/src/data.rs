@@ -1,6 +1,7 @@
 //! Measured aggregate quantities: CoR `e` and/or contact duration `t_d` (s) at impact speeds
 //! `v_0` (m/s), read from CSV with `#` comment lines; repeated speeds are allowed.
 
+use crate::csv_file::{self, CsvText};
 use crate::error::IdentifyError;
 use std::path::{Path, PathBuf};
 
@@ -41,11 +42,7 @@ impl Dataset {
     /// [`IdentifyError::Io`] if unreadable, [`IdentifyError::Data`] naming the line and column
     /// of a malformed or inadmissible value, a missing column, or an empty dataset.
     pub fn load(path: &Path) -> Result<Self, IdentifyError> {
-        let text = std::fs::read_to_string(path).map_err(|source| IdentifyError::Io {
-            path: path.to_owned(),
-            source,
-        })?;
-        Self::parse(path, &text)
+        Self::parse(path, &csv_file::read(path)?)
     }
 
     /// Parses CSV text (`path` is only used in messages).
@@ -53,34 +50,13 @@ impl Dataset {
     /// # Errors
     /// As [`Dataset::load`].
     pub fn parse(path: &Path, text: &str) -> Result<Self, IdentifyError> {
-        let err = |line: u64, message: String| IdentifyError::Data {
-            path: path.to_owned(),
-            line,
-            message,
-        };
-        let mut reader = csv::ReaderBuilder::new()
-            .comment(Some(b'#'))
-            .trim(csv::Trim::All)
-            .from_reader(text.as_bytes());
-        let header_line = reader.position().line();
-        let headers = reader
-            .headers()
-            .map_err(|e| err(header_line, e.to_string()))?
-            .clone();
-        let header_at = text
-            .lines()
-            .position(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty())
-            .map_or(1, |i| i as u64 + 1);
-        let columns = Columns::of(&headers).map_err(|message| err(header_at, message))?;
+        let mut csv = CsvText::new(path, text)?;
+        let columns =
+            Columns::of(&csv.headers).map_err(|message| csv.error(csv.header_line, message))?;
+        let headers = csv.headers.clone();
         let mut warnings = Vec::new();
-        let mut points = Vec::new();
-        for record in reader.records() {
-            let record =
-                record.map_err(|e| err(e.position().map_or(0, |p| p.line()), e.to_string()))?;
-            let line = record.position().map_or(0, |p| p.line());
-            let point = columns
-                .point(&headers, &record)
-                .map_err(|message| err(line, message))?;
+        let points = csv.rows(|record, line| {
+            let point = columns.point(&headers, record)?;
             if let Some(e) = point.e.filter(|&e| e == 0.0 || e > 1.0) {
                 let why = if e == 0.0 {
                     "e = 0 (no rebound): the models give e = 0 only when the bodies never separate"
@@ -90,10 +66,10 @@ impl Dataset {
                 };
                 warnings.push(format!("{}:{line}: {why}", path.display()));
             }
-            points.push(point);
-        }
+            Ok(point)
+        })?;
         if points.is_empty() {
-            return Err(err(header_at, "the dataset has no data rows".into()));
+            return Err(csv.error(csv.header_line, "the dataset has no data rows".into()));
         }
         warnings.extend(speeds_warning(path, &points));
         let reconstructed = text

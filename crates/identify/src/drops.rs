@@ -12,6 +12,7 @@
 //! below the resolution of the usual acoustic or video timing (a contact of 0.1-1 ms, a force
 //! peak hundreds of times `m g`).
 
+use crate::csv_file::{self, CsvText};
 use crate::error::IdentifyError;
 use crate::objective::{passes, TermOrder};
 use crate::problem::CubeProblem;
@@ -70,36 +71,16 @@ impl DropData {
     /// [`IdentifyError::Io`] if unreadable, [`IdentifyError::Data`] naming the line of a
     /// malformed or inadmissible value, the missing columns, or an empty file.
     pub fn load(path: &Path) -> Result<Self, IdentifyError> {
-        let err = |line: u64, message: String| IdentifyError::Data {
-            path: path.to_owned(),
-            line,
-            message,
-        };
-        let mut reader = csv::ReaderBuilder::new()
-            .comment(Some(b'#'))
-            .trim(csv::Trim::All)
-            .from_path(path)
-            .map_err(|e| match e.into_kind() {
-                csv::ErrorKind::Io(source) => IdentifyError::Io {
-                    path: path.to_owned(),
-                    source,
-                },
-                other => err(0, format!("{other:?}")),
-            })?;
-        let headers: Vec<String> = reader
-            .headers()
-            .map_err(|e| err(1, e.to_string()))?
-            .iter()
-            .map(String::from)
-            .collect();
-        let col = |name: &str| headers.iter().position(|h| h == name);
+        let text = csv_file::read(path)?;
+        let mut csv = CsvText::new(path, &text)?;
+        let col = |name: &str| csv.column(name);
         let (kind, value_col, n_col) = match (col("h0"), col("interval_s"), col("bounce_n"), col("h1")) {
             (Some(_), Some(v), Some(n), _) => (DropKind::Intervals, v, Some(n)),
             (Some(_), _, _, Some(v)) => (DropKind::Heights, v, None),
             _ => {
-                return Err(err(
-                    1,
-                    format!("columns {headers:?}: a drop test needs h0 (m) with bounce_n and interval_s (s), or h0 and h1 (m)"),
+                return Err(csv.error(
+                    csv.header_line,
+                    format!("columns {:?}: a drop test needs h0 (m) with bounce_n and interval_s (s), or h0 and h1 (m)", csv.names()),
                 ))
             }
         };
@@ -115,19 +96,9 @@ impl DropData {
             ),
             bounce_n: n_col,
         };
-        let mut rows = Vec::new();
-        for record in reader.records() {
-            let record =
-                record.map_err(|e| err(e.position().map_or(0, |p| p.line()), e.to_string()))?;
-            let line = record.position().map_or(0, |p| p.line());
-            rows.push(
-                columns
-                    .row(&record, line)
-                    .map_err(|message| err(line, message))?,
-            );
-        }
+        let rows = csv.rows(|record, line| columns.row(record, line))?;
         if rows.is_empty() {
-            return Err(err(1, "no rows: nothing to fit".into()));
+            return Err(csv.error(csv.header_line, "no rows: nothing to fit".into()));
         }
         Ok(DropData {
             path: path.to_owned(),

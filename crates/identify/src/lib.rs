@@ -42,6 +42,7 @@
 #![deny(missing_docs)]
 
 mod coverage;
+mod csv_file;
 mod data;
 mod drops;
 mod error;

@@ -9,9 +9,10 @@
 //! averaged over the loops (0 for identical loops, about 1 for unrelated ones). It needs no
 //! timing of the measured points, so digitised loops can be used as they are.
 
+use crate::csv_file::{self, CsvText};
 use crate::error::IdentifyError;
 use crate::problem::CubeProblem;
-use crate::space::Param;
+use crate::space::{values_at, Param};
 use bw_models::input::Zero;
 use bw_models::{
     nondimensionalize, simulate, Bwmcm, Bwshccm, CollisionModel, ModelKind, Physical,
@@ -44,59 +45,43 @@ impl Loop {
     /// # Errors
     /// [`IdentifyError::Io`] or [`IdentifyError::Data`] naming the line.
     pub fn load(path: &Path, v0: f64) -> Result<Self, IdentifyError> {
-        let text = std::fs::read_to_string(path).map_err(|source| IdentifyError::Io {
-            path: path.to_owned(),
-            source,
-        })?;
-        let err = |line: u64, message: String| IdentifyError::Data {
-            path: path.to_owned(),
-            line,
-            message,
-        };
         if !(v0.is_finite() && v0 > 0.0) {
-            return Err(err(
+            return Err(csv_file::data_error(
+                path,
                 0,
                 format!("impact speed {v0} is not admissible: v0 > 0 (m/s)"),
             ));
         }
-        let mut reader = csv::ReaderBuilder::new()
-            .comment(Some(b'#'))
-            .trim(csv::Trim::All)
-            .from_reader(text.as_bytes());
-        let headers = reader.headers().map_err(|e| err(1, e.to_string()))?.clone();
-        let names: Vec<&str> = headers.iter().collect();
-        let (xi, fi, scale) = match (
-            names.iter().position(|h| *h == "x_mm"),
-            names.iter().position(|h| *h == "x"),
-        ) {
-            (Some(i), _) => (i, names.iter().position(|h| *h == "F_N"), -1e-3),
-            (None, Some(i)) => (i, names.iter().position(|h| *h == "F"), 1.0),
+        let text = csv_file::read(path)?;
+        let mut csv = CsvText::new(path, &text)?;
+        let (xi, fi, scale) = match (csv.column("x_mm"), csv.column("x")) {
+            (Some(i), _) => (i, csv.column("F_N"), -1e-3),
+            (None, Some(i)) => (i, csv.column("F"), 1.0),
             _ => {
-                return Err(err(
-                    1,
-                    format!("no column `x_mm` (with `F_N`) or `x` (with `F`) in {names:?}"),
+                return Err(csv.error(
+                    csv.header_line,
+                    format!(
+                        "no column `x_mm` (with `F_N`) or `x` (with `F`) in {:?}",
+                        csv.names()
+                    ),
                 ))
             }
         };
-        let fi = fi.ok_or_else(|| err(1, "no force column `F_N` / `F`".into()))?;
-        let (mut x, mut f) = (Vec::new(), Vec::new());
-        for rec in reader.records() {
-            let rec = rec.map_err(|e| err(e.position().map_or(0, |p| p.line()), e.to_string()))?;
-            let line = rec.position().map_or(0, |p| p.line());
-            let num = |c: usize| -> Result<f64, IdentifyError> {
-                let raw = rec
-                    .get(c)
-                    .ok_or_else(|| err(line, "missing column in this row".into()))?;
+        let fi =
+            fi.ok_or_else(|| csv.error(csv.header_line, "no force column `F_N` / `F`".into()))?;
+        let points = csv.rows(|rec, _| {
+            let num = |c: usize| -> Result<f64, String> {
+                let raw = rec.get(c).ok_or("missing column in this row")?;
                 raw.parse::<f64>()
                     .ok()
                     .filter(|v| v.is_finite())
-                    .ok_or_else(|| err(line, format!("{raw:?} is not a finite number")))
+                    .ok_or_else(|| format!("{raw:?} is not a finite number"))
             };
-            x.push(num(xi)? * scale);
-            f.push(num(fi)?);
-        }
+            Ok((num(xi)? * scale, num(fi)?))
+        })?;
+        let (x, f): (Vec<f64>, Vec<f64>) = points.into_iter().unzip();
         if x.len() < 3 {
-            return Err(err(1, "a loop needs at least 3 points".into()));
+            return Err(csv.error(csv.header_line, "a loop needs at least 3 points".into()));
         }
         Ok(Self {
             path: path.to_owned(),
@@ -192,26 +177,7 @@ impl LawSpace {
 
     /// The contact law at a point of the unit cube.
     pub fn decode(&self, s: &[f64]) -> Physical {
-        let mut v = [0.0; 8];
-        for (i, p) in self.params.iter().enumerate() {
-            if let Param::Fixed(x) = p {
-                v[i] = *x;
-            }
-        }
-        for (j, &i) in self.free.iter().enumerate() {
-            if let Param::Free { lo, hi, log } = self.params[i] {
-                let t = s[j].clamp(0.0, 1.0);
-                v[i] = if t == 0.0 {
-                    lo
-                } else if t == 1.0 {
-                    hi
-                } else if log {
-                    lo * (hi / lo).powf(t)
-                } else {
-                    lo + (hi - lo) * t
-                };
-            }
-        }
+        let v = values_at(&self.params, &self.free, s);
         Physical {
             k: v[0],
             c: v[1],

@@ -61,6 +61,24 @@ fn scale(lo: f64, hi: f64, log: bool, t: f64) -> f64 {
     }
 }
 
+/// The values of `params` at a point `s` of the unit cube whose coordinates are those of the
+/// free parameters `free` (indices into `params`): fixed values as they are, free ones scaled
+/// from their coordinate.
+pub(crate) fn values_at(params: &[Param; 8], free: &[usize], s: &[f64]) -> [f64; 8] {
+    let mut v = [0.0; 8];
+    for (i, p) in params.iter().enumerate() {
+        if let Param::Fixed(x) = p {
+            v[i] = *x;
+        }
+    }
+    for (j, &i) in free.iter().enumerate() {
+        if let Param::Free { lo, hi, log } = params[i] {
+            v[i] = scale(lo, hi, log, s[j]);
+        }
+    }
+    v
+}
+
 /// The inverse of [`scale`].
 fn unscale(lo: f64, hi: f64, log: bool, v: f64) -> f64 {
     if hi == lo {
@@ -222,17 +240,7 @@ impl Space {
     /// The searchable quantities of [`NAMES`] (with `g`, not `Γ_b`) at a point `s` of the unit
     /// cube (coordinates are clamped into it).
     pub fn quantities(&self, s: &[f64]) -> [f64; 8] {
-        let mut v = [0.0; 8];
-        for (i, p) in self.params.iter().enumerate() {
-            if let Param::Fixed(x) = p {
-                v[i] = *x;
-            }
-        }
-        for (j, &i) in self.free.iter().enumerate() {
-            if let Param::Free { lo, hi, log } = self.params[i] {
-                v[i] = scale(lo, hi, log, s[j]);
-            }
-        }
+        let mut v = values_at(&self.params, &self.free, s);
         if let Some(c) = self.known {
             v[7] = c.m * v[6];
             // κ is searched between its lower bound and the largest value the inequality

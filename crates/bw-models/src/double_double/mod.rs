@@ -530,14 +530,7 @@ impl<I: Input + ?Sized> Run<'_, '_, I> {
             let c = match newton {
                 _ if slow => (a + b) * 0.5,
                 Some(c) => c,
-                None => {
-                    let c = (a * fb - b * fa) / (fb - fa);
-                    if (c - a).hi() * (c - b).hi() >= 0.0 || !c.hi().is_finite() {
-                        (a + b) * 0.5
-                    } else {
-                        c
-                    }
-                }
+                None => regula_falsi((a, fa), (b, fb)),
             };
             let yc = self.step((t, y, f0), c, frozen).y;
             let fc = self.m.events(&yc)[which];
@@ -561,15 +554,7 @@ impl<I: Input + ?Sized> Run<'_, '_, I> {
                 (a, fa) = (c, fc);
             }
             last_far = newton.is_none().then_some(on_far_side);
-            // Near the root, aim just past it, so that the next iterate lands on the far side.
-            let aim = c - dc
-                + if dc.hi().abs() <= width {
-                    0.5 * width
-                } else {
-                    0.0
-                };
-            let inside = (aim - a).hi() * (aim - b).hi() < 0.0 && aim.hi().is_finite();
-            newton = inside.then_some(aim);
+            newton = newton_aim(c, dc, width, (a, b));
         }
         let (tau, y) = match far {
             (tau, Some(y)) => (tau, y),
@@ -582,6 +567,31 @@ impl<I: Input + ?Sized> Run<'_, '_, I> {
             sign_after,
         }
     }
+}
+
+/// The regula falsi iterate of the bracket `(a, b)` with values `fa`, `fb`; its midpoint
+/// where the secant leaves the bracket.
+fn regula_falsi((a, fa): (Dd, Dd), (b, fb): (Dd, Dd)) -> Dd {
+    let c = (a * fb - b * fa) / (fb - fa);
+    if (c - a).hi() * (c - b).hi() >= 0.0 || !c.hi().is_finite() {
+        (a + b) * 0.5
+    } else {
+        c
+    }
+}
+
+/// Newton's next iterate from `c` with step `dc`, where it lies inside the bracket `(a, b)`.
+/// Near the root (`|dc| <= width`) it aims half a width past it, so that the iterate lands on
+/// the far side.
+fn newton_aim(c: Dd, dc: Dd, width: f64, (a, b): (Dd, Dd)) -> Option<Dd> {
+    let past = if dc.hi().abs() <= width {
+        0.5 * width
+    } else {
+        0.0
+    };
+    let aim = c - dc + past;
+    let inside = (aim - a).hi() * (aim - b).hi() < 0.0 && aim.hi().is_finite();
+    inside.then_some(aim)
 }
 
 /// Whether `a` and `b` lie strictly on opposite sides of 0 (for the separation, `which = 2`,
@@ -610,6 +620,20 @@ fn shrunk(h: Dd, factor: f64, t: Dd) -> Result<Dd, DdFailure> {
     Ok(h)
 }
 
+/// Whether a run at step `steps` and time `t` is within its budgets `max_steps` and `t_max`.
+///
+/// # Errors
+/// [`DdFailure::TooManySteps`] or [`DdFailure::NoSeparation`] where it is not.
+fn within_budget((steps, max_steps): (u64, u64), (t, t_max): (Dd, f64)) -> Result<(), DdFailure> {
+    if steps >= max_steps {
+        return Err(DdFailure::TooManySteps);
+    }
+    if t.hi() > t_max {
+        return Err(DdFailure::NoSeparation);
+    }
+    Ok(())
+}
+
 /// Integrates one impact of `m` from contact (`V(0) = -1`, every other state 0) to the
 /// separation with `ext`, in at most `max_steps` steps and by `t_max`.
 ///
@@ -632,21 +656,8 @@ pub(crate) fn impact<I: Input + ?Sized>(
     // stretches the step size is held by stability, and growth right after a rejection is
     // mostly rejected again.
     let mut just_rejected = false;
-    let done = |t, y, run: &Run<I>, steps, rejected, kinks| DdRun {
-        t_s: t,
-        y,
-        steps,
-        rejected,
-        evals: run.evals,
-        kinks,
-    };
     loop {
-        if steps >= max_steps {
-            return Err(DdFailure::TooManySteps);
-        }
-        if t.hi() > t_max {
-            return Err(DdFailure::NoSeparation);
-        }
+        within_budget((steps, max_steps), (t, t_max))?;
         let f0 = m.rhs(t, &y);
         run.evals += 1;
         let Some(trial) = run.try_step((t, &y, &f0), h) else {
@@ -686,16 +697,24 @@ pub(crate) fn impact<I: Input + ?Sized>(
         };
         (t, y) = (t + c.tau, c.y);
         if c.which == SEPARATED {
-            return Ok(done(t, y, &run, steps, rejected, kinks));
+            break;
         }
         after = [0, 1].map(|w| (c.which == w).then_some(c.sign_after));
         kinks += 1;
         // A kink can coincide with the separation (Z = X = 0 where an elastic contact ends);
         // the separation's own crossing starts from `> 0`.
         if m.events(&y)[SEPARATED] <= 0.0 {
-            return Ok(done(t, y, &run, steps, rejected, kinks));
+            break;
         }
     }
+    Ok(DdRun {
+        t_s: t,
+        y,
+        steps,
+        rejected,
+        evals: run.evals,
+        kinks,
+    })
 }
 
 #[cfg(test)]
