@@ -382,26 +382,31 @@ pub type Measured = [(f64, f64, Option<f64>)];
 /// A model line with its confidence band: `(x, value, lower, upper)`.
 pub type Banded = [(f64, f64, f64, f64)];
 
+/// A labelled line: `(label, points)`.
+pub type Line<'a> = (&'a str, &'a [(f64, f64)]);
+
 /// What a fit chart shows.
 struct FitLayers<'a> {
     data: (&'a str, &'a Measured),
     model: (&'a str, &'a Banded),
+    reference: Option<Line<'a>>,
     band_label: &'a str,
     corner: SeriesLabelPosition,
 }
 
 /// A fit chart: the data as markers (with error bars where they carry a spread), the model as
-/// a line with its confidence band shaded (unless `band_label` is empty); a logarithmic x axis
-/// when `log_x`; the legend in the corner that hides the least.
+/// a line with its confidence band shaded (unless `band_label` is empty), a reference model as
+/// a dashed line where given; a logarithmic x axis when `log_x`; the legend in the corner that
+/// hides the least.
 ///
 /// # Errors
 /// The drawing backend's message.
 pub fn fit_chart(
     title: &str,
-    x_label: &str,
-    y_label: &str,
+    (x_label, y_label): (&str, &str),
     data: (&str, &Measured),
     model: (&str, &Banded),
+    reference: Option<Line>,
     band_label: &str,
     log_x: bool,
 ) -> Result<String, String> {
@@ -410,6 +415,7 @@ pub fn fit_chart(
         .iter()
         .map(|p| p.0)
         .chain(model.1.iter().map(|p| p.0))
+        .chain(reference.iter().flat_map(|r| r.1.iter().map(|p| p.0)))
         .filter(|x| x.is_finite() && (!log_x || *x > 0.0))
         .collect();
     let ys: Vec<f64> = data
@@ -417,6 +423,7 @@ pub fn fit_chart(
         .iter()
         .flat_map(|p| [p.1 - p.2.unwrap_or(0.0), p.1 + p.2.unwrap_or(0.0)])
         .chain(model.1.iter().flat_map(|p| [p.1, p.2, p.3]))
+        .chain(reference.iter().flat_map(|r| r.1.iter().map(|p| p.1)))
         .filter(|y| y.is_finite())
         .collect();
     let range = |v: &[f64]| {
@@ -445,10 +452,12 @@ pub fn fit_chart(
                 .iter()
                 .flat_map(|p| [(p.0, p.1), (p.0, p.2), (p.0, p.3)]),
         )
+        .chain(reference.iter().flat_map(|r| r.1.iter().copied()))
         .collect();
     let layers = FitLayers {
         data,
         model,
+        reference,
         band_label,
         corner: legend_corner(&drawn, (x0, x1), (y0, y1), log_x, false),
     };
@@ -507,6 +516,15 @@ where
         .legend(move |(x, y)| {
             PathElement::new(vec![(x, y), (x + 20 * SCALE, y)], line.stroke_width(width))
         });
+    if let Some((label, points)) = l.reference {
+        let other = color(1).stroke_width(width);
+        let finite = points.iter().copied().filter(|p| p.1.is_finite());
+        chart
+            .draw_series(DashedLineSeries::new(finite, 6 * SCALE, 4 * SCALE, other))
+            .map_err(e)?
+            .label(label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20 * SCALE, y)], other));
+    }
     let mark = color(3);
     let bars = l.data.1.iter().filter_map(|p| {
         p.2.filter(|s| *s > 0.0).map(|s| {

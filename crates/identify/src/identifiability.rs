@@ -17,7 +17,16 @@ pub struct Identifiability {
     pub condition: f64,
     /// Unit vector of the least determined parameter combination, one entry per name.
     pub weakest: Vec<f64>,
+    /// The right singular vectors (unit vectors of the unit cube, one entry per name), in the
+    /// order of `singular_values`: moving the parameters by `δ` along `directions[i]` changes
+    /// the weighted residuals by `singular_values[i] δ` to first order. With fewer residuals
+    /// than free quantities there are fewer directions; the rest are undetermined.
+    pub directions: Vec<Vec<f64>>,
 }
+
+/// A direction counts as weakly determined where its singular value is below `WEAK` times the
+/// largest: the data determine it a hundred times less well than the best-determined one.
+pub const WEAK: f64 = 1e-2;
 
 impl Identifiability {
     /// The free quantities that dominate the weakest direction (|component| >= 0.3), for a
@@ -28,6 +37,56 @@ impl Identifiability {
             .zip(&self.weakest)
             .filter(|(_, w)| w.abs() >= 0.3)
             .map(|(n, _)| *n)
+            .collect()
+    }
+
+    /// How many directions are weakly determined ([`WEAK`]), counting those the data have no
+    /// residual for.
+    pub fn weak_count(&self) -> usize {
+        let largest = self.singular_values.first().copied().unwrap_or(0.0);
+        let strong = self
+            .singular_values
+            .iter()
+            .filter(|&&s| s >= WEAK * largest && s > 0.0)
+            .count();
+        self.names.len() - strong
+    }
+
+    /// The share (0 to 1) of `|d|²` that lies along the weakly determined directions, for a
+    /// displacement `d` of the unit cube (one entry per name); `None` for `d = 0`. A share near
+    /// 1 says two points differ in what the data leave undetermined.
+    pub fn weak_share(&self, d: &[f64]) -> Option<f64> {
+        let norm2: f64 = d.iter().map(|x| x * x).sum();
+        if norm2 == 0.0 || !norm2.is_finite() {
+            return None;
+        }
+        let largest = self.singular_values.first().copied().unwrap_or(0.0);
+        let strong: f64 = self
+            .singular_values
+            .iter()
+            .zip(&self.directions)
+            .filter(|(&s, _)| s >= WEAK * largest && s > 0.0)
+            .map(|(_, v)| v.iter().zip(d).map(|(a, b)| a * b).sum::<f64>().powi(2))
+            .sum();
+        Some((1.0 - strong / norm2).clamp(0.0, 1.0))
+    }
+
+    /// The free quantities that dominate the weakly determined directions: those with a
+    /// component of at least 0.3 in one of them.
+    pub fn weak_names(&self) -> Vec<&'static str> {
+        let largest = self.singular_values.first().copied().unwrap_or(0.0);
+        let weak: Vec<&Vec<f64>> = self
+            .singular_values
+            .iter()
+            .zip(&self.directions)
+            .filter(|(&s, _)| !(s >= WEAK * largest && s > 0.0))
+            .map(|(_, v)| v)
+            .collect();
+        self.names
+            .iter()
+            .enumerate()
+            .filter(|(j, _)| weak.iter().any(|v| v[*j].abs() >= 0.3))
+            .map(|(_, n)| *n)
             .collect()
     }
 }
@@ -58,6 +117,7 @@ pub fn analyse<I: Input + Sync>(
             singular_values: Vec::new(),
             condition: 1.0,
             weakest: Vec::new(),
+            directions: Vec::new(),
         });
     }
     let h = 1e-4;
@@ -100,10 +160,61 @@ pub fn analyse<I: Input + Sync>(
     } else {
         f64::INFINITY
     };
+    let directions = order
+        .iter()
+        .map(|&k| (0..d).map(|i| svd.V()[(i, k)]).collect())
+        .collect();
     Ok(Identifiability {
         names,
         singular_values,
         condition,
         weakest,
+        directions,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two directions, the second a thousand times weaker than the first, along the axes.
+    fn report(directions: Vec<Vec<f64>>) -> Identifiability {
+        Identifiability {
+            names: vec!["kappa", "n"],
+            singular_values: vec![1.0, 1e-3],
+            condition: 1e3,
+            weakest: directions[1].clone(),
+            directions,
+        }
+    }
+
+    #[test]
+    fn the_weak_share_is_the_squared_component_along_the_weak_directions() {
+        let id = report(vec![vec![1.0, 0.0], vec![0.0, 1.0]]);
+        assert_eq!(id.weak_count(), 1);
+        assert_eq!(id.weak_names(), ["n"]);
+        // |d|² = 25, 16 of it along the weak axis.
+        assert!((id.weak_share(&[3.0, 4.0]).unwrap() - 0.64).abs() < 1e-15);
+        assert_eq!(id.weak_share(&[0.0, 0.0]), None);
+        // Rotated by 45°: d = (1, 1) lies wholly along the strong direction.
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let id = report(vec![vec![h, h], vec![h, -h]]);
+        assert!(id.weak_share(&[1.0, 1.0]).unwrap() < 1e-15);
+        assert!((id.weak_share(&[1.0, -1.0]).unwrap() - 1.0).abs() < 1e-15);
+        assert_eq!(id.weak_names(), ["kappa", "n"]);
+    }
+
+    #[test]
+    fn directions_without_a_residual_count_as_weak() {
+        // One residual, two quantities: one direction determined, the other not at all.
+        let id = Identifiability {
+            names: vec!["kappa", "n"],
+            singular_values: vec![2.0],
+            condition: f64::INFINITY,
+            weakest: vec![f64::NAN; 2],
+            directions: vec![vec![1.0, 0.0]],
+        };
+        assert_eq!(id.weak_count(), 1);
+        assert!((id.weak_share(&[0.0, 2.0]).unwrap() - 1.0).abs() < 1e-15);
+    }
 }

@@ -60,7 +60,7 @@ pub use data::{Dataset, Point};
 pub use drops::{DropData, DropKind, DropObjective, DropRow, DropSetup};
 pub use error::IdentifyError;
 pub use fit::{at_bound, fit, minimize, Budget, Convergence, FitResult, Minimum, POLISH_ROUNDS};
-pub use identifiability::{analyse, Identifiability};
+pub use identifiability::{analyse, Identifiability, WEAK};
 pub use loops::{loop_cost, Curve, LawSpace, Loop, LoopObjective, LAW_NAMES};
 pub use objective::{predict, Costs, Objective, Prediction, TermOrder, Weights, FAILED};
 pub use problem::CubeProblem;

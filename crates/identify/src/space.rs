@@ -301,6 +301,39 @@ impl Space {
             .collect()
     }
 
+    /// The point of the unit cube nearest to `p`, each free quantity clamped into its bounds,
+    /// and the names of those that were outside (for comparing a published vector with a fit).
+    ///
+    /// # Errors
+    /// [`IdentifyError::Bounds`] where a free quantity of `p` is not a number.
+    pub fn nearest_point(
+        &self,
+        p: &BaseParams,
+    ) -> Result<(Vec<f64>, Vec<&'static str>), IdentifyError> {
+        let g = if p.b_b > 0.0 { p.gamma_b / p.b_b } else { 0.0 };
+        let mut v = [p.b_b, g, p.kappa, p.sigma_b, p.n, p.p, p.u_b, p.t_b];
+        let mut outside = Vec::new();
+        for &i in &self.free {
+            if let Param::Free { lo, hi, .. } = self.params[i] {
+                if v[i] < lo || v[i] > hi {
+                    outside.push(NAMES[i]);
+                    v[i] = v[i].clamp(lo, hi);
+                }
+            }
+        }
+        let clamped = BaseParams {
+            b_b: v[0],
+            gamma_b: v[1] * v[0],
+            kappa: v[2],
+            sigma_b: v[3],
+            n: v[4],
+            p: v[5],
+            u_b: v[6],
+            t_b: v[7],
+        };
+        Ok((self.encode(&clamped)?, outside))
+    }
+
     /// Whether the free quantity `i` (index into [`NAMES`]) at cube coordinate 1 sits on the
     /// inequality constraint rather than on its upper bound (κ under [`KnownMassStiffness`]).
     pub fn on_constraint(&self, i: usize, s: &[f64]) -> bool {

@@ -32,6 +32,7 @@ fn fit(f: &FitConfig) -> Value {
         "solver": settings(&f.settings),
         "start": f.start,
         "params": f.params.as_ref().map(base),
+        "reference": f.reference.as_ref().map(|r| json!({"label": r.label, "params": base(&r.params)})),
         "pareto": f.pareto.map(|count| json!({"count": count})),
         "drops": f.drops.as_ref().map(|d| json!({
             "kind": match d.data.kind {

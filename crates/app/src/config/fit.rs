@@ -15,7 +15,7 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
-use super::FitConfig;
+use super::{FitConfig, Reference};
 
 /// A `[[fit]]` validated up to its data.
 pub(super) struct Draft {
@@ -123,6 +123,7 @@ pub(super) fn parse_fit(
         uses_input_scales,
     };
     let (start, params) = start_and_params(ctx, r, &space, &scales)?;
+    let reference = reference(ctx, r, params, &scales)?;
     let (budget, seed, settings, pareto) = search(ctx, r, index)?;
     Ok(Draft {
         fit: FitConfig {
@@ -137,6 +138,7 @@ pub(super) fn parse_fit(
             settings,
             start,
             params,
+            reference,
             uses_input_scales,
             pareto,
             drops: None,
@@ -453,6 +455,33 @@ fn space(
     })
 }
 
+/// The vector to report beside the fit: `[fit.reference]`, or else `[fit.params]` (already
+/// parsed as `params`), named by its `label` or else by its table.
+fn reference(
+    ctx: &Ctx,
+    r: &RawFit,
+    params: Option<BaseParams>,
+    scales: &Scales,
+) -> Result<Option<Reference>, AppError> {
+    let label = |p: &Spanned<RawPoint>, table: &str| {
+        p.get_ref()
+            .label
+            .as_ref()
+            .map_or_else(|| table.to_string(), |l| l.get_ref().clone())
+    };
+    let Some(p) = &r.reference else {
+        return Ok(params.zip(r.params.as_ref()).map(|(params, p)| Reference {
+            label: label(p, "[fit.params]"),
+            params,
+        }));
+    };
+    let label = label(p, "[fit.reference]");
+    Ok(Some(Reference {
+        label,
+        params: point(ctx, p, "reference", scales)?,
+    }))
+}
+
 /// What a full parameter point needs: the model, and whether `U_b`, `T_b` are required.
 struct Scales {
     kind: ModelKind,
@@ -470,6 +499,13 @@ fn point(
     let s = p.span();
     let q = p.get_ref();
     let key = |k: &str| format!("[fit.{table}].{k}");
+    if let (Some(l), "start") = (&q.label, table) {
+        return Err(ctx.invalid(
+            &l.span(),
+            key("label"),
+            "not a key of [fit.start]: only [fit.reference] and [fit.params] have a label",
+        ));
+    }
     let uf = |v: &Option<Num>, k: &str| -> Result<f64, AppError> {
         if scales.uses_input_scales {
             ctx.req(v, &s, &key(k))

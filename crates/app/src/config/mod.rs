@@ -55,6 +55,7 @@ struct RawFit {
     fixed: Option<Spanned<RawQuantities<Num>>>,
     start: Option<Spanned<RawPoint>>,
     params: Option<Spanned<RawPoint>>,
+    reference: Option<Spanned<RawPoint>>,
     input: Option<Spanned<RawInput>>,
     known: Option<Spanned<RawKnown>>,
     optimizer: Option<Spanned<RawOptimizer>>,
@@ -144,6 +145,8 @@ struct RawPoint {
     u_b: Option<Num>,
     #[serde(rename = "T_b")]
     t_b: Option<Num>,
+    /// What the point is (`[fit.reference]` and `[fit.params]`), e.g. "Table 3, DSS (1)".
+    label: Option<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -184,6 +187,8 @@ pub struct FitConfig {
     pub start: Option<Vec<f64>>,
     /// Parameters for `eval`, if given.
     pub params: Option<BaseParams>,
+    /// The vector `run` reports beside the fit: `[fit.reference]`, or else `[fit.params]`.
+    pub reference: Option<Reference>,
     /// Whether `U_b`, `T_b` matter (an input, a duration objective, or a known mass).
     pub uses_input_scales: bool,
     /// Number of weights of a Pareto sweep, if asked for.
@@ -191,6 +196,16 @@ pub struct FitConfig {
     /// For a drop-test fit (data of intervals or rebound heights): the data and the physics
     /// around the contacts; `data` is then empty.
     pub drops: Option<DropFit>,
+}
+
+/// A reference vector of a fit (a published fit, an earlier one): `run` reports its cost on the
+/// same data beside the fit's.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reference {
+    /// What it is: `[fit.reference].label`, or the table it came from.
+    pub label: String,
+    /// The base parameters.
+    pub params: BaseParams,
 }
 
 /// The drop tests of a `[[fit]]` and `[fit.sequence]`.

@@ -40,6 +40,7 @@ fn report(f: &FitConfig, params: bw_models::BaseParams, drop: DropOutcome) -> Fi
         band: Vec::new(),
         warnings: Vec::new(),
         drop: Some(drop),
+        reference: None,
     }
 }
 

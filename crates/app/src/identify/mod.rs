@@ -3,10 +3,12 @@
 
 mod coverage;
 mod drops;
+mod reference;
 mod render;
 mod report;
 
 pub use coverage::{coverage_study, coverage_summary, coverage_task, run_coverage, CoverageReport};
+pub use reference::{ReferenceReport, Standing};
 pub use render::{loop_summary, render, render_loops, slug, summary, units};
 use report::{fail, missing_params, reporting, search_warnings};
 pub use report::{DropOutcome, FitReport, LoopReport, ParetoPoint};
@@ -100,6 +102,23 @@ pub fn run_fit(
         None => (Vec::new(), 0),
     };
     let evaluations = result.evaluations + pareto_evaluations;
+    let beside = (&result.point[..], identifiability.as_ref());
+    let reference = match &f.reference {
+        Some(rf) => reference_report(config, f, rf, &costs, beside, &speeds)?,
+        None => None,
+    };
+    if let Some(r) = reference
+        .as_ref()
+        .filter(|r| r.standing == Standing::ReferenceLower)
+    {
+        warnings.push(format!(
+            "\"{}\": the reference ({}) costs {:.3} times the fit's: {}",
+            f.name,
+            r.label,
+            r.cost_ratio,
+            r.remedy()
+        ));
+    }
     Ok(FitReport {
         name: f.name.clone(),
         model: f.kind.name(),
@@ -118,7 +137,40 @@ pub fn run_fit(
         band,
         warnings,
         drop: None,
+        reference,
     })
+}
+
+/// The reference vector `rf` of fit `f` on the fit's data, beside the fit at the unit-cube
+/// point `s` with `costs`; its curve at `speeds`. `None` where a weighted cost has no value
+/// (the reference does not separate at a speed with a duration).
+///
+/// # Errors
+/// [`AppError::Identify`] where the reference is not admissible or a simulation fails.
+fn reference_report(
+    config: &Path,
+    f: &FitConfig,
+    rf: &crate::config::Reference,
+    costs: &Costs,
+    (s, identifiability): (&[f64], Option<&bwc_identify::Identifiability>),
+    speeds: &[f64],
+) -> Result<Option<ReferenceReport>, AppError> {
+    let err = fail(config, &f.name);
+    let map = f.space.map(&rf.params).map_err(&err)?;
+    let predictions = predict(&map, &f.input, &f.data, &reporting()).map_err(|e| err(e.into()))?;
+    let ref_costs = Costs::of(&f.data, &predictions);
+    let curve = plain_curve(f, &map, speeds).map_err(|e| err(e.into()))?;
+    let Some(pair) = reference::CostPair::of(f.weights, &ref_costs, costs) else {
+        return Ok(None);
+    };
+    Ok(Some(reference::compare(
+        f,
+        rf,
+        ref_costs,
+        &pair,
+        (s, identifiability),
+        curve,
+    )))
 }
 
 /// The Pareto front of `f`'s two costs: `count` fits with weights from all CoR to all duration,
@@ -205,6 +257,7 @@ pub fn eval_fit(config: &Path, f: &FitConfig) -> Result<FitReport, AppError> {
         band: Vec::new(),
         warnings: f.data.warnings.clone(),
         drop: None,
+        reference: None,
     })
 }
 

@@ -1,5 +1,6 @@
 //! The reports of [`super`] as JSON, CSV and SVG: pure formatting, no simulation.
 
+use super::reference::ReferenceReport;
 use super::report::{DropOutcome, FitReport, LoopReport};
 use crate::config::{FitConfig, LoopFitConfig};
 use crate::plot::{self, Axis, Series, Style};
@@ -57,6 +58,9 @@ pub fn summary(reports: &[FitReport]) -> Value {
                     })
                     .collect();
             }
+            if let Some(rf) = &r.reference {
+                v["reference"] = reference_json(rf, r.uses_input_scales);
+            }
             v["warnings"] = json!(r.warnings);
             if !r.pareto.is_empty() {
                 v["pareto"] = r.pareto.iter().map(|p| json!({"w": p.w, "J1": p.j1, "J2": p.j2, "params": params_json(&p.params, r.uses_input_scales)})).collect();
@@ -65,6 +69,24 @@ pub fn summary(reports: &[FitReport]) -> Value {
         })
         .collect();
     json!({ "fits": fits })
+}
+
+/// The reference vector beside a fit: its parameters and costs, how it compares, and why.
+fn reference_json(rf: &ReferenceReport, input_scales: bool) -> Value {
+    json!({
+        "label": rf.label,
+        "params": params_json(&rf.params, input_scales),
+        "J1": rf.costs.j1,
+        "J2": rf.costs.j2,
+        "cost_ratio": rf.cost_ratio,
+        "standing": rf.standing.name(),
+        "outside_bounds": rf.outside_bounds,
+        "weak_share": rf.weak_share,
+        "weak_directions": rf.weak_directions.0,
+        "directions": rf.weak_directions.1,
+        "weak_names": rf.weak_names,
+        "summary": rf.summary,
+    })
 }
 
 fn intervals_json(u: &Uncertainty) -> Value {
@@ -198,6 +220,18 @@ fn fit_figure(
     log_x: bool,
 ) -> Result<String, String> {
     let points = f.data.points.iter();
+    let pick = |c: &BandPoint| match q {
+        Quantity::Cor => c.e[0],
+        Quantity::Duration => c.t_d[0],
+    };
+    let reference = r.reference.as_ref().map(|rf| {
+        let cost = match q {
+            Quantity::Cor => format!("J1 = {:.2e}", rf.costs.j1.unwrap_or(f64::NAN)),
+            Quantity::Duration => format!("J2 = {:.2e} s^2", rf.costs.j2.unwrap_or(f64::NAN)),
+        };
+        let points: Vec<(f64, f64)> = rf.curve.iter().map(|c| (c.v0, pick(c))).collect();
+        (format!("reference: {} ({cost})", rf.label), points)
+    });
     let (data, model, label, title, y): (Vec<_>, Vec<_>, _, _, _) = match q {
         Quantity::Cor => (
             points
@@ -226,8 +260,7 @@ fn fit_figure(
     };
     plot::fit_chart(
         &format!("{}: {title}", r.name),
-        "impact speed v0 (m/s)",
-        y,
+        ("impact speed v0 (m/s)", y),
         (
             if f.data.reconstructed {
                 "data (reconstructed, not measured)"
@@ -237,6 +270,7 @@ fn fit_figure(
             &data,
         ),
         (&format!("{} fit ({label})", model_name(r.model)), &model),
+        reference.as_ref().map(|(l, p)| (l.as_str(), p.as_slice())),
         band_label,
         log_x,
     )

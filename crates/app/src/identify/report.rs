@@ -74,6 +74,8 @@ pub struct FitReport {
     pub warnings: Vec<String>,
     /// For a drop-test fit: `J_drop` and the rows with the model's values.
     pub drop: Option<DropOutcome>,
+    /// The reference vector beside the fit (runs of fits that name one).
+    pub reference: Option<super::ReferenceReport>,
 }
 
 /// `eval` needs the parameters of `table` (`[fit.params]`, `[loop_fit.params]`) of fit `name`.

@@ -274,6 +274,9 @@ fn print_fit(config: &Config, r: &FitReport) {
     if let Some(s) = r.curve.first().and(predictions_summary(r)) {
         bwc_app::out!("    {s}");
     }
+    if let Some(rf) = &r.reference {
+        bwc_app::out!("    {}", rf.summary);
+    }
 }
 
 /// One hysteresis-loop fit's result as text.

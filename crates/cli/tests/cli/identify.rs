@@ -137,6 +137,116 @@ fn identify_run_recovers_synthetic_parameters_on_any_thread_count() {
     assert!(out_dir.join("synthetic_cor.svg").exists() && out_dir.join("summary.json").exists());
 }
 
+/// The mean squared difference in `e` between the synthetic truth's CoR and that of `kappa`
+/// (all else as the truth) at the synthetic speeds: `J1` of a reference, computed here
+/// independently of `bwc-identify`.
+fn j1_against_truth(kappa: f64) -> f64 {
+    use bw_models::{impact_at, input::Zero, BaseMap, BaseParams, ModelKind, Settings};
+    let at = |kappa: f64, v0: f64| {
+        let p = BaseParams {
+            b_b: 1.0,
+            gamma_b: -1.0,
+            kappa,
+            sigma_b: 0.03,
+            n: 1.5,
+            p: 1.5,
+            u_b: 1.0,
+            t_b: 1.0,
+        };
+        let map = BaseMap::new(ModelKind::Shccm, p).unwrap();
+        impact_at(&map, Zero, v0, &Settings::default()).unwrap().e
+    };
+    let speeds = [0.2, 0.5, 1.0, 2.0, 4.0];
+    speeds
+        .iter()
+        .map(|&v| (at(0.6, v) - at(kappa, v)).powi(2))
+        .sum::<f64>()
+        / speeds.len() as f64
+}
+
+/// The reference table of the synthetic fit: the truth but for `kappa`, named `label`.
+fn with_reference(config: &Path, kappa: f64, label: &str) {
+    let mut text = std::fs::read_to_string(config).unwrap();
+    text += &format!(
+        "[fit.reference]\nlabel = \"{label}\"\nB_b = 1.0\nGamma_b = -1.0\nkappa = {kappa}\n\
+         sigma_b = 0.03\nn = 1.5\np = 1.5\n"
+    );
+    std::fs::write(config, text).unwrap();
+}
+
+#[test]
+fn identify_run_reports_the_reference_beside_the_fit() {
+    let dir = scratch("identify-reference");
+    let config = synthetic_config(&dir);
+    with_reference(&config, 0.5, "kappa off by 0.1");
+    let out_dir = dir.join("out");
+    let out = identify(&[
+        "run",
+        config.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("The reference (kappa off by 0.1) has J1 ="),
+        "{text}"
+    );
+    assert!(
+        text.contains("the fit reproduces these data better"),
+        "{text}"
+    );
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out_dir.join("summary.json")).unwrap()).unwrap();
+    let r = &v["fits"][0]["reference"];
+    assert_eq!(r["label"], "kappa off by 0.1");
+    assert_eq!(r["params"]["kappa"], 0.5);
+    assert_eq!(r["standing"], "fit_lower");
+    // The reference's cost is the truth's distance from it, to the solver's accuracy.
+    let (j1, expected) = (r["J1"].as_f64().unwrap(), j1_against_truth(0.5));
+    assert!(
+        (j1 - expected).abs() < 1e-6 * expected,
+        "{j1} vs {expected}"
+    );
+    let ratio = r["cost_ratio"].as_f64().unwrap();
+    assert!(
+        (ratio - j1 / v["fits"][0]["J1"].as_f64().unwrap()).abs() < 1e-9 * ratio,
+        "{r}"
+    );
+    // kappa and sigma_b are both determined by five noise-free speeds.
+    assert_eq!(r["weak_directions"], 0);
+    assert_eq!(r["directions"], 2);
+    assert_eq!(
+        v["config"]["fit"][0]["reference"]["label"],
+        "kappa off by 0.1"
+    );
+    let svg = std::fs::read_to_string(out_dir.join("synthetic_cor.svg")).unwrap();
+    assert!(svg.contains("reference: kappa off by 0.1"));
+}
+
+#[test]
+fn a_reference_outside_the_bounds_that_fits_better_is_a_warning() {
+    let dir = scratch("identify-reference-outside");
+    let config = synthetic_config(&dir);
+    // The truth itself, with kappa's bounds excluding it.
+    let text = std::fs::read_to_string(&config)
+        .unwrap()
+        .replace("kappa = [0.1, 0.9]", "kappa = [0.1, 0.5]");
+    std::fs::write(&config, text).unwrap();
+    with_reference(&config, 0.6, "the truth");
+    let v = json(&identify(&["run", config.to_str().unwrap(), "--json"]));
+    let f = &v["fits"][0];
+    assert_eq!(f["reference"]["standing"], "reference_lower", "{f}");
+    assert_eq!(
+        f["reference"]["outside_bounds"],
+        serde_json::json!(["kappa"])
+    );
+    let warnings = f["warnings"].to_string();
+    assert!(
+        warnings.contains("outside [fit.bounds] in kappa; widen them"),
+        "{warnings}"
+    );
+}
+
 /// A bad config: exit 1, a message naming the file (and line and key where there is one),
 /// nothing written.
 fn identify_rejects(name: &str, config: &str, data: Option<&str>, needles: &[&str]) {
@@ -194,6 +304,19 @@ fn bad_identification_data_are_clear_errors() {
 fn bad_identification_configs_are_clear_errors() {
     let (head, bounds, good_data) = (HEAD, BOUNDS, GOOD_DATA);
     let good = format!("{head}{bounds}");
+    identify_rejects(
+        "label-of-a-start",
+        &format!(
+            "{good}[fit.start]\nlabel = \"x\"\nB_b = 1.0\nGamma_b = -1.0\nkappa = 0.5\n\
+             sigma_b = 0.01\nn = 1.5\np = 1.5\n"
+        ),
+        Some(good_data),
+        &[
+            "c.toml:13",
+            "[fit.start].label",
+            "only [fit.reference] and [fit.params]",
+        ],
+    );
     identify_rejects(
         "swapped-bounds",
         &good.replace("kappa = [0.1, 0.9]", "kappa = [0.9, 0.1]"),
