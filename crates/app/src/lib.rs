@@ -32,6 +32,7 @@ mod format;
 pub mod identify;
 pub mod outdir;
 pub mod output;
+pub mod plausible;
 pub mod plot;
 pub mod runs;
 pub mod scene;

@@ -72,6 +72,7 @@ impl Dataset {
             return Err(csv.error(csv.header_line, "the dataset has no data rows".into()));
         }
         warnings.extend(speeds_warning(path, &points));
+        warnings.extend(unit_slips(path, &points));
         let reconstructed = text
             .lines()
             .any(|l| l.trim_start().starts_with('#') && l.contains("RECONSTRUCTED"));
@@ -187,6 +188,45 @@ impl Columns {
 
 /// A warning where the points cannot pin down a speed dependence: one point, or all at one
 /// speed.
+/// Impact speeds above this (m/s) get a hint that mm/s may have been meant: the contact
+/// experiments these laws are fitted to run at 0.01-60 m/s.
+pub const PLAUSIBLE_SPEED: f64 = 100.0;
+
+/// Contact durations above this (s) get a hint that ms may have been meant: the contacts of
+/// balls last microseconds to some ten milliseconds.
+pub const PLAUSIBLE_DURATION: f64 = 0.5;
+
+/// Hints at unit slips in the columns: speeds in mm/s (above [`PLAUSIBLE_SPEED`]), CoRs in
+/// percent (every `e` above 1 and none above 100), durations in ms (above
+/// [`PLAUSIBLE_DURATION`]). Each names the slip and the fix; the data are used as they are.
+fn unit_slips(path: &Path, points: &[Point]) -> Vec<String> {
+    let file = path.display();
+    let most = |f: &dyn Fn(&Point) -> Option<f64>| points.iter().filter_map(f).reduce(f64::max);
+    let least = |f: &dyn Fn(&Point) -> Option<f64>| points.iter().filter_map(f).reduce(f64::min);
+    let mut hints = Vec::new();
+    if let Some(v) = most(&|p| Some(p.v0)).filter(|&v| v > PLAUSIBLE_SPEED) {
+        hints.push(format!(
+            "{file}: v_0 reaches {v}, above the {PLAUSIBLE_SPEED} m/s of any contact experiment: \
+             the column looks like a unit slip (mm/s for m/s); divide it by 1000"
+        ));
+    }
+    if let (Some(lo), Some(hi)) = (least(&|p| p.e), most(&|p| p.e)) {
+        if lo > 1.0 && hi <= 100.0 {
+            hints.push(format!(
+                "{file}: every e is in ({lo}, {hi}], above 1: the column looks like percent, a \
+                 unit slip; divide it by 100"
+            ));
+        }
+    }
+    if let Some(t) = most(&|p| p.t_d).filter(|&t| t > PLAUSIBLE_DURATION) {
+        hints.push(format!(
+            "{file}: t_d reaches {t} s, longer than the {PLAUSIBLE_DURATION} s of any ball's \
+             contact: the column looks like a unit slip (ms for s); divide it by 1000"
+        ));
+    }
+    hints
+}
+
 fn speeds_warning(path: &Path, points: &[Point]) -> Option<String> {
     if points.len() == 1 {
         Some(format!(
@@ -208,6 +248,26 @@ fn speeds_warning(path: &Path, points: &[Point]) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn columns_in_other_units_get_a_hint() {
+        let hints = |text: &str| Dataset::parse(Path::new("d.csv"), text).unwrap().warnings;
+        // Percent: every e above 1 (one warning per row too, and one hint for the column).
+        let w = hints("v_0,e\n0.5,91\n1.0,85\n");
+        assert!(w
+            .iter()
+            .any(|w| w.contains("looks like percent") && w.contains("divide it by 100")));
+        // mm/s.
+        let w = hints("v_0,e\n2150,0.6\n3030,0.55\n");
+        assert!(w.iter().any(|w| w.contains("mm/s for m/s")), "{w:?}");
+        // ms.
+        let w = hints("v_0,t_d\n1.0,4.2\n2.0,3.9\n");
+        assert!(w.iter().any(|w| w.contains("ms for s")), "{w:?}");
+        // Fractions, m/s and seconds: no hint (a CoR of 1.02 is a measurement, not percent).
+        assert!(hints("v_0,e,t_d\n0.5,1.02,0.001\n1.0,0.85,0.001\n")
+            .iter()
+            .all(|w| !w.contains("unit slip")));
+    }
 
     #[test]
     fn reads_comments_repeats_and_optional_columns() {

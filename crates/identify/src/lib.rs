@@ -56,7 +56,7 @@ mod space;
 mod uncertainty;
 
 pub use coverage::{coverage, replicate, study, CoverageTask, Replicate};
-pub use data::{Dataset, Point};
+pub use data::{Dataset, Point, PLAUSIBLE_DURATION, PLAUSIBLE_SPEED};
 pub use drops::{DropData, DropKind, DropObjective, DropRow, DropSetup};
 pub use error::IdentifyError;
 pub use fit::{at_bound, fit, minimize, Budget, Convergence, FitResult, Minimum, POLISH_ROUNDS};

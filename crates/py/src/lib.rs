@@ -19,12 +19,15 @@
 //! ```
 #![deny(missing_docs)]
 
+mod dict_errors;
+
 use bw_models::Check;
 use bwc_app::config::Config;
+use bwc_app::runs::Outcome;
 use bwc_app::scene::Scene;
 use bwc_app::simulate;
-use bwc_app::runs::Outcome;
 use bwc_app::AppError;
+use dict_errors::Root;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyUserWarning, PyValueError};
@@ -52,7 +55,8 @@ create_exception!(
 /// a sweep that found no interpolant, and, one warning a kind for all runs (a sweep may have
 /// thousands), runs that met the horizon and CoRs whose check against `e_tol` was not met.
 fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[bwc_app::runs::Run]) -> PyResult<()> {
-    let mut notes = simulate::no_interpolant_notes(scene, runs);
+    let mut notes = scene.hints.clone();
+    notes.extend(simulate::no_interpolant_notes(scene, runs));
     let n = runs.len();
     let (k, labels) = labels_of(runs, |r| r.outcome == Outcome::Horizon);
     if k > 0 {
@@ -75,6 +79,10 @@ fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[bwc_app::runs::Run]) -> PyR
     }
     let category = py.get_type::<BwcWarning>();
     for note in notes {
+        // A dict's scene has no file to name.
+        let note = note
+            .strip_prefix("<scene>: ")
+            .map_or(note.clone(), str::to_string);
         let text = std::ffi::CString::new(note).map_err(|e| BwcError::new_err(e.to_string()))?;
         PyErr::warn(py, &category, &text, 2)?;
     }
@@ -82,7 +90,10 @@ fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[bwc_app::runs::Run]) -> PyR
 }
 
 /// How many runs `keep` picks, and the labels of the first three.
-fn labels_of(runs: &[bwc_app::runs::Run], keep: impl Fn(&bwc_app::runs::Run) -> bool) -> (usize, String) {
+fn labels_of(
+    runs: &[bwc_app::runs::Run],
+    keep: impl Fn(&bwc_app::runs::Run) -> bool,
+) -> (usize, String) {
     let picked: Vec<String> = runs.iter().filter(|r| keep(r)).map(|r| r.label()).collect();
     let more = if picked.len() > 3 { "; ..." } else { "" };
     (
@@ -111,12 +122,15 @@ fn toml_text(json: &str, what: &str) -> PyResult<String> {
     toml::to_string(&value).map_err(|e| BwcError::new_err(format!("{what}: {e}")))
 }
 
-/// A scene from a path or from the JSON text of a dict shaped like a scene file.
-fn scene_of(path: Option<PathBuf>, json: Option<&str>) -> PyResult<Scene> {
+/// A scene from a path or from the JSON text of a dict shaped like a scene file (`root`
+/// says how the dict's keys are named in errors).
+fn scene_of(path: Option<PathBuf>, json: Option<&str>, root: Root) -> PyResult<Scene> {
     match (path, json) {
         (Some(p), _) => Scene::load(&p).map_err(error),
         (None, Some(j)) => {
-            Scene::parse(Path::new("<scene>"), &toml_text(j, "<scene>")?).map_err(error)
+            let text = toml_text(j, "scene")?;
+            Scene::parse(Path::new("<scene>"), &text)
+                .map_err(|e| BwcError::new_err(dict_errors::explain(&e, &text, root)))
         }
         (None, None) => Err(BwcError::new_err("a scene needs a path or a dict")),
     }
@@ -162,13 +176,13 @@ fn cor<'py>(
     scene_json: &str,
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let scene = scene_of(None, Some(scene_json))?;
+    let scene = scene_of(None, Some(scene_json), Root::Cor)?;
     let runs = py
         .allow_threads(|| bwc_app::with_threads(threads, || Ok(simulate::run(&scene, None))))
         .map_err(error)?;
     if let Some(failed) = runs.iter().find(|r| r.outcome == Outcome::Failed) {
         return Err(BwcError::new_err(format!(
-            "<scene>: run {}: {}",
+            "run {}: {}",
             failed.label(),
             failed.error.as_deref().unwrap_or("failed")
         )));
@@ -248,7 +262,7 @@ fn simulate_json<'py>(
     scene_json: Option<&str>,
     threads: Option<usize>,
 ) -> PyResult<(String, Vec<Option<Bound<'py, PyDict>>>)> {
-    let scene = scene_of(path, scene_json)?;
+    let scene = scene_of(path, scene_json, Root::Dict("scene"))?;
     let runs = py
         .allow_threads(|| bwc_app::with_threads(threads, || Ok(simulate::run(&scene, None))))
         .map_err(error)?;
@@ -266,8 +280,9 @@ fn simulate_json<'py>(
 /// A run's samples as a dict of numpy arrays.
 fn trajectory<'py>(py: Python<'py>, r: &bwc_app::runs::Run) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
-    let column =
-        |f: &dyn Fn(&bwc_app::runs::Sample) -> f64| r.trajectory.iter().map(f).collect::<Vec<f64>>();
+    let column = |f: &dyn Fn(&bwc_app::runs::Sample) -> f64| {
+        r.trajectory.iter().map(f).collect::<Vec<f64>>()
+    };
     out.set_item("t", column(&|s| s.t).into_pyarray(py))?;
     out.set_item("x", column(&|s| s.x).into_pyarray(py))?;
     out.set_item("v", column(&|s| s.v).into_pyarray(py))?;
@@ -341,7 +356,10 @@ fn config_of(path: Option<PathBuf>, json: Option<&str>) -> PyResult<(PathBuf, Co
         (Some(p), _) => Ok((p.clone(), Config::load(&p).map_err(error)?)),
         (None, Some(j)) => {
             let file = PathBuf::from("<config>");
-            let config = Config::parse(&file, &toml_text(j, "<config>")?).map_err(error)?;
+            let text = toml_text(j, "config")?;
+            let config = Config::parse(&file, &text).map_err(|e| {
+                BwcError::new_err(dict_errors::explain(&e, &text, Root::Dict("config")))
+            })?;
             Ok((file, config))
         }
         (None, None) => Err(BwcError::new_err("a config needs a path or a dict")),
@@ -351,6 +369,7 @@ fn config_of(path: Option<PathBuf>, json: Option<&str>) -> PyResult<(PathBuf, Co
 /// The native module `bwc._native`.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("BwcError", m.py().get_type::<BwcError>())?;
     m.add("BwcWarning", m.py().get_type::<BwcWarning>())?;
     m.add_function(wrap_pyfunction!(cor, m)?)?;

@@ -61,12 +61,17 @@ def ndbwshccm_e(B, Gamma, kappa, sigma, n, p):
     return sol.y_events[0][0][2]
 
 
-def test_the_package_docstring_example_runs():
-    """The example in the package's docstring (and in the native crate's docs) is what it says."""
+def test_the_docstring_examples_run(monkeypatch):
+    """The Examples of every docstring (numpydoc) are what they say, from the repository's root."""
     import doctest
 
+    monkeypatch.chdir(ROOT)
     result = doctest.testmod(bwc, verbose=False)
-    assert result.attempted >= 2 and result.failed == 0, result
+    assert result.attempted >= 15 and result.failed == 0, result
+    for name in ("cor", "simulate", "identify", "coverage"):
+        doc = getattr(bwc, name).__doc__
+        for section in ("Parameters\n", "Returns\n", "Raises\n", "Examples\n"):
+            assert section in doc, (name, section)
 
 
 @pytest.mark.filterwarnings("error::bwc.BwcWarning")  # checked separations: nothing to warn of
@@ -130,7 +135,8 @@ def test_a_stiff_unmet_cor_says_why_double_double_was_not_tried():
             "p": 5.367702693104487}
     with pytest.warns(bwc.BwcWarning, match=r"1 of 2 CoRs did not meet .*: v0 = 506\.9132 m/s\)") as caught:
         out = bwc.cor("mcm", base, [506.91324093318553, 1.0])
-    assert len(caught) == 1
+    # One warning of the unmet check (and the hint that 507 m/s may be mm/s).
+    assert len([w for w in caught if "did not meet" in str(w.message)]) == 1
     assert list(out["check"]) == ["unmet", "met"]
     assert list(out["double_double_declined"]) == ["stiff", "none"]
     assert abs(out["e"][0] - 0.127578645362) < out["e_error"][0]
@@ -260,7 +266,7 @@ def test_identify_equals_the_identify_tool():
 
 
 def test_bad_input_raises_bwc_error_with_the_tools_message():
-    with pytest.raises(bwc.BwcError, match=r"`\[nondimensional\]\.kappa`: 1\.5 is not admissible"):
+    with pytest.raises(bwc.BwcError, match=r'^params\["kappa"\]: 1\.5 is not admissible: 0 < kappa < 1'):
         bwc.cor("shccm", {"B": 0, "Gamma": 0, "kappa": 1.5, "sigma": 0.5, "n": 1, "p": 1.5})
     with pytest.raises(ValueError, match="cannot tell the description"):
         bwc.cor("shccm", {"x": 1})
@@ -270,3 +276,96 @@ def test_bad_input_raises_bwc_error_with_the_tools_message():
         bwc.cor("shccm", CROSS, [2.0], solver={"max_steps": 20, "switch_when_stiff": False})
     with pytest.raises(bwc.BwcError, match="not a model"):
         bwc.simulate({"model": "nope", "nondimensional": {"B": 0}})
+
+
+PAPER_DSS = {"B_b": 2.38, "Gamma_b": -2.38, "kappa": 0.677, "sigma_b": 0.0348, "n": 2.93, "p": 2.62}
+
+
+def test_results_are_objects_with_attributes_and_dicts_still():
+    out = bwc.cor("shccm", PAPER_DSS, [1.0, 3.0])
+    assert isinstance(out, bwc.Cor) and isinstance(out, dict)
+    assert out.e is out["e"] and out.check.tolist() == ["met", "met"]
+    assert repr(out).startswith("Cor(2 speeds: e=[0.8461, 0.7655]")
+    with pytest.raises(AttributeError, match="Cor has no 'E'; its keys: e, t_s"):
+        out.E
+    run = bwc.simulate(FIXTURES / "two_balls_shccm.toml").runs[0]
+    assert isinstance(run, bwc.Run) and run.e == run["e"] and repr(run).startswith("Run(v0=2, e=")
+    # Still JSON: a result without trajectories dumps as the tool's object.
+    json.dumps(bwc.simulate({"model": "shccm", "v0": [1.0], "base": PAPER_DSS}))
+
+
+def test_a_scalar_speed_gives_scalars():
+    one = bwc.cor("shccm", PAPER_DSS, 3.0)
+    many = bwc.cor("shccm", PAPER_DSS, [3.0])
+    for key, value in one.items():
+        assert np.ndim(value) == 0 and not isinstance(value, np.ndarray), key
+        assert value == many[key][0] or (value != value and many[key][0] != many[key][0]), key
+    assert isinstance(one.e, float) and isinstance(one.check, str) and isinstance(one.separated, bool)
+
+
+def test_a_fits_parameters_go_straight_back_into_cor_and_simulate():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", bwc.BwcWarning)
+        fit = bwc.identify(FIXTURES / "kharaz.toml").fits[0]
+    assert isinstance(fit, bwc.Fit) and isinstance(fit.params, bwc.Params)
+    assert fit.params.U_b is None and fit.params.T_b is None
+    e = bwc.cor(fit.model, fit.params, [0.5, 3.0]).e
+    runs = bwc.simulate({"model": fit.model, "v0": [0.5, 3.0], "base": fit.params}).runs
+    assert [r.e for r in runs] == e.tolist()
+    assert repr(fit.params).startswith("Params(B_b=1.178, Gamma_b=-1.166, kappa=0.5819")
+    assert "U_b" not in repr(fit.params)
+
+
+def test_the_version_is_the_packages():
+    text = (ROOT / "crates" / "py" / "Cargo.toml").read_text()
+    version = next(l.split('"')[1] for l in text.splitlines() if l.startswith("version"))
+    assert bwc.__version__ == version
+
+
+def test_errors_from_dicts_name_the_dict_key():
+    with pytest.raises(bwc.BwcError, match=r'^solver\["rtol"\]: '):
+        bwc.cor("shccm", PAPER_DSS, [1.0], solver={"rtol": -1.0})
+    with pytest.raises(bwc.BwcError, match=r'^v0: -1 is not admissible'):
+        bwc.cor("shccm", PAPER_DSS, [-1.0])
+    with pytest.raises(bwc.BwcError, match=r'^params\["kappa"\]: .*number'):
+        bwc.cor("shccm", dict(PAPER_DSS, kappa="x"), [1.0])
+    with pytest.raises(bwc.BwcError, match=r'^scene\["base"\]\["kappa"\]: 1\.5 is not admissible'):
+        bwc.simulate({"model": "shccm", "v0": [1.0], "base": dict(PAPER_DSS, kappa=1.5)})
+    bounds = {"B_b": [0, 2], "g": [-1, 1], "kappa": [0.1, 0.9], "sigma_b": [0, 0.1], "n": [1, 6], "p": [1, 2]}
+    data = str(FIXTURES / "data" / "kharaz_dss.csv")
+    config = {"fit": [
+        {"name": "a", "model": "shccm", "data": data, "bounds": bounds},
+        {"name": "b", "model": "shcm", "data": data, "bounds": dict(bounds, n=[6, 1])},
+    ]}
+    with pytest.raises(bwc.BwcError) as caught:
+        bwc.identify(config)
+    lines = str(caught.value).splitlines()
+    assert lines == [
+        'config["fit"][1]["model"]: "shcm" is not a model: use "shccm" or "mcm"',
+        'config["fit"][1]["bounds"]["n"]: [6, 1] is not admissible: lower bound <= upper bound',
+    ], lines
+
+
+def test_every_fit_warning_reaches_python_once_per_kind():
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = bwc.identify(FIXTURES / "golf_drops.toml")
+    messages = [str(w.message) for w in caught if issubclass(w.category, bwc.BwcWarning)]
+    for fit in result.fits:
+        # Every warning of the fit is in one BwcWarning of its kind.
+        for text in fit.warnings:
+            assert sum(text in m for m in messages) == 1, text
+        mine = [m for m in messages if m.startswith('"%s"' % fit.name)]
+        assert len(mine) == len({m.split(":")[1] for m in mine}) or len(mine) <= 3
+        assert any("on its" in m and "bound" in m for m in mine), mine
+        # A drop-test fit says why it has no intervals.
+        assert any("no intervals" in m for m in mine), mine
+        assert fit.intervals.method is None and "drop-test fit" in fit.intervals.error
+
+
+def test_unit_slips_warn_from_python():
+    law = dict(CROSS)
+    with pytest.warns(bwc.BwcWarning, match=r"if mm/s were meant, divide by 1000 \(3\.03 m/s\)"):
+        bwc.cor("shccm", law, [2150.0, 3030.0])
+    with pytest.warns(bwc.BwcWarning, match=r"if grams were meant"):
+        bwc.cor("shccm", dict(law, m=145.0), [2.0])

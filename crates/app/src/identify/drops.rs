@@ -8,6 +8,12 @@ use bwc_identify::{at_bound, minimize, Costs, DropObjective};
 use std::path::Path;
 use std::time::Instant;
 
+/// Why a drop-test fit reports no intervals, identifiability or prediction band.
+const NO_INTERVALS: &str = "the sensitivity analysis behind intervals, identifiability and the \
+     prediction band is made for CoR and duration data; a drop-test fit reports its cost, its \
+     search's agreement and the parameters on bounds. To see what the drops determine, fit the \
+     CoRs they imply (e = sqrt(h1 / h0), or from successive intervals) as CoR data";
+
 /// The outcome at a point of the unit cube, at the default solver settings.
 fn outcome(f: &FitConfig, d: &DropFit, s: &[f64], config: &Path) -> Result<DropOutcome, AppError> {
     let err = fail(config, &f.name);
@@ -68,6 +74,9 @@ pub fn run_drop_fit(
         outcome(f, d, &m.point, config)?,
     );
     r.warnings = search_warnings(f, &m.convergence, &bound, &m.point);
+    r.warnings
+        .push(format!("\"{}\": no intervals: {NO_INTERVALS}", f.name));
+    r.uncertainty = Some(Err(NO_INTERVALS.into()));
     r.evaluations = m.evaluations;
     r.convergence = Some(m.convergence);
     r.at_bound = bound;

@@ -444,6 +444,7 @@ pub fn loop_summary(reports: &[LoopReport]) -> Vec<Value> {
                 "cost": r.cost, "J1": null, "J2": null, "evaluations": r.evaluations, "wall_s": r.wall_s,
                 "convergence": r.convergence.as_ref().map(|c| json!({"starts": c.starts, "agreeing": c.agreeing, "evaluations": c.evaluations, "costs": c.costs})),
                 "at_bound": r.at_bound,
+                "warnings": r.warnings(),
             })
         })
         .collect()

@@ -171,6 +171,27 @@ pub struct LoopReport {
     pub at_bound: Vec<&'static str>,
 }
 
+impl LoopReport {
+    /// Its warnings: a search whose starts did not agree, quantities on a bound.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut w = Vec::new();
+        if let Some(c) = self.convergence.as_ref().filter(|c| c.agreeing < 2) {
+            w.push(format!(
+                "\"{}\": only {} of {} starts reached the best cost within the tolerance: the \
+                 optimum may not be global; raise [loop_fit.optimizer].max_starts",
+                self.name, c.agreeing, c.starts
+            ));
+        }
+        for name in &self.at_bound {
+            w.push(format!(
+                "\"{}\": {name} is on a bound of [loop_fit.bounds]",
+                self.name
+            ));
+        }
+        w
+    }
+}
+
 /// The drop-test part of a report: the cost and every row with the model's value.
 #[derive(Debug, Clone)]
 pub struct DropOutcome {

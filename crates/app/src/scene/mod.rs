@@ -51,6 +51,9 @@ pub struct Scene {
     pub output: OutputSpec,
     /// `[sequence]`: repeated impacts under gravity instead of one impact per speed.
     pub sequence: Option<SequenceSpec>,
+    /// Values whose magnitude suggests a unit slip, each naming the slip and the fix
+    /// ([`crate::plausible`]).
+    pub hints: Vec<String>,
     /// `[sweep]`: whether many speeds may be served by interpolants.
     pub sweep: SweepSpec,
 }
@@ -183,7 +186,7 @@ impl Scene {
             vec![physical_system(&ctx, &raw, phys, need_model()?)?]
         };
         let settings = solver_settings(&ctx, &raw.solver, "[solver]", Settings::default())?;
-        Ok(Scene {
+        let mut scene = Scene {
             path: path.to_owned(),
             systems,
             speeds,
@@ -191,7 +194,10 @@ impl Scene {
             settings,
             output: output(&ctx, &raw)?,
             sequence,
-        })
+            hints: Vec::new(),
+        };
+        scene.hints = crate::plausible::scene_hints(&scene);
+        Ok(scene)
     }
 }
 

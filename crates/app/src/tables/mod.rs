@@ -174,12 +174,21 @@ pub(crate) fn every_error<T>(
         let last = errors.last().expect("one error");
         let Some(line) = error_line(last) else { break };
         // A stand-in gets past the mistake if parsing then stops elsewhere, on another key.
-        let key = format!("`{}`", line_key(&text, line).unwrap_or_default());
-        let Some(next) = STAND_INS.iter().find_map(|v| {
-            let patched = with_value(&text, line, *v)?;
+        // The values the message names as admissible ("shccm" or "mcm") come first: a line
+        // commented out would report its key as missing, which is not a mistake of the file.
+        let name = line_key(&text, line).unwrap_or_default();
+        let key = format!("`{name}`");
+        let named = quoted(&last.to_string());
+        let stand_ins = named.iter().map(|q| Some(q.as_str())).chain(STAND_INS);
+        let Some(next) = stand_ins.into_iter().find_map(|v| {
+            let patched = with_value(&text, line, v)?;
             match parse(&patched) {
                 Ok(_) => Some((patched, None)),
-                Err(e) if error_line(&e) != Some(line) && !e.to_string().contains(&key) => {
+                Err(e)
+                    if error_line(&e) != Some(line)
+                        && !e.to_string().contains(&key)
+                        && !missing(&e, &name) =>
+                {
                     Some((patched, Some(e)))
                 }
                 Err(_) => None,
@@ -198,6 +207,28 @@ pub(crate) fn every_error<T>(
     }
     errors.sort_by_key(|e| error_line(e).unwrap_or(usize::MAX));
     Err(AppError::Many(errors))
+}
+
+/// The quoted strings of a message (`use "shccm" or "mcm"`), each with its quotes: the values
+/// it names as admissible.
+fn quoted(message: &str) -> Vec<String> {
+    message
+        .split('"')
+        .skip(1)
+        .step_by(2)
+        .filter(|q| !q.is_empty() && !q.contains('\\'))
+        .map(|q| format!("\"{q}\""))
+        .collect()
+}
+
+/// Whether `e` reports the key `name` (of any table) as missing.
+fn missing(e: &AppError, name: &str) -> bool {
+    match e {
+        AppError::Invalid { key, message, .. } => {
+            message.starts_with("missing") && (key == name || key.ends_with(&format!(".{name}")))
+        }
+        _ => false,
+    }
 }
 
 /// The line of a file error that a stand-in value could get past (`key = value` errors of the

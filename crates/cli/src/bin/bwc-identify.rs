@@ -186,20 +186,8 @@ fn warn(reports: &[FitReport], loop_reports: &[LoopReport]) {
     for w in reports.iter().flat_map(|r| &r.warnings) {
         eprintln!("bwc-identify: warning: {w}");
     }
-    for r in loop_reports {
-        if let Some(c) = r.convergence.as_ref().filter(|c| c.agreeing < 2) {
-            eprintln!(
-                "bwc-identify: warning: \"{}\": only {} of {} starts reached the best cost within \
-                 the tolerance: the optimum may not be global; raise [loop_fit.optimizer].max_starts",
-                r.name, c.agreeing, c.starts
-            );
-        }
-        for name in &r.at_bound {
-            eprintln!(
-                "bwc-identify: warning: \"{}\": {name} is on a bound of [loop_fit.bounds]",
-                r.name
-            );
-        }
+    for w in loop_reports.iter().flat_map(LoopReport::warnings) {
+        eprintln!("bwc-identify: warning: {w}");
     }
 }
 

@@ -63,6 +63,9 @@ fn run(
     threads: Option<usize>,
 ) -> Result<u8, AppError> {
     let scene = Scene::load(path)?;
+    for hint in &scene.hints {
+        eprintln!("bwc-simulate: warning: {hint}");
+    }
     if let Some(dir) = out {
         outdir::prepare(dir)?;
     }

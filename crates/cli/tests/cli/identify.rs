@@ -317,6 +317,25 @@ fn bad_identification_configs_are_clear_errors() {
             "only [fit.reference] and [fit.params]",
         ],
     );
+    // An unknown model name hides neither the other mistakes nor is it reported as missing.
+    let typo = good
+        .replace("model = \"shccm\"", "model = \"shcm\"")
+        .replace("n = [1.0, 2.0]", "n = [6.0, 1.0]");
+    identify_rejects(
+        "typo-and-swapped-bounds",
+        &typo,
+        Some(good_data),
+        &[
+            "2 mistakes",
+            "c.toml:3: `[[fit]].model`: \"shcm\" is not a model",
+            "c.toml:10: `[fit.bounds].n`",
+        ],
+    );
+    let dir = scratch("typo-alone");
+    std::fs::write(dir.join("d.csv"), good_data).unwrap();
+    std::fs::write(dir.join("c.toml"), &typo).unwrap();
+    let out = identify(&["run", dir.join("c.toml").to_str().unwrap()]);
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("missing required key"));
     identify_rejects(
         "swapped-bounds",
         &good.replace("kappa = [0.1, 0.9]", "kappa = [0.9, 0.1]"),

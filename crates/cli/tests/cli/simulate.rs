@@ -697,3 +697,50 @@ fn the_phase_path_where_solver_asks_for_it() {
     let forced = run_of(&format!("{hc}U = 0.1\n[solver]\nphase = true\n"));
     assert_eq!(forced["phase"], false, "{forced}");
 }
+
+/// Values the models admit but whose magnitude suggests another unit: the run runs, and a
+/// warning names the likely slip and the fix.
+#[test]
+fn unit_slips_get_a_hint_and_the_run_still_runs() {
+    let dir = scratch("unit-slips");
+    let law = "n = 1.5\np = 1.5\nalpha = 0.5\nbeta = 1.0e3\ngamma = -1.0e3\nA = 1.0\nc = 100.0\n";
+    let scene = dir.join("slips.toml");
+    let cases = [
+        // mm/s meant, grams meant
+        (
+            "v0 = [2150, 3030]",
+            "m = 145\nk = 1.0e9",
+            &[
+                "divide by 1000 (3.03 m/s)",
+                "if grams were meant, divide by 1000 (0.145 kg)",
+            ][..],
+        ),
+        // N/mm^p or kN/m^p meant
+        (
+            "v0 = [2.0]",
+            "m = 0.145\nk = 50.0",
+            &["`[physical].k` = 50 N/m^1.5 is softer"][..],
+        ),
+    ];
+    for (v0, mk, needles) in cases {
+        std::fs::write(
+            &scene,
+            format!("model = \"shccm\"\n{v0}\n[physical]\n{mk}\n{law}"),
+        )
+        .unwrap();
+        let out = simulate(&["run", scene.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{err}");
+        for n in needles {
+            assert!(err.contains(n), "{n:?} not in {err}");
+        }
+    }
+    // Plausible values: no hint.
+    std::fs::write(
+        &scene,
+        format!("model = \"shccm\"\nv0 = [2.0]\n[physical]\nm = 0.145\nk = 1.0e9\n{law}"),
+    )
+    .unwrap();
+    let out = simulate(&["run", scene.to_str().unwrap()]);
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("warning"));
+}

@@ -1,13 +1,18 @@
 """bwc: Bouc-Wen collision models (BWSHCCM, BWMCM) from Python.
 
 CoR sweeps as numpy arrays, scenes and identification configs run exactly as the command-line
-tools ``bwc-simulate`` and ``bwc-identify`` run them: the same parsing, the same error messages,
-the same JSON. The work happens in Rust, in parallel, with the GIL released.
+tools ``bwc-simulate`` and ``bwc-identify`` run them: the same parsing, the same warnings, the
+same JSON. The work happens in Rust, in parallel, with the GIL released.
 
-    >>> import bwc
-    >>> out = bwc.cor("shccm", {"B": 0, "Gamma": 0, "kappa": 0.5, "sigma": 0.5, "n": 1, "p": 1.5})
-    >>> round(float(out["e"][0]), 12)   # Hunt-Crossley closed form: 0.748434931597
-    0.748434931597
+Results are dicts of the tools' JSON whose keys are also attributes, and a fit's parameters go
+straight back into :func:`cor` and :func:`simulate`.
+
+Examples
+--------
+>>> import bwc
+>>> out = bwc.cor("shccm", {"B": 0, "Gamma": 0, "kappa": 0.5, "sigma": 0.5, "n": 1, "p": 1.5})
+>>> round(float(out.e[0]), 12)   # Hunt-Crossley closed form: 0.748434931597
+0.748434931597
 """
 
 import json
@@ -15,10 +20,29 @@ import os
 
 import numpy as np
 
-from ._native import BwcError, BwcWarning, cor as _cor, coverage_json as _coverage, identify_json as _identify
-from ._native import simulate_json as _simulate
+import warnings
 
-__all__ = ["BwcError", "BwcWarning", "cor", "simulate", "identify", "coverage"]
+from ._native import BwcError, BwcWarning, __version__, cor as _cor, coverage_json as _coverage
+from ._native import identify_json as _identify, simulate_json as _simulate
+from ._results import Cor, Coverage, Fit, Identification, Params, Result, Run, Simulation, wrap
+
+__all__ = [
+    "BwcError",
+    "BwcWarning",
+    "Cor",
+    "Coverage",
+    "Fit",
+    "Identification",
+    "Params",
+    "Result",
+    "Run",
+    "Simulation",
+    "__version__",
+    "cor",
+    "coverage",
+    "identify",
+    "simulate",
+]
 
 # The outcome of each run, indexed by the codes the native sweep returns (a numpy string array
 # without a Python object per speed).
@@ -52,9 +76,10 @@ def _table(params):
 
 
 def _plain(value):
-    """numpy scalars and arrays as plain Python numbers and lists (JSON-ready)."""
+    """numpy scalars and arrays as plain Python numbers and lists (JSON-ready); ``None`` values
+    of a dict left out (a TOML file has no null: an unused ``U_b`` is a key not given)."""
     if isinstance(value, dict):
-        return {k: _plain(v) for k, v in value.items()}
+        return {k: _plain(v) for k, v in value.items() if v is not None}
     if isinstance(value, (list, tuple)):
         return [_plain(v) for v in value]
     if isinstance(value, np.ndarray):
@@ -67,58 +92,84 @@ def _plain(value):
 def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=None):
     """Coefficient of restitution, separation time and duration at each impact speed.
 
-    ``model`` is ``"shccm"`` or ``"mcm"``; ``params`` a dict whose keys say the description
-    (nondimensional ``B, Gamma, kappa, sigma, n, p`` and optional ``U``; base ``B_b, Gamma_b,
-    kappa, sigma_b, n, p`` with ``U_b, T_b``; physical ``m, k, c, n, p, alpha, beta, gamma, A``
-    in SI units); ``v0`` a speed or an array of speeds in m/s (``None`` for a nondimensional
-    description, which starts at ``V = -1``); ``input``, ``solver`` and ``sweep`` dicts as the
-    scene's ``[input]``, ``[solver]`` and ``[sweep]`` tables.
+    Parameters
+    ----------
+    model : {"shccm", "mcm"}
+        The BWSHCCM (states ``x, z, v``) or the BWMCM (``r, y, z, v``).
+    params : dict
+        The parameters; their keys say the description: nondimensional ``B, Gamma, kappa,
+        sigma, n, p`` (and ``U``), base ``B_b, Gamma_b, kappa, sigma_b, n, p`` (and ``U_b,
+        T_b``; ``None`` for an unused one, as a fit reports them), or physical ``m, k, c, n,
+        p, alpha, beta, gamma, A`` in SI units. A fit's ``params`` pass as they are.
+    v0 : float or array_like, optional
+        Impact speed(s) in m/s. A scalar gives scalars; ``None`` (a nondimensional
+        description, which starts at ``V = -1``) gives arrays of one.
+    input, solver, sweep : dict, optional
+        As a scene's ``[input]``, ``[solver]`` and ``[sweep]`` tables (see the user guide's
+        scene reference): the external force, the accuracy (``e_tol`` = 1e-10 by default)
+        and the interpolation of long sweeps.
+    threads : int, optional
+        Worker threads (default: all cores). Results do not depend on it.
 
-    Returns a dict of numpy arrays, one entry per speed: ``e`` (0 without separation),
-    ``t_s`` (separation time: s, or nondimensional for nondimensional descriptions and base
-    ones without ``T_b``; NaN without separation), ``t_d`` (contact duration in s, NaN where
-    there is no time scale), ``separated`` (bool), ``e_error`` (the estimate of the error in
-    ``e``: by default each CoR is checked against a run at 100 times its tolerance, to
-    ``solver["e_tol"]`` = 1e-10; NaN for interpolated speeds and with ``e_tol = 0``),
-    ``check`` (what that check found: ``"met"``, ``"unmet"`` (the estimate stayed above
-    ``e_tol`` at the tightest tolerance), ``"unverified"`` (no run at another tolerance
-    finished), ``"off"`` (one run, ``e_tol = 0``) or ``"none"`` (an interpolated speed)),
-    ``tighter_failed_rtol`` (the tolerance of a tighter run of that check that failed, so that
-    the check stopped at the run before it; NaN where none did), ``tighter_out_of_steps``
-    (bool: that run needed more than ``solver["max_steps"]`` steps, and a larger value lets it
-    finish), ``double_double`` (bool: where double precision could not meet ``e_tol``, the CoR
-    was computed again in double-double arithmetic and that run is reported; on by default,
-    ``solver["double_double"] = False`` turns it off), ``double_double_declined`` (where the
-    check stayed ``"unmet"``, why that retry reported nothing: ``"stiff"`` (not tried: a run
-    switched to RODAS4, and the double-double path is explicit), ``"no-path"``, ``"failed"``,
-    ``"steps-grew"`` (a tighter run needed far more steps than the one before it) or
-    ``"disagreed"``; ``"none"`` otherwise), ``phase`` (bool: the CoR came from the phase
-    path, quadratures without time steps, which ``solver["phase"] = True`` asks for where the
-    input is zero; its ``rhs_evals`` are 0), ``rhs_evals`` (int, of every run behind a
-    CoR), ``interpolated`` (bool), ``sweep_gave_up`` (for a speed the sweep tried to
-    interpolate and simulated instead, why: ``"noise"`` (values noisier than
-    ``sweep["tolerance"]``), ``"too-few-speeds"`` (a kink or steep stretch: more speeds help),
-    ``"not-smooth"`` (runs without a separation split the range) or ``"budget"``; ``"none"``
-    otherwise), ``outcome``
-    (strings ``"separated"``, ``"settled"``, ``"horizon"``).
+    Returns
+    -------
+    Cor
+        A dict whose keys are also attributes, one value per speed:
 
-    Many speeds (from about 140 up, under a constant input) are served by Chebyshev
-    interpolants in ``ln v0`` where those are verified against simulations to
-    ``sweep["tolerance"]`` (default a tenth of ``solver["e_tol"]``, 1e-11: absolute in ``e``,
-    relative in ``t_s``); ``interpolated`` marks those
-    speeds, whose ``rhs_evals`` are 0. ``sweep={"interpolate": False}`` simulates every speed.
+        - ``e``: the CoR (0 without separation);
+        - ``t_s``: separation time (s; nondimensional for nondimensional descriptions and base
+          ones without ``T_b``; NaN without separation); ``t_d``: contact duration (s, NaN
+          without a time scale); ``separated`` (bool); ``outcome``: ``"separated"``,
+          ``"settled"`` or ``"horizon"``;
+        - ``e_error``: the estimate of the error in ``e`` (each CoR is checked against a run at
+          100 times its tolerance; NaN for interpolated speeds and with ``e_tol = 0``);
+          ``check``: ``"met"``, ``"unmet"``, ``"unverified"``, ``"off"`` or ``"none"`` (an
+          interpolated speed);
+        - ``tighter_failed_rtol``, ``tighter_out_of_steps``: a tighter run of the check that
+          failed (NaN / False where none did; out of steps: raise ``solver["max_steps"]``);
+        - ``double_double`` (bool: the reported run is the double-double retry of an unmet
+          check), ``double_double_declined``: why that retry reported nothing (``"stiff"``,
+          ``"no-path"``, ``"failed"``, ``"steps-grew"``, ``"disagreed"`` or ``"none"``);
+        - ``phase`` (bool: the phase path served it, ``solver["phase"] = True``);
+          ``rhs_evals``; ``interpolated`` (bool: from a verified Chebyshev interpolant of a
+          long sweep, ``sweep["interpolate"]``); ``sweep_gave_up``: why a speed the sweep
+          tried to interpolate was simulated (``"noise"``, ``"too-few-speeds"``,
+          ``"not-smooth"``, ``"budget"`` or ``"none"``).
 
-    A ``BwcWarning`` (a ``UserWarning``, one per kind for all speeds) says what ``bwc-simulate``
-    warns of on stderr, with the setting that helps: runs that met ``solver["t_max"]`` before
-    separating (``e`` is then 0), CoRs that did not meet ``solver["e_tol"]``, and a sweep for
-    which no interpolant held (every speed simulated, on top of the trials: values too noisy for
-    ``sweep["tolerance"]``, or a kink in ``e(v0)`` that wants more speeds).
+    Raises
+    ------
+    BwcError
+        A ``ValueError`` for a bad description (naming the dict key, e.g.
+        ``params["kappa"]``, and what is admissible) or a failed run.
 
-    Raises ``BwcError`` (a ``ValueError``) for a bad description or a failed run, with the
-    message the command-line tools give.
+    Warns
+    -----
+    BwcWarning
+        One per kind for all speeds, as ``bwc-simulate`` warns on stderr, with the setting
+        that helps: runs that met ``solver["t_max"]`` before separating, CoRs that did not meet
+        ``solver["e_tol"]``, a sweep for which no interpolant held, and speeds whose magnitude
+        suggests a unit slip.
+
+    Examples
+    --------
+    The Hunt-Crossley limit of the NDBWSHCCM (``B = Gamma = 0``, ``n = 1``) at one impact:
+
+    >>> import bwc
+    >>> out = bwc.cor("shccm", {"B": 0, "Gamma": 0, "kappa": 0.5, "sigma": 0.5, "n": 1, "p": 1.5})
+    >>> round(float(out.e[0]), 12), str(out.check[0])
+    (0.748434931597, 'met')
+
+    Base parameters at a scalar speed give scalars:
+
+    >>> base = {"B_b": 2.38, "Gamma_b": -2.38, "kappa": 0.677, "sigma_b": 0.0348, "n": 2.93,
+    ...         "p": 2.62, "U_b": None, "T_b": None}
+    >>> out = bwc.cor("shccm", base, 3.0)
+    >>> round(out.e, 4), out.outcome
+    (0.7655, 'separated')
     """
     table = _table(params)
     scene = {"model": model, table: _plain(dict(params))}
+    scalar = v0 is not None and np.ndim(v0) == 0
     if v0 is not None:
         speeds = np.atleast_1d(np.asarray(v0, dtype=float))
         scene["v0"] = speeds.tolist()
@@ -133,7 +184,9 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     out["check"] = _CHECKS[out["check"]]
     out["double_double_declined"] = _DECLINED[out["double_double_declined"]]
     out["sweep_gave_up"] = _GAVE_UP[out["sweep_gave_up"]]
-    return out
+    if scalar:
+        out = {k: v[0].item() for k, v in out.items()}
+    return Cor(out)
 
 
 def _source(description, what):
@@ -146,35 +199,167 @@ def _source(description, what):
 
 
 def simulate(scene, *, threads=None):
-    """Runs a scene (a path to a TOML file, or a dict shaped like one) and returns the object
-    ``bwc-simulate run --json`` prints: ``{"runs": [...], "units", "scene", ...}``. Where the
-    scene asks for trajectories (``[output] trajectory`` or ``loops``), each run also has
-    ``"trajectory"``: numpy arrays ``t, x, v, u, F`` and the model's states (``z``, or
-    ``r, y, z``), in the units of ``"units"``. The warnings of ``cor`` come as
-    ``BwcWarning``s here too."""
+    """Runs a scene, as ``bwc-simulate run --json`` does.
+
+    Parameters
+    ----------
+    scene : str, os.PathLike or dict
+        A scene file (TOML), or a dict shaped like one (``None`` values are keys not given,
+        so a fit's ``params`` go in as ``scene["base"]``).
+    threads : int, optional
+        Worker threads (default: all cores). Results do not depend on it.
+
+    Returns
+    -------
+    Simulation
+        The tool's JSON object with attribute access: ``runs`` (one :class:`Run` each:
+        ``e``, ``t_s``, ``check``, ...), ``units``, ``scene`` and the provenance. Where the
+        scene asks for trajectories (``[output] trajectory`` or ``loops``), each run also has
+        ``trajectory``: numpy arrays ``t, x, v, u, F`` and the model's states (``z``, or
+        ``r, y, z``), in the units of ``units``.
+
+    Raises
+    ------
+    BwcError
+        A bad scene (naming the file and line, or the dict key) or a failed run.
+
+    Warns
+    -----
+    BwcWarning
+        As :func:`cor`.
+
+    Examples
+    --------
+    >>> import bwc
+    >>> out = bwc.simulate({"model": "shccm", "v0": [1.0, 2.0],
+    ...                     "base": {"B_b": 2.38, "Gamma_b": -2.38, "kappa": 0.677,
+    ...                              "sigma_b": 0.0348, "n": 2.93, "p": 2.62}})
+    >>> [round(r.e, 4) for r in out.runs]
+    [0.8461, 0.7964]
+    """
     text, trajectories = _simulate(threads=threads, **_source(scene, "scene"))
-    value = json.loads(text)
+    value = wrap(json.loads(text), Simulation, {"runs": Run})
     for run, samples in zip(value["runs"], trajectories):
         if samples is not None:
-            run["trajectory"] = samples
+            run["trajectory"] = Result(samples)
     return value
 
 
+# What a fit's warning is about, by a phrase the tools' messages carry: one ``BwcWarning`` per
+# kind and fit.
+_WARNING_KINDS = (
+    ("bounds", ("on its upper bound", "on its lower bound", "on the constraint", "is on a bound")),
+    ("search", ("starts reached the best cost",)),
+    ("intervals", ("no intervals",)),
+    ("reference", ("the reference (",)),
+    ("units", ("unit slip", "looks like")),
+)
+
+
+def _warn_fits(fits):
+    """Each fit's warnings as ``BwcWarning``s, one per kind (bounds, search, intervals,
+    reference, units, data) and fit, attributed to the caller of the package's function."""
+    for fit in fits:
+        grouped = {}
+        for text in fit.get("warnings", []):
+            kind = next((k for k, phrases in _WARNING_KINDS if any(p in text for p in phrases)), "data")
+            grouped.setdefault(kind, []).append(text)
+        for texts in grouped.values():
+            warnings.warn("; ".join(texts), BwcWarning, stacklevel=3)
+
+
 def identify(config, *, seed=None, threads=None):
-    """Fits every ``[[fit]]`` of a config (a path, or a dict shaped like one; data paths are
-    relative to the config's folder, or to the working directory for a dict) and returns the
-    object ``bwc-identify run --json`` prints. ``seed`` defaults to 0, as on the command line."""
+    """Fits every ``[[fit]]`` of a config, as ``bwc-identify run --json`` does.
+
+    Parameters
+    ----------
+    config : str, os.PathLike or dict
+        A config file (TOML; data paths relative to its folder), or a dict shaped like one
+        (data paths relative to the working directory).
+    seed : int, optional
+        Base seed, combined with each fit's own (default 0, as on the command line).
+    threads : int, optional
+        Worker threads (default: all cores). Results do not depend on it.
+
+    Returns
+    -------
+    Identification
+        The tool's JSON object with attribute access: ``fits`` (one :class:`Fit` each:
+        ``name``, ``model``, ``params``, ``J1``, ``J2``, ``convergence``, ``identifiability``,
+        ``intervals``, ``predictions``, ``reference``, ``warnings``, ...), ``units``,
+        ``config`` and the provenance. A fit's ``params`` pass straight to :func:`cor`.
+
+    Raises
+    ------
+    BwcError
+        A bad config or data file (every mistake found, one per line) or a failed fit.
+
+    Warns
+    -----
+    BwcWarning
+        What ``bwc-identify`` warns of on stderr, one warning per kind and fit: parameters on
+        a bound, starts that did not agree, missing intervals, a reference that fits better,
+        values that suggest a unit slip, and suspicious data.
+
+    Examples
+    --------
+    >>> import bwc
+    >>> import warnings
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore", bwc.BwcWarning)
+    ...     result = bwc.identify("fixtures/kharaz.toml")
+    >>> fit = result.fits[0]
+    >>> fit.name, fit.J1 < 1e-8, fit.reference.standing
+    ('DSS NDBWSHCCM', True, 'fit_lower')
+    >>> round(bwc.cor(fit.model, fit.params, 3.0).e, 3)
+    0.762
+    """
     seed = 0 if seed is None else int(seed)
-    return json.loads(_identify(seed=seed, threads=threads, **_source(config, "config")))
+    text = _identify(seed=seed, threads=threads, **_source(config, "config"))
+    value = wrap(json.loads(text), Identification, {"fits": Fit})
+    _warn_fits(value["fits"])
+    return value
 
 
 def coverage(config, *, replicates=40, first_seed=1, noise=None, fit=None, threads=None):
-    """The coverage study of the 95 % band of each CoR-only fit of a config (a path or a dict):
-    synthetic data from ``[fit.params]`` (or the fit's optimum) with Gaussian noise, refitted
-    per replicate (seeds ``first_seed .. first_seed + replicates``). Returns the object
-    ``bwc-identify coverage --json`` prints: ``{"coverage": [{"name", "coverage", "replicates",
-    ...}]}``. Replicate ``k`` depends only on the config and its seed, so studies split by seed
-    ranges (``bwc.dask.coverage``)."""
+    """The coverage study of the 95 % band of each CoR-only fit of a config, as
+    ``bwc-identify coverage --json`` runs it.
+
+    Parameters
+    ----------
+    config : str, os.PathLike or dict
+        A config file or a dict shaped like one.
+    replicates : int, default 40
+        Synthetic datasets per fit.
+    first_seed : int, default 1
+        Replicate ``k`` has seed ``first_seed + k`` and depends only on the config and its
+        seed, so studies split by seed ranges (``bwc.dask.coverage``).
+    noise : float, optional
+        The noise's standard deviation in ``e`` (default: the fit's residual scale).
+    fit : str, optional
+        Only the fit of this name.
+    threads : int, optional
+        Worker threads (default: all cores).
+
+    Returns
+    -------
+    Coverage
+        ``coverage``: one :class:`Result` per fit (``name``, ``coverage``, ``replicates``,
+        ...), and the provenance. The truth of each replicate is ``[fit.params]`` (or the
+        fit's optimum), with Gaussian noise.
+
+    Raises
+    ------
+    BwcError
+        A bad config or a failed fit.
+
+    Examples
+    --------
+    >>> import bwc
+    >>> study = bwc.coverage("fixtures/kharaz.toml", replicates=2, fit="DSA NDBWSHCCM")
+    >>> study.coverage[0].name, len(study.coverage[0].replicates)
+    ('DSA NDBWSHCCM', 2)
+    """
     text = _coverage(replicates=int(replicates), first_seed=int(first_seed), noise=noise, fit=fit,
                      threads=threads, **_source(config, "config"))
-    return json.loads(text)
+    return wrap(json.loads(text), Coverage)

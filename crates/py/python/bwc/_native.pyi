@@ -1,6 +1,8 @@
 from typing import Optional
 import numpy as np
 
+__version__: str
+
 class BwcError(ValueError): ...
 class BwcWarning(UserWarning): ...
 

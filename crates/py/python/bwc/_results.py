@@ -1,0 +1,158 @@
+"""The result types of ``bwc``: dicts (the command-line tools' JSON, so ``result["key"]`` and
+``json.dumps`` work as before) whose keys are also attributes, with a ``repr`` that reads."""
+
+import numpy as np
+
+
+class Result(dict):
+    """A result: a ``dict`` whose keys are also attributes (``r.e`` is ``r["e"]``).
+
+    The keys are those of the command-line tools' JSON; nested objects are results too.
+    """
+
+    __slots__ = ()
+
+    def __getattr__(self, name):
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError(
+                "%s has no %r; its keys: %s" % (type(self).__name__, name, ", ".join(map(str, self)))
+            ) from None
+
+    def __dir__(self):
+        return sorted(set(super().__dir__()) | {k for k in self if isinstance(k, str) and k.isidentifier()})
+
+    def __repr__(self):
+        fields = ", ".join("%s=%s" % (k, _short(v)) for k, v in self.items() if _shown(v))
+        return "%s(%s)" % (type(self).__name__, fields)
+
+
+# The order parameters are shown in: base, nondimensional, physical (as the paper lists them).
+_ORDER = ("B_b", "Gamma_b", "B", "Gamma", "m", "k", "c", "kappa", "sigma_b", "sigma", "n", "p",
+          "alpha", "beta", "gamma", "A", "U_b", "T_b", "U")
+
+
+class Params(Result):
+    """Parameters (base ``B_b, Gamma_b, kappa, sigma_b, n, p, U_b, T_b``, nondimensional or
+    physical), as ``bwc.cor`` and ``bwc.simulate`` take them back: ``None`` marks an unused
+    ``U_b`` or ``T_b``."""
+
+    __slots__ = ()
+
+    def __repr__(self):
+        keys = sorted(self, key=lambda k: _ORDER.index(k) if k in _ORDER else len(_ORDER))
+        fields = ", ".join("%s=%s" % (k, _short(self[k])) for k in keys if self[k] is not None)
+        return "Params(%s)" % fields
+
+
+class Run(Result):
+    """One run of ``bwc.simulate``: ``v0``, ``e``, ``t_s``, ``t_d``, ``check``, ``outcome``
+    and the rest of the tool's JSON for a run."""
+
+    __slots__ = ()
+
+    def __repr__(self):
+        main = ("name", "v0", "e", "t_s", "t_d", "check", "outcome")
+        fields = ", ".join("%s=%s" % (k, _short(self[k])) for k in main if self.get(k) is not None)
+        return "Run(%s)" % fields
+
+
+class Cor(Result):
+    """What ``bwc.cor`` returns: per speed ``e``, ``t_s``, ``t_d``, ``check``, ... as numpy
+    arrays (or as scalars for a scalar speed)."""
+
+    __slots__ = ()
+
+    def __repr__(self):
+        main = ("e", "t_s", "t_d", "e_error", "check", "outcome")
+        fields = ", ".join("%s=%s" % (k, _short(self[k])) for k in main if k in self)
+        count = np.size(self["e"]) if "e" in self else 0
+        speeds = "" if np.ndim(self.get("e")) == 0 else "%d speeds: " % count
+        return "Cor(%s%s)" % (speeds, fields)
+
+
+class Fit(Result):
+    """One fit of ``bwc.identify``: ``name``, ``model``, ``params``, ``J1``, ``J2``,
+    ``warnings`` and the rest of the tool's JSON for a fit."""
+
+    __slots__ = ()
+
+    def __repr__(self):
+        costs = ", ".join(
+            "%s=%s" % (k, _short(self[k])) for k in ("J1", "J2", "J_drop") if self.get(k) is not None
+        )
+        warned = len(self.get("warnings", []))
+        return "Fit(%r, model=%r, %s, params=%r%s)" % (
+            self.get("name"),
+            self.get("model"),
+            costs,
+            self.get("params"),
+            ", %d warning%s" % (warned, "" if warned == 1 else "s") if warned else "",
+        )
+
+
+class Identification(Result):
+    """What ``bwc.identify`` returns: ``fits`` (a list of :class:`Fit`), ``units``,
+    ``config`` and the provenance."""
+
+    __slots__ = ()
+
+    def __repr__(self):
+        fits = self.get("fits", [])
+        lines = ["  %r" % f for f in fits]
+        return "Identification(%d fit%s:\n%s)" % (len(fits), "" if len(fits) == 1 else "s", "\n".join(lines))
+
+
+class Simulation(Result):
+    """What ``bwc.simulate`` returns: ``runs`` (each a :class:`Result`), ``units``, ``scene``
+    and the provenance."""
+
+    __slots__ = ()
+
+    def __repr__(self):
+        runs = self.get("runs", [])
+        shown = ["  %r" % r for r in runs[:5]]
+        more = ["  ... %d more" % (len(runs) - 5)] if len(runs) > 5 else []
+        return "Simulation(%d run%s:\n%s)" % (len(runs), "" if len(runs) == 1 else "s", "\n".join(shown + more))
+
+
+class Coverage(Result):
+    """What ``bwc.coverage`` returns: ``coverage`` (one :class:`Result` per fit) and the
+    provenance."""
+
+    __slots__ = ()
+
+
+def wrap(value, cls=Result, kinds=None):
+    """``value`` (parsed JSON) with its dicts as results: the top one as ``cls``, those under a
+    key of ``kinds`` as the class given there (lists element by element), ``params`` as
+    :class:`Params` and the rest as :class:`Result`."""
+    kinds = {"params": Params, **(kinds or {})}
+    if isinstance(value, dict):
+        out = cls()
+        for k, v in value.items():
+            out[k] = wrap(v, kinds.get(k, Result), kinds)
+        return out
+    if isinstance(value, list):
+        return [wrap(v, cls, kinds) for v in value]
+    return value
+
+
+def _shown(v):
+    """Whether a field belongs in a short repr (not a nested result or a long list)."""
+    return not isinstance(v, (dict, list)) or (isinstance(v, list) and len(v) <= 4)
+
+
+def _short(v):
+    """A value in a repr: numbers to 4 significant digits, arrays abridged."""
+    if isinstance(v, (float, np.floating)):
+        return "%.4g" % v
+    if isinstance(v, np.ndarray):
+        if v.ndim == 0:
+            return _short(v.item())
+        with np.printoptions(precision=4, threshold=6, edgeitems=2):
+            return np.array2string(v, separator=", ")
+    if isinstance(v, list):
+        return "[" + ", ".join(_short(x) for x in v) + "]"
+    return repr(v)
