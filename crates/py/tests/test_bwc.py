@@ -18,13 +18,13 @@ import bwc
 
 ROOT = pathlib.Path(__file__).resolve().parents[3]
 FIXTURES = ROOT / "fixtures"
-BIN = pathlib.Path(os.environ.get("BWC_BIN_DIR", ROOT / "target" / "debug"))
+BIN = pathlib.Path(os.environ.get("BWC_BIN_DIR", ROOT / "target" / "release"))
 
 
 def cli(tool, *args):
     """The one JSON object a command-line tool prints (without its command line)."""
     exe = BIN / tool
-    assert exe.exists(), f"{exe} missing: build the workspace first (cargo test) or set BWC_BIN_DIR"
+    assert exe.exists(), f"{exe} missing: build the workspace first (cargo test --release) or set BWC_BIN_DIR"
     out = subprocess.run([str(exe), *args], check=True, capture_output=True, text=True)
     value = json.loads(out.stdout)
     value.pop("command")
