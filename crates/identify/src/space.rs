@@ -79,6 +79,20 @@ pub(crate) fn values_at(params: &[Param; 8], free: &[usize], s: &[f64]) -> [f64;
     v
 }
 
+/// The base parameters of the searchable quantities `v` of [`NAMES`] (`g = Gamma_b / B_b`).
+fn base_params(v: &[f64; 8]) -> BaseParams {
+    BaseParams {
+        b_b: v[0],
+        gamma_b: v[1] * v[0],
+        kappa: v[2],
+        sigma_b: v[3],
+        n: v[4],
+        p: v[5],
+        u_b: v[6],
+        t_b: v[7],
+    }
+}
+
 /// The inverse of [`scale`].
 fn unscale(lo: f64, hi: f64, log: bool, v: f64) -> f64 {
     if hi == lo {
@@ -256,17 +270,7 @@ impl Space {
 
     /// Base parameters at a point `s` of the unit cube (coordinates are clamped into it).
     pub fn decode(&self, s: &[f64]) -> BaseParams {
-        let v = self.quantities(s);
-        BaseParams {
-            b_b: v[0],
-            gamma_b: v[1] * v[0],
-            kappa: v[2],
-            sigma_b: v[3],
-            n: v[4],
-            p: v[5],
-            u_b: v[6],
-            t_b: v[7],
-        }
+        base_params(&self.quantities(s))
     }
 
     /// The point of the unit cube for base parameters `p` (the inverse of [`Space::decode`]).
@@ -321,17 +325,7 @@ impl Space {
                 }
             }
         }
-        let clamped = BaseParams {
-            b_b: v[0],
-            gamma_b: v[1] * v[0],
-            kappa: v[2],
-            sigma_b: v[3],
-            n: v[4],
-            p: v[5],
-            u_b: v[6],
-            t_b: v[7],
-        };
-        Ok((self.encode(&clamped)?, outside))
+        Ok((self.encode(&base_params(&v))?, outside))
     }
 
     /// Whether the free quantity `i` (index into [`NAMES`]) at cube coordinate 1 sits on the
