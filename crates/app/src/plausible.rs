@@ -5,11 +5,12 @@
 //! | quantity | hint where | likely slip |
 //! | --- | --- | --- |
 //! | impact speed `v0` | above [`bwc_identify::PLAUSIBLE_SPEED`] = 100 m/s | mm/s for m/s |
-//! | mass (`m`, `m1`, `m2`, `[sequence].m`) | above [`HEAVY`] = 20 kg | g for kg |
+//! | mass (`m`, `m1`, `m2`, `[sequence].m`; a config's `[fit.known].m`, `[fit.sequence].m`) | above [`HEAVY`] = 20 kg | g for kg |
 //! | stiffness `k` | below [`SOFT`] = 100 N/m^p | N/mm^p or kN/m^p for N/m^p |
 
 use crate::scene::{Scene, System};
 use bwc_identify::PLAUSIBLE_SPEED;
+use std::path::Path;
 
 /// A mass above this (kg) gets a hint: balls and bodies of contact experiments weigh grams to
 /// kilograms, so a value in the hundreds is most likely in grams.
@@ -19,7 +20,20 @@ pub const HEAVY: f64 = 20.0;
 /// (foam, rubber) have `k` of 1e3 N/m^p and more.
 pub const SOFT: f64 = 100.0;
 
-/// The hints of a scene (`path` names it).
+/// The hint for a mass `m` (kg) of key `key` in the file at `path`, if it is heavier than
+/// [`HEAVY`].
+pub fn mass_hint(path: &Path, key: &str, m: f64) -> Option<String> {
+    (m.is_finite() && m > HEAVY).then(|| {
+        format!(
+            "{}: `{key}` = {m} kg is heavier than the {HEAVY} kg of the bodies these laws are \
+             fitted to: if grams were meant, divide by 1000 ({} kg)",
+            path.display(),
+            m / 1000.0
+        )
+    })
+}
+
+/// The hints of a scene.
 pub fn scene_hints(scene: &Scene) -> Vec<String> {
     let file = scene.path.display();
     let mut hints = Vec::new();
@@ -32,15 +46,7 @@ pub fn scene_hints(scene: &Scene) -> Vec<String> {
             ));
         }
     }
-    let mut mass = |key: &str, m: f64| {
-        if m.is_finite() && m > HEAVY {
-            hints.push(format!(
-                "{file}: `{key}` = {m} kg is heavier than the {HEAVY} kg of the bodies these \
-                 laws are fitted to: if grams were meant, divide by 1000 ({} kg)",
-                m / 1000.0
-            ));
-        }
-    };
+    let mut mass = |key: &str, m: f64| hints.extend(mass_hint(&scene.path, key, m));
     for s in &scene.systems {
         match &s.system {
             System::Physical { m, .. } => mass("[physical].m", *m),

@@ -124,6 +124,14 @@ pub(super) fn parse_fit(
     };
     let (start, params) = start_and_params(ctx, r, &space, &scales)?;
     let reference = reference(ctx, r, params, &scales)?;
+    let masses = [
+        ("[fit.known].m", known.map(|k| k.m)),
+        ("[fit.sequence].m", setup.as_ref().map(|s| s.m)),
+    ];
+    let hints = masses
+        .into_iter()
+        .filter_map(|(key, m)| crate::plausible::mass_hint(ctx.path, key, m?))
+        .collect();
     let (budget, seed, settings, pareto) = search(ctx, r, index)?;
     Ok(Draft {
         fit: FitConfig {
@@ -140,6 +148,7 @@ pub(super) fn parse_fit(
             params,
             reference,
             uses_input_scales,
+            hints,
             pareto,
             drops: None,
         },

@@ -191,6 +191,9 @@ pub struct FitConfig {
     pub reference: Option<Reference>,
     /// Whether `U_b`, `T_b` matter (an input, a duration objective, or a known mass).
     pub uses_input_scales: bool,
+    /// Values of the fit's table whose magnitude suggests a unit slip
+    /// ([`crate::plausible`]); reported with the fit's warnings.
+    pub hints: Vec<String>,
     /// Number of weights of a Pareto sweep, if asked for.
     pub pareto: Option<usize>,
     /// For a drop-test fit (data of intervals or rebound heights): the data and the physics

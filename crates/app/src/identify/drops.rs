@@ -73,7 +73,9 @@ pub fn run_drop_fit(
         f.space.decode(&m.point),
         outcome(f, d, &m.point, config)?,
     );
-    r.warnings = search_warnings(f, &m.convergence, &bound, &m.point);
+    r.warnings = f.hints.clone();
+    r.warnings
+        .extend(search_warnings(f, &m.convergence, &bound, &m.point));
     r.warnings
         .push(format!("\"{}\": no intervals: {NO_INTERVALS}", f.name));
     r.uncertainty = Some(Err(NO_INTERVALS.into()));
@@ -96,6 +98,7 @@ pub fn eval_drop_fit(config: &Path, f: &FitConfig, d: &DropFit) -> Result<FitRep
         .ok_or_else(|| missing_params(config, "[fit.params]", &f.name))?;
     let s = f.space.encode(&params).map_err(fail(config, &f.name))?;
     let mut r = report(f, params, outcome(f, d, &s, config)?);
+    r.warnings = f.hints.clone();
     r.wall_s = clock.elapsed().as_secs_f64();
     Ok(r)
 }

@@ -75,7 +75,7 @@ pub fn run_fit(
         Objective::new(&f.space, &f.data, &f.input, reporting(), f.weights).map_err(&err)?;
     let (predictions, costs) = exact.evaluate(&result.point).map_err(&err)?;
     let identifiability = Some(analyse(&exact, &result.point).map_err(&err)?);
-    let mut warnings = f.data.warnings.clone();
+    let mut warnings = [&f.data.warnings[..], &f.hints].concat();
     warnings.extend(search_warnings(
         f,
         &result.convergence,
@@ -255,7 +255,7 @@ pub fn eval_fit(config: &Path, f: &FitConfig) -> Result<FitReport, AppError> {
         uncertainty: None,
         curve,
         band: Vec::new(),
-        warnings: f.data.warnings.clone(),
+        warnings: [&f.data.warnings[..], &f.hints].concat(),
         drop: None,
         reference: None,
     })

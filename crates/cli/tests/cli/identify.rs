@@ -474,3 +474,28 @@ fn identify_coverage_shards_and_threads() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("CoR-only"));
 }
+
+/// A mass in grams where kilograms are asked for: a warning naming the slip, and the fit runs.
+#[test]
+fn a_mass_in_grams_gets_a_hint() {
+    let dir = scratch("identify-grams");
+    let data = fixtures().join("data/real/golf_intervals.csv");
+    let config = dir.join("c.toml");
+    std::fs::write(
+        &config,
+        format!(
+            "[[fit]]\nname = \"golf\"\nmodel = \"shccm\"\ndata = {data:?}\n[fit.bounds]\n\
+             kappa = [0.1, 0.9]\n[fit.fixed]\nB_b = 1.0\ng = -1.0\nsigma_b = 0.01\nn = 1.5\n\
+             p = 1.5\n[fit.sequence]\nm = 41.5\n[fit.params]\nB_b = 1.0\nGamma_b = -1.0\n\
+             kappa = 0.5\nsigma_b = 0.01\nn = 1.5\np = 1.5\n"
+        ),
+    )
+    .unwrap();
+    let out = identify(&["eval", config.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("`[fit.sequence].m` = 41.5 kg is heavier") && err.contains("(0.0415 kg)"),
+        "{err}"
+    );
+}
