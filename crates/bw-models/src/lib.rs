@@ -4,7 +4,8 @@
 //! *Incremental Collision Laws Based on the Bouc-Wen Model: Improved Collision Models and
 //! Further Results* (equation labels refer to its LaTeX source):
 //!
-//! * the collision laws as force elements: [`Bwshccl`] (x, z) and [`Bwmcl`] (r, y, z);
+//! * the collision laws as force elements: [`Bwshccl`] (x, z) and [`Bwmcl`] (r, y, z), and a
+//!   [`ContactElement`] that carries one law's state between a host simulator's steps;
 //! * the models with input `u(t)`: [`Bwshccm`] (x, z, v), [`Bwmcm`] (r, y, z, v) in SI units and
 //!   their nondimensional forms [`Ndbwshccm`], [`Ndbwmcm`] with input `U(T)`; the earlier
 //!   BWMCM forms [`BwmcmEarlier`], [`NdbwmcmEarlier`];
@@ -46,6 +47,7 @@ mod bodies;
 mod clearance;
 mod cor;
 mod double_double;
+mod element;
 mod error;
 mod fast_paths;
 pub mod input;
@@ -65,6 +67,7 @@ pub mod sweep;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use cor::{impact, impact_at, impact_double_double};
+pub use element::{ContactElement, ElementSettings, ElementStep};
 pub use error::ModelError;
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};
 pub use models::{

@@ -5,6 +5,8 @@
 
 #[path = "support/alloc_counter.rs"]
 mod alloc_counter;
+#[path = "support/element.rs"]
+mod element;
 #[path = "support/global.rs"]
 mod global;
 #[path = "support/lyapunov.rs"]
