@@ -167,6 +167,14 @@ pub trait ContactLaw<const N: usize> {
     /// The state derivative `ṡ` (m/s) and the force `F` (N) at state `s` with input `u`.
     fn eval(&self, s: &State<N>, u: f64) -> (State<N>, f64);
 
+    /// The energy stored in the law's elastic elements at state `s` (J): what a release to
+    /// rest would give back. The rest of the work done on the law has been dissipated. The
+    /// default is 0 (a law without springs, or one that does not say: then all the work
+    /// counts as dissipated); the built-in laws override it.
+    fn stored(&self, _s: &State<N>) -> f64 {
+        0.0
+    }
+
     /// Functions whose zeros are the non-smooth points of [`ContactLaw::eval`]: the rate
     /// across the hysteretic element (m/s) and `z` (m). An integrator that stops exactly at
     /// them keeps its order (`bwc_events::Switches`).
@@ -199,9 +207,25 @@ pub trait ContactLaw<const N: usize> {
     }
 }
 
+impl Coefficients {
+    /// The energy of the elastic spring at displacement `x` and of the Bouc-Wen element at
+    /// `z` (J): `α k |x|^(p+1) / (p+1) + (1-α) k |z|^(p+1) / ((p+1) A)`. The second term is
+    /// the work that drives `z` from 0 where the element does not yield (`β = γ = 0`, so
+    /// `ż = A` times its rate): all of it comes back on the way to `z = 0`.
+    fn stored(&self, x: f64, z: f64) -> f64 {
+        let p1 = self.p.exponent() + 1.0;
+        let spring = |d: f64| self.k * d.abs().powf(p1) / p1;
+        self.alpha * spring(x) + (1.0 - self.alpha) * spring(z) / self.a
+    }
+}
+
 impl ContactLaw<2> for Bwshccl {
     fn eval(&self, s: &State<2>, u: f64) -> (State<2>, f64) {
         Bwshccl::eval(self, s, u)
+    }
+    /// `α k |x|^(p+1) / (p+1) + (1-α) k |z|^(p+1) / ((p+1) A)` (J).
+    fn stored(&self, s: &State<2>) -> f64 {
+        self.0.stored(s[0], s[1])
     }
     fn kinks(&self, s: &State<2>, u: f64) -> [f64; 2] {
         [u, s[1]]
@@ -211,6 +235,11 @@ impl ContactLaw<2> for Bwshccl {
 impl ContactLaw<3> for Bwmcl {
     fn eval(&self, s: &State<3>, u: f64) -> (State<3>, f64) {
         Bwmcl::eval(self, s, u)
+    }
+    /// `α k |y|^(p+1) / (p+1) + (1-α) k |z|^(p+1) / ((p+1) A)` (J): the dashpot stores
+    /// nothing.
+    fn stored(&self, s: &State<3>) -> f64 {
+        self.0.stored(s[1], s[2])
     }
     fn kinks(&self, s: &State<3>, u: f64) -> [f64; 2] {
         [Bwmcl::eval(self, s, u).0[1], s[2]]
