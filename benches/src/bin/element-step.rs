@@ -1,0 +1,123 @@
+//! The cost of a contact element's host step during a contact: a baseball (Table 4's BWSHCCL
+//! and BWMCL, 0.145 kg) dropped on a fixed floor at 2 m/s, stepped by a predictor-corrector
+//! host at dt = 1e-4, 1e-5 and 1e-6 s (two element steps per host step), against one
+//! `impact` of the same contact. Five rounds in turns; medians.
+//!
+//! `cargo run --release -p bwc-benches --bin element-step`
+
+use bw_models::input::Constant;
+use bw_models::{impact, Bwmcl, Bwmcm, Bwshccl, Bwshccm, ContactElement, ContactLaw};
+use bw_models::{ElementSettings, ModelKind, Physical, PhysicalParams, Settings};
+use std::time::Instant;
+
+const M: f64 = 0.145;
+const G: f64 = 9.81;
+const V_IN: f64 = 2.0;
+
+/// Table 4 (Cross 2011) of `kind`.
+fn table4(kind: ModelKind) -> PhysicalParams {
+    let law = match kind {
+        ModelKind::Shccm => Physical {
+            k: 117080063.0,
+            c: 5854003.0,
+            n: 1.1,
+            p: 1.7,
+            alpha: 0.1,
+            beta: 981.05,
+            gamma: -961.4,
+            a: 0.925,
+        },
+        ModelKind::Mcm => Physical {
+            k: 253000000.0,
+            c: 2811.0,
+            n: 1.2,
+            p: 1.8,
+            alpha: 0.15,
+            beta: 1200.0,
+            gamma: -1200.0,
+            a: 1.01,
+        },
+    };
+    PhysicalParams::new(kind, law).expect("Table 4 is admissible")
+}
+
+/// One bounce by the host: element steps taken and the rebound speed (m/s).
+fn bounce<L: ContactLaw<N> + Clone, const N: usize>(law: L, dt: f64) -> (u64, f64) {
+    let mut element = ContactElement::new(law, ElementSettings::default()).expect("settings");
+    let (mut v, mut force, mut steps) = (-V_IN, 0.0, 0);
+    loop {
+        let guess = v + (force / M - G) * dt;
+        let first = element.clone().advance(dt, v, guess).expect("step");
+        let next = v + first.impulse / M - G * dt;
+        let step = element.advance(dt, v, next).expect("step");
+        steps += 2;
+        if let Some(tau) = step.separated_at {
+            return (steps, v + (next - v) * tau / dt);
+        }
+        (v, force) = (next, step.force);
+    }
+}
+
+fn median(mut xs: Vec<f64>) -> f64 {
+    xs.sort_by(f64::total_cmp);
+    xs[xs.len() / 2]
+}
+
+fn main() {
+    println!("model  dt (s)   element steps  us per step  bounce (ms)  impact (us)  bounce/impact  rebound error");
+    for kind in [ModelKind::Shccm, ModelKind::Mcm] {
+        let params = table4(kind);
+        let run_impact = || match kind {
+            ModelKind::Shccm => {
+                impact(
+                    &Bwshccm::new(&params, M, V_IN, Constant(-M * G)).unwrap(),
+                    &Settings::default(),
+                )
+                .unwrap()
+                .e
+            }
+            ModelKind::Mcm => {
+                impact(
+                    &Bwmcm::new(&params, M, V_IN, Constant(-M * G)).unwrap(),
+                    &Settings::default(),
+                )
+                .unwrap()
+                .e
+            }
+        };
+        let run_bounce = |dt: f64| match kind {
+            ModelKind::Shccm => bounce(Bwshccl::new(&params).unwrap(), dt),
+            ModelKind::Mcm => bounce(Bwmcl::new(&params).unwrap(), dt),
+        };
+        let e = run_impact();
+        for dt in [1e-4, 1e-5, 1e-6] {
+            let (mut bounces, mut impacts) = (Vec::new(), Vec::new());
+            let mut result = (0, 0.0);
+            for _ in 0..5 {
+                let clock = Instant::now();
+                result = std::hint::black_box(run_bounce(dt));
+                bounces.push(clock.elapsed().as_secs_f64());
+                let clock = Instant::now();
+                for _ in 0..100 {
+                    std::hint::black_box(run_impact());
+                }
+                impacts.push(clock.elapsed().as_secs_f64() / 100.0);
+            }
+            let (b, i) = (median(bounces), median(impacts));
+            let (steps, v_out) = result;
+            println!(
+                "{:<6} {dt:<8e} {steps:>14} {:>12.2} {:>12.3} {:>12.1} {:>14.0} {:>14.1e}",
+                if kind == ModelKind::Shccm {
+                    "shccm"
+                } else {
+                    "mcm"
+                },
+                b * 1e6 / steps as f64,
+                b * 1e3,
+                i * 1e6,
+                b / i,
+                (v_out / V_IN - e).abs() / e
+            );
+        }
+    }
+}
