@@ -1,14 +1,15 @@
 //! The cost of a contact element's host step during a contact: a baseball (Table 4's BWSHCCL
 //! and BWMCL, 0.145 kg) dropped on a fixed floor at 2 m/s, stepped by a predictor-corrector
 //! host at dt = 1e-4, 1e-5 and 1e-6 s (two element steps per host step), against one
-//! `impact` of the same contact. Five rounds in turns; medians.
+//! `impact` of the same contact, timed side by side (`bwc_benches::side_by_side`: medians of
+//! seven rounds in turns).
 //!
 //! `cargo run --release -p bwc-benches --bin element-step`
 
 use bw_models::input::Constant;
 use bw_models::{impact, Bwmcl, Bwmcm, Bwshccl, Bwshccm, ContactElement, ContactLaw};
 use bw_models::{ElementSettings, ModelKind, Physical, PhysicalParams, Settings};
-use std::time::Instant;
+use bwc_benches::side_by_side;
 
 const M: f64 = 0.145;
 const G: f64 = 9.81;
@@ -58,11 +59,6 @@ fn bounce<L: ContactLaw<N> + Clone, const N: usize>(law: L, dt: f64) -> (u64, f6
     }
 }
 
-fn median(mut xs: Vec<f64>) -> f64 {
-    xs.sort_by(f64::total_cmp);
-    xs[xs.len() / 2]
-}
-
 fn main() {
     println!("model  dt (s)   element steps  us per step  bounce (ms)  impact (us)  bounce/impact  rebound error");
     for kind in [ModelKind::Shccm, ModelKind::Mcm] {
@@ -91,19 +87,16 @@ fn main() {
         };
         let e = run_impact();
         for dt in [1e-4, 1e-5, 1e-6] {
-            let (mut bounces, mut impacts) = (Vec::new(), Vec::new());
-            let mut result = (0, 0.0);
-            for _ in 0..5 {
-                let clock = Instant::now();
-                result = std::hint::black_box(run_bounce(dt));
-                bounces.push(clock.elapsed().as_secs_f64());
-                let clock = Instant::now();
-                for _ in 0..100 {
+            let result = run_bounce(dt);
+            let times = side_by_side(&mut [
+                Box::new(|| {
+                    std::hint::black_box(run_bounce(dt));
+                }),
+                Box::new(|| {
                     std::hint::black_box(run_impact());
-                }
-                impacts.push(clock.elapsed().as_secs_f64() / 100.0);
-            }
-            let (b, i) = (median(bounces), median(impacts));
+                }),
+            ]);
+            let (b, i) = (times[0], times[1]);
             let (steps, v_out) = result;
             println!(
                 "{:<6} {dt:<8e} {steps:>14} {:>12.2} {:>12.3} {:>12.1} {:>14.0} {:>14.1e}",

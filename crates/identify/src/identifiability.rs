@@ -40,14 +40,19 @@ impl Identifiability {
             .collect()
     }
 
+    /// Whether a direction of singular value `s` is determined ([`WEAK`]).
+    fn determined(&self, s: f64) -> bool {
+        let largest = self.singular_values.first().copied().unwrap_or(0.0);
+        s >= WEAK * largest && s > 0.0
+    }
+
     /// How many directions are weakly determined ([`WEAK`]), counting those the data have no
     /// residual for.
     pub fn weak_count(&self) -> usize {
-        let largest = self.singular_values.first().copied().unwrap_or(0.0);
         let strong = self
             .singular_values
             .iter()
-            .filter(|&&s| s >= WEAK * largest && s > 0.0)
+            .filter(|&&s| self.determined(s))
             .count();
         self.names.len() - strong
     }
@@ -60,12 +65,11 @@ impl Identifiability {
         if norm2 == 0.0 || !norm2.is_finite() {
             return None;
         }
-        let largest = self.singular_values.first().copied().unwrap_or(0.0);
         let strong: f64 = self
             .singular_values
             .iter()
             .zip(&self.directions)
-            .filter(|(&s, _)| s >= WEAK * largest && s > 0.0)
+            .filter(|(&s, _)| self.determined(s))
             .map(|(_, v)| v.iter().zip(d).map(|(a, b)| a * b).sum::<f64>().powi(2))
             .sum();
         Some((1.0 - strong / norm2).clamp(0.0, 1.0))
@@ -74,12 +78,11 @@ impl Identifiability {
     /// The free quantities that dominate the weakly determined directions: those with a
     /// component of at least 0.3 in one of them.
     pub fn weak_names(&self) -> Vec<&'static str> {
-        let largest = self.singular_values.first().copied().unwrap_or(0.0);
         let weak: Vec<&Vec<f64>> = self
             .singular_values
             .iter()
             .zip(&self.directions)
-            .filter(|(&s, _)| !(s >= WEAK * largest && s > 0.0))
+            .filter(|(&s, _)| !self.determined(s))
             .map(|(_, v)| v)
             .collect();
         self.names
