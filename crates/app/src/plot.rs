@@ -523,7 +523,14 @@ where
             .draw_series(DashedLineSeries::new(finite, 6 * SCALE, 4 * SCALE, other))
             .map_err(e)?
             .label(label)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20 * SCALE, y)], other));
+            .legend(move |(x, y)| {
+                plotters::element::DashedPathElement::new(
+                    vec![(x, y), (x + 20 * SCALE, y)],
+                    4 * SCALE,
+                    3 * SCALE,
+                    other,
+                )
+            });
     }
     let mark = color(3);
     let bars = l.data.1.iter().filter_map(|p| {
