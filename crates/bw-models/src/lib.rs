@@ -67,7 +67,7 @@ pub mod sweep;
 
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use cor::{impact, impact_at, impact_double_double};
-pub use element::{ContactElement, ElementSettings, ElementStep};
+pub use element::{ContactElement, ElementSettings, ElementStep, Penetration};
 pub use error::ModelError;
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};
 pub use models::{

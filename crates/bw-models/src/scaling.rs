@@ -1,7 +1,7 @@
 //! Nondimensionalization (Table 1, tab:ND), input scaling (eq:EBWSHCCM_U_nd, eq:EBWMCM_U_nd)
 //! and base parameters with their map `P(P*, u, v0)` (Sections 4, 5).
 
-use crate::params::{check, BaseParams, ModelKind, Nondim, NondimParams, PhysicalParams};
+use crate::params::{check, BaseParams, ModelKind, Nondim, NondimParams, Physical, PhysicalParams};
 use crate::ModelError;
 
 /// Characteristic scales of an impact (Table 1): `t = T_c T`, `x = X_c X`, `z = Z_c Z`,
@@ -229,6 +229,37 @@ impl BaseMap {
             time_scale: self.time_scale(v0),
         };
         Ok((NondimParams::new(self.kind, nd)?, scaling))
+    }
+
+    /// A contact law with these base parameters, and the mass (kg) they were taken with:
+    /// `m = T_b / U_b` (Table 1 makes `U_b / T_b = 1/m` whatever the law). The Bouc-Wen
+    /// element's scale is free (`z` may be scaled with `A`, `β`, `γ`); the law takes `A = 1`,
+    /// so `α = κ`, `k = m / T_b^(p+1)`, `β = B_b / T_b^n`, `γ = Γ_b / T_b^n` and `c = σ_b k`
+    /// (SHCCM) or `c = 1 / (U_b σ_b)` (MCM). [`base_params`] of the result gives `P*` back.
+    ///
+    /// # Errors
+    /// [`ModelError::InvalidParameter`] where the law overflows (extreme `T_b`).
+    pub fn physical(&self) -> Result<(PhysicalParams, f64), ModelError> {
+        let b = &self.base;
+        let m = b.t_b / b.u_b;
+        let k = m / b.t_b.powf(b.p + 1.0);
+        let zb = b.t_b.powf(b.n);
+        let c = match self.kind {
+            ModelKind::Shccm => b.sigma_b * k,
+            ModelKind::Mcm => 1.0 / (b.u_b * b.sigma_b),
+        };
+        let law = Physical {
+            k,
+            c,
+            n: b.n,
+            p: b.p,
+            alpha: b.kappa,
+            beta: b.b_b / zb,
+            gamma: b.gamma_b / zb,
+            a: 1.0,
+        };
+        check("m", m, m.is_finite() && m > 0.0, "T_b / U_b finite")?;
+        Ok((PhysicalParams::new(self.kind, law)?, m))
     }
 
     /// The time scale at `v0`, `T_b v0^(-(p-1)/(p+1))` (s): a nondimensional duration `T_d`

@@ -146,6 +146,32 @@ fn hunt_crossley_limit() {
 const CROSS_SPEEDS: [f64; 4] = [2.15, 3.03, 4.18, 5.02];
 const BASEBALL_MASS: f64 = 0.145;
 
+/// A law built from base parameters alone (`BaseMap::physical`, `A = 1`) has those base
+/// parameters at the mass `T_b / U_b`, which is the mass they were taken with.
+#[test]
+fn a_law_from_base_parameters_maps_back_to_them() {
+    for kind in [ModelKind::Shccm, ModelKind::Mcm] {
+        let base = base_params(&cross(kind), BASEBALL_MASS).unwrap();
+        let (law, m) = BaseMap::new(kind, base).unwrap().physical().unwrap();
+        assert!((m - BASEBALL_MASS).abs() < 1e-14);
+        assert_eq!(law.law().a, 1.0);
+        let back = base_params(&law, m).unwrap();
+        for (name, x, y) in [
+            ("B_b", base.b_b, back.b_b),
+            ("Gamma_b", base.gamma_b, back.gamma_b),
+            ("kappa", base.kappa, back.kappa),
+            ("sigma_b", base.sigma_b, back.sigma_b),
+            ("U_b", base.u_b, back.u_b),
+            ("T_b", base.t_b, back.t_b),
+        ] {
+            assert!(
+                (x - y).abs() <= 1e-13 * x.abs(),
+                "{kind:?}: {name} {x} vs {y}"
+            );
+        }
+    }
+}
+
 /// The base parameters reproduce Table 1 at every speed; σ scales as v0 (SHCCM) and
 /// v0^((p-1)/(p+1)) (MCM).
 #[test]

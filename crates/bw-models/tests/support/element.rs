@@ -78,6 +78,42 @@ fn a_host_stepping_the_element_rebounds_as_the_library_impact() {
     }
 }
 
+/// A law given by its base parameters alone (`BaseMap::physical`) rebounds as the
+/// nondimensional model at those base parameters (`BaseMap::at`, no input): a different law
+/// (`A = 1`) and a different path to the same `e`, to the host's 1e-6 at dt = 1e-6 s.
+#[test]
+fn a_law_from_base_parameters_rebounds_as_the_nondimensional_model() {
+    let v_in = 2.5;
+    for kind in [ModelKind::Shccm, ModelKind::Mcm] {
+        let map = BaseMap::new(kind, base_params(&cross(kind), M).unwrap()).unwrap();
+        let (params, m) = map.physical().unwrap();
+        assert!((m - M).abs() < 1e-14);
+        let (nd, _) = map.at(v_in).unwrap();
+        let settings = Settings::default();
+        let e = match kind {
+            ModelKind::Shccm => {
+                impact(&Ndbwshccm::new(&nd, Zero).unwrap(), &settings)
+                    .unwrap()
+                    .e
+            }
+            ModelKind::Mcm => {
+                impact(&Ndbwmcm::new(&nd, Zero).unwrap(), &settings)
+                    .unwrap()
+                    .e
+            }
+        };
+        let (v_out, _, _) = match kind {
+            ModelKind::Shccm => host_bounce(Bwshccl::new(&params).unwrap(), v_in, 0.0, 1e-6),
+            ModelKind::Mcm => host_bounce(Bwmcl::new(&params).unwrap(), v_in, 0.0, 1e-6),
+        };
+        assert!(
+            (v_out / v_in - e).abs() < 1e-6 * e,
+            "{kind:?}: {} vs {e}",
+            v_out / v_in
+        );
+    }
+}
+
 /// Without gravity the bodies' kinetic energy lost is the work the contact absorbed:
 /// `W = m (v_in² - v_out²) / 2` with `v_out = e v_in` of the library's impact. The host's
 /// velocity is linear within each of its steps, the bodies' is not: the two agree at second
@@ -139,6 +175,20 @@ fn policies_and_bad_steps() {
             "{err}"
         );
     }
+    let at = |depth, rate| Penetration { depth, rate };
+    for (dt, a, b, name) in [
+        (f64::NAN, at(0.0, 1.0), at(1e-5, 1.0), "dt"),
+        (1e-5, at(f64::NAN, 1.0), at(1e-5, 1.0), "start.depth"),
+        (1e-5, at(0.0, f64::INFINITY), at(1e-5, 1.0), "start.rate"),
+        (1e-5, at(0.0, 1.0), at(f64::NEG_INFINITY, 1.0), "end.depth"),
+        (1e-5, at(0.0, 1.0), at(1e-5, f64::NAN), "end.rate"),
+    ] {
+        let err = carry.advance_penetration(dt, a, b).unwrap_err();
+        assert!(
+            matches!(err, ModelError::InvalidSetting { name: n, .. } if n == name),
+            "{err}"
+        );
+    }
     assert_eq!(
         before,
         (*carry.state(), carry.absorbed(), carry.in_contact())
@@ -161,6 +211,26 @@ fn an_element_step_does_not_allocate() {
     el.advance(1e-5, -2.0, -2.0).unwrap();
     let (step, allocations) = super::alloc_counter::count(|| el.advance(1e-5, -2.0, -1.99));
     assert!(step.unwrap().force > 0.0);
+    assert_eq!(allocations, 0);
+    // Tracking the overlap: an onset inside the step.
+    let mut el = ContactElement::new(
+        Bwmcl::new(&cross(ModelKind::Mcm)).unwrap(),
+        ElementSettings::default(),
+    )
+    .unwrap();
+    let (a, b) = (
+        Penetration {
+            depth: -1e-5,
+            rate: 2.0,
+        },
+        Penetration {
+            depth: 1e-5,
+            rate: 2.0,
+        },
+    );
+    let (step, allocations) = super::alloc_counter::count(|| el.advance_penetration(1e-5, a, b));
+    let step = step.unwrap();
+    assert!(step.force > 0.0 && (step.began_at.unwrap() - 5e-6).abs() < 1e-15);
     assert_eq!(allocations, 0);
 }
 
