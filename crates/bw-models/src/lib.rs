@@ -5,7 +5,8 @@
 //! Further Results* (equation labels refer to its LaTeX source):
 //!
 //! * the collision laws as force elements: [`Bwshccl`] (x, z) and [`Bwmcl`] (r, y, z), and a
-//!   [`ContactElement`] that carries one law's state between a host simulator's steps;
+//!   [`ContactElement`] that carries one law's state between a host simulator's steps
+//!   ([`AnyContactElement`]: of either law, chosen at run time);
 //! * the models with input `u(t)`: [`Bwshccm`] (x, z, v), [`Bwmcm`] (r, y, z, v) in SI units and
 //!   their nondimensional forms [`Ndbwshccm`], [`Ndbwmcm`] with input `U(T)`; the earlier
 //!   BWMCM forms [`BwmcmEarlier`], [`NdbwmcmEarlier`];
@@ -43,6 +44,7 @@
 //! ```
 #![deny(missing_docs)]
 
+mod any_element;
 mod bodies;
 mod clearance;
 mod cor;
@@ -65,6 +67,7 @@ mod settings;
 mod simulate;
 pub mod sweep;
 
+pub use any_element::AnyContactElement;
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use cor::{impact, impact_at, impact_double_double};
 pub use element::{ContactElement, ElementSettings, ElementStep, Penetration};

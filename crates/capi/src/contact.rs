@@ -4,9 +4,7 @@ use crate::law::{dead, law};
 use crate::registry::Registry;
 use crate::status::{guard, invalid, out, BwcStatus, Failure};
 use bw_models::sequence::Policy;
-use bw_models::{
-    Bwmcl, Bwshccl, ContactElement, ElementSettings, ElementStep, ModelKind, Penetration,
-};
+use bw_models::{AnyContactElement, ElementSettings, ElementStep, Penetration};
 use std::sync::{Mutex, RwLock};
 
 /// A contact element's handle: 0 is never one.
@@ -64,22 +62,7 @@ pub struct BwcContactInfo {
     pub in_contact: i32,
 }
 
-/// One element of either law.
-#[derive(Debug, Clone)]
-enum Element {
-    Shccm(ContactElement<Bwshccl, 2>),
-    Mcm(ContactElement<Bwmcl, 3>),
-}
-
-/// `$body` with `$e` bound to the element, whichever law it holds.
-macro_rules! each {
-    ($element:expr, $e:ident => $body:expr) => {
-        match $element {
-            Element::Shccm($e) => $body,
-            Element::Mcm($e) => $body,
-        }
-    };
-}
+type Element = AnyContactElement;
 
 static CONTACTS: RwLock<Registry<Mutex<Element>>> = RwLock::new(Registry::new());
 
@@ -142,12 +125,7 @@ pub unsafe extern "C" fn bwc_contact_new(
             None => ElementSettings::default(),
         };
         let params = self::law(law)?;
-        let element = match params.kind() {
-            ModelKind::Shccm => {
-                Element::Shccm(ContactElement::new(Bwshccl::new(&params)?, settings)?)
-            }
-            ModelKind::Mcm => Element::Mcm(ContactElement::new(Bwmcl::new(&params)?, settings)?),
-        };
+        let element = Element::new(&params, settings)?;
         let mut contacts = CONTACTS.write().unwrap_or_else(|e| e.into_inner());
         *out = contacts.insert(Mutex::new(element)).ok_or_else(|| {
             Failure::new(BwcStatus::Failed, "no handles left: free some contacts")
@@ -197,7 +175,7 @@ pub unsafe extern "C" fn bwc_contact_advance(
     out: *mut BwcStep,
 ) -> BwcStatus {
     guard("bwc_contact_advance", || {
-        let step = with(contact, |e| each!(e, el => el.advance(dt, u_start, u_end)))??;
+        let step = with(contact, |el| el.advance(dt, u_start, u_end))??;
         // SAFETY: the caller's contract; NULL is allowed.
         if let Some(out) = unsafe { out.as_mut() } {
             *out = c_step(step);
@@ -233,11 +211,8 @@ pub unsafe extern "C" fn bwc_contact_advance_penetration(
             depth: depth_end,
             rate: rate_end,
         };
-        let step = with(
-            contact,
-            |e| each!(e, el => el.advance_penetration(dt, start, end)),
-        )
-        .and_then(|r| r.map_err(|e| rename(e.into())))?;
+        let step = with(contact, |el| el.advance_penetration(dt, start, end))
+            .and_then(|r| r.map_err(|e| rename(e.into())))?;
         // SAFETY: the caller's contract; NULL is allowed.
         if let Some(out) = unsafe { out.as_mut() } {
             *out = c_step(step);
@@ -271,15 +246,13 @@ pub unsafe extern "C" fn bwc_contact_info(
     guard("bwc_contact_info", || {
         // SAFETY: the caller's contract; NULL is checked.
         let out = unsafe { self::out(out, "out")? };
-        *out = with(contact, |e| {
-            each!(e, el => BwcContactInfo {
-                force: el.force(),
-                absorbed: el.absorbed(),
-                dissipated: el.dissipated(),
-                onset_depth: el.onset_depth(),
-                contacts: el.contacts(),
-                in_contact: i32::from(el.in_contact()),
-            })
+        *out = with(contact, |el| BwcContactInfo {
+            force: el.force(),
+            absorbed: el.absorbed(),
+            dissipated: el.dissipated(),
+            onset_depth: el.onset_depth(),
+            contacts: el.contacts(),
+            in_contact: i32::from(el.in_contact()),
         })?;
         Ok(())
     })
@@ -294,7 +267,7 @@ pub unsafe extern "C" fn bwc_contact_force(contact: BwcContact, out: *mut f64) -
     guard("bwc_contact_force", || {
         // SAFETY: the caller's contract; NULL is checked.
         let out = unsafe { self::out(out, "out")? };
-        *out = with(contact, |e| each!(e, el => el.force()))?;
+        *out = with(contact, |el| el.force())?;
         Ok(())
     })
 }
@@ -308,7 +281,7 @@ pub unsafe extern "C" fn bwc_contact_dissipated(contact: BwcContact, out: *mut f
     guard("bwc_contact_dissipated", || {
         // SAFETY: the caller's contract; NULL is checked.
         let out = unsafe { self::out(out, "out")? };
-        *out = with(contact, |e| each!(e, el => el.dissipated()))?;
+        *out = with(contact, |el| el.dissipated())?;
         Ok(())
     })
 }
@@ -335,10 +308,11 @@ pub unsafe extern "C" fn bwc_contact_state(
                 "argument `out` is NULL: pass room for 3 doubles",
             ));
         }
-        let (values, n) = with(contact, |e| {
+        let (values, n) = with(contact, |el| {
             let mut v = [0.0; 3];
-            let n = each!(e, el => { let s = el.state(); v[..s.len()].copy_from_slice(s.as_slice()); s.len() });
-            (v, n)
+            let s = el.state();
+            v[..s.len()].copy_from_slice(s);
+            (v, s.len())
         })?;
         *len = n;
         if capacity < n {
@@ -357,9 +331,7 @@ pub unsafe extern "C" fn bwc_contact_state(
 /// Back to the law at rest, out of contact, with nothing absorbed and the onset depth 0.
 #[no_mangle]
 pub extern "C" fn bwc_contact_reset(contact: BwcContact) -> BwcStatus {
-    guard("bwc_contact_reset", || {
-        with(contact, |e| each!(e, el => el.reset()))
-    })
+    guard("bwc_contact_reset", || with(contact, |el| el.reset()))
 }
 
 /// Creates a new element with the state of `from` (law, settings, state, energies, counts):

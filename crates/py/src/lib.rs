@@ -19,6 +19,8 @@
 //! ```
 #![deny(missing_docs)]
 
+mod contact;
+mod contacts;
 mod dict_errors;
 
 use bw_models::Check;
@@ -376,5 +378,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate_json, m)?)?;
     m.add_function(wrap_pyfunction!(identify_json, m)?)?;
     m.add_function(wrap_pyfunction!(coverage_json, m)?)?;
+    m.add_class::<contact::Contact>()?;
+    m.add_class::<contact::Step>()?;
+    m.add_class::<contacts::Contacts>()?;
     Ok(())
 }

@@ -24,11 +24,14 @@ import warnings
 
 from ._native import BwcError, BwcWarning, __version__, cor as _cor, coverage_json as _coverage
 from ._native import identify_json as _identify, simulate_json as _simulate
+from ._native import Contact, Contacts, Step
 from ._results import Cor, Coverage, Fit, Identification, Params, Result, Run, Simulation, wrap
 
 __all__ = [
     "BwcError",
     "BwcWarning",
+    "Contact",
+    "Contacts",
     "Cor",
     "Coverage",
     "Fit",
@@ -37,6 +40,7 @@ __all__ = [
     "Result",
     "Run",
     "Simulation",
+    "Step",
     "__version__",
     "cor",
     "coverage",

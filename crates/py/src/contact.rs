@@ -1,0 +1,455 @@
+//! `bwc.Contact` and `bwc.Contacts`: the contact element for Python hosts, one at a time or
+//! many at once (in parallel, with the GIL released).
+
+use crate::BwcError;
+use bw_models::sequence::Policy;
+use bw_models::{
+    AnyContactElement, BaseMap, BaseParams, ElementSettings, ElementStep, ModelKind, Penetration,
+    Physical, PhysicalParams,
+};
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+const PHYSICAL: [&str; 8] = ["k", "c", "n", "p", "alpha", "beta", "gamma", "A"];
+const BASE: [&str; 8] = ["B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "U_b", "T_b"];
+
+/// The law of `model` from a dict of SI parameters (`k, c, n, p, alpha, beta, gamma, A`; an
+/// `m` is not the law's and is left alone) or of base parameters (`B_b, Gamma_b, kappa,
+/// sigma_b, n, p, U_b, T_b`, with `A = 1`), and the mass the base parameters imply.
+fn law(model: &str, params: &Bound<'_, PyDict>) -> PyResult<(PhysicalParams, Option<f64>)> {
+    let kind = match model {
+        "shccm" => ModelKind::Shccm,
+        "mcm" => ModelKind::Mcm,
+        other => {
+            return Err(BwcError::new_err(format!(
+                "model: \"{other}\" is not a model: \"shccm\" or \"mcm\""
+            )))
+        }
+    };
+    let base = params.contains("B_b")? || params.contains("sigma_b")?;
+    let names: &[&str] = if base { &BASE } else { &PHYSICAL };
+    for key in params.keys() {
+        let key: String = key.extract()?;
+        // An SI dict may carry the bodies' `m` (a scene's `[physical]` does); the law has none.
+        let known = names.contains(&key.as_str()) || (key == "m" && !base);
+        if !known {
+            return Err(BwcError::new_err(format!(
+                "params[\"{key}\"]: not a parameter of the law: {}",
+                names.join(", ")
+            )));
+        }
+    }
+    let mut v = [0.0; 8];
+    for (slot, name) in v.iter_mut().zip(names) {
+        let value = params.get_item(name)?.ok_or_else(|| {
+            BwcError::new_err(format!(
+                "params[\"{name}\"] is missing: the law needs {}",
+                names.join(", ")
+            ))
+        })?;
+        *slot = value
+            .extract()
+            .map_err(|_| BwcError::new_err(format!("params[\"{name}\"]: not a number")))?;
+    }
+    let bad = |e: bw_models::ModelError| BwcError::new_err(format!("params: {e}"));
+    if base {
+        let [b_b, gamma_b, kappa, sigma_b, n, p, u_b, t_b] = v;
+        let b = BaseParams {
+            b_b,
+            gamma_b,
+            kappa,
+            sigma_b,
+            n,
+            p,
+            u_b,
+            t_b,
+        };
+        let (law, m) = BaseMap::new(kind, b)
+            .and_then(|m| m.physical())
+            .map_err(bad)?;
+        Ok((law, Some(m)))
+    } else {
+        let [k, c, n, p, alpha, beta, gamma, a] = v;
+        let l = Physical {
+            k,
+            c,
+            n,
+            p,
+            alpha,
+            beta,
+            gamma,
+            a,
+        };
+        Ok((PhysicalParams::new(kind, l).map_err(bad)?, None))
+    }
+}
+
+fn settings(policy: &str, rtol: f64, atol: f64) -> PyResult<ElementSettings> {
+    let mut s = ElementSettings::default();
+    s.rtol = rtol;
+    s.atol = atol;
+    s.policy = match policy {
+        "reset" => Policy::Reset,
+        "carry" => Policy::Carry,
+        other => {
+            return Err(BwcError::new_err(format!(
+                "policy: \"{other}\" is not a policy: \"reset\" or \"carry\""
+            )))
+        }
+    };
+    Ok(s)
+}
+
+pub(crate) fn element(
+    model: &str,
+    params: &Bound<'_, PyDict>,
+    policy: &str,
+    rtol: f64,
+    atol: f64,
+) -> PyResult<(AnyContactElement, Option<f64>)> {
+    let (law, mass) = law(model, params)?;
+    let element = AnyContactElement::new(&law, settings(policy, rtol, atol)?)
+        .map_err(|e| BwcError::new_err(e.to_string()))?;
+    Ok((element, mass))
+}
+
+pub(crate) fn policy_name(e: &AnyContactElement) -> &'static str {
+    match e.settings().policy {
+        Policy::Reset => "reset",
+        Policy::Carry => "carry",
+    }
+}
+
+/// What one host step of a :class:`Contact` gave.
+///
+/// Attributes
+/// ----------
+/// force : float
+///     The force at the step's end (N, positive pushing the bodies apart; 0 once separated).
+/// impulse : float
+///     The impulse of the force over the step (N s): what the host's momentum balance needs.
+/// work : float
+///     The work the bodies did on the contact over the step (J).
+/// separated_at : float or None
+///     Where the contact ended in the step (s from its start).
+/// began_at : float or None
+///     Where a contact began in the step (s from its start; penetration input only).
+#[pyclass(module = "bwc", frozen, get_all)]
+#[derive(Debug, Clone, Copy)]
+pub struct Step {
+    /// The force at the step's end (N, positive pushing the bodies apart; 0 once separated).
+    force: f64,
+    /// The impulse of the force over the step (N s).
+    impulse: f64,
+    /// The work the bodies did on the contact over the step (J).
+    work: f64,
+    /// Where the contact ended in the step (s from its start), or None.
+    separated_at: Option<f64>,
+    /// Where a contact began in the step (s from its start; penetration input), or None.
+    began_at: Option<f64>,
+}
+
+#[pymethods]
+impl Step {
+    fn __repr__(&self) -> String {
+        let opt = |v: Option<f64>| v.map_or("None".into(), |t| format!("{t:e}"));
+        format!(
+            "Step(force={:e}, impulse={:e}, work={:e}, separated_at={}, began_at={})",
+            self.force,
+            self.impulse,
+            self.work,
+            opt(self.separated_at),
+            opt(self.began_at)
+        )
+    }
+}
+
+impl From<ElementStep> for Step {
+    fn from(s: ElementStep) -> Self {
+        Self {
+            force: s.force,
+            impulse: s.impulse,
+            work: s.work,
+            separated_at: s.separated_at,
+            began_at: s.began_at,
+        }
+    }
+}
+
+/// A contact element: one contact's law and state, carried between a host simulator's steps.
+///
+/// Per step the host gives the time step and the relative motion; the element integrates the
+/// law's stiff internal states over the step to ``rtol`` (its own steps, stopping at the
+/// law's kinks), finds the separation ``F <= 0 <= u`` inside it and returns the force at the
+/// step's end, its impulse and its work. SI units; ``F > 0`` pushes the bodies apart, the
+/// relative velocity ``u < 0`` while they approach, the penetration is positive while they
+/// overlap.
+///
+/// Parameters
+/// ----------
+/// model : {"shccm", "mcm"}
+///     The Bouc-Wen-Simon-Hunt-Crossley or the Bouc-Wen-Maxwell law.
+/// params : dict
+///     SI parameters ``k, c, n, p, alpha, beta, gamma, A`` (an ``m`` may be there and is not
+///     used: the law has no mass), or base parameters ``B_b, Gamma_b, kappa, sigma_b, n, p,
+///     U_b, T_b`` (the law with ``A = 1``; :attr:`mass` is then ``T_b / U_b``).
+/// policy : {"reset", "carry"}
+///     What a new contact starts from: the law at rest, or the state of the last separation.
+/// rtol, atol : float
+///     Tolerances of the internal steps: relative, and absolute of the law's states (m).
+///
+/// Attributes
+/// ----------
+/// force : float
+///     The force at the end of the last step (N).
+/// state : numpy.ndarray
+///     The law's states (m): ``x, z`` or ``r, y, z``.
+/// absorbed, dissipated : float
+///     The work done on the contact so far, and the part of it not held by the law's springs
+///     (J).
+/// in_contact : bool
+///     Whether a contact is under way.
+/// contacts : int
+///     Contacts that have ended.
+/// onset_depth : float
+///     The penetration (m) at which the next contact begins (penetration input): 0, then the
+///     penetration at the last separation.
+/// model, policy : str
+/// mass : float or None
+///     The mass base parameters were taken with (kg).
+///
+/// Raises
+/// ------
+/// BwcError
+///     A parameter or setting outside its admissible set, named with its value.
+///
+/// See Also
+/// --------
+/// Contacts : many contacts of one law, advanced together.
+///
+/// Examples
+/// --------
+/// >>> import bwc
+/// >>> law = {"k": 117080063.0, "c": 5854003.0, "n": 1.1, "p": 1.7, "alpha": 0.1,
+/// ...        "beta": 981.05, "gamma": -961.4, "A": 0.925}
+/// >>> contact = bwc.Contact("shccm", law)
+/// >>> step = contact.advance(1e-5, -2.0, -2.0)   # 10 us of an approach at 2 m/s
+/// >>> bool(step.force > 0), step.separated_at, contact.in_contact
+/// (True, None, True)
+/// >>> round(float(contact.state[0]) * 1e6, 9)    # x = u dt, in um
+/// -20.0
+#[pyclass(module = "bwc")]
+#[derive(Debug, Clone)]
+pub struct Contact {
+    element: AnyContactElement,
+    mass: Option<f64>,
+}
+
+impl Contact {
+    pub(crate) fn of(element: AnyContactElement, mass: Option<f64>) -> Self {
+        Self { element, mass }
+    }
+}
+
+#[pymethods]
+impl Contact {
+    #[new]
+    #[pyo3(signature = (model, params, *, policy="reset", rtol=1e-10, atol=1e-16))]
+    fn new(
+        model: &str,
+        params: &Bound<'_, PyDict>,
+        policy: &str,
+        rtol: f64,
+        atol: f64,
+    ) -> PyResult<Self> {
+        let (element, mass) = element(model, params, policy, rtol, atol)?;
+        Ok(Self { element, mass })
+    }
+
+    /// Advances the element over a host step with the relative velocity.
+    ///
+    /// Call it while the bodies touch: a step starts a contact if none is under way. After a
+    /// separation inside the step the force is 0 for the rest of it.
+    ///
+    /// Parameters
+    /// ----------
+    /// dt : float
+    ///     The step (s), > 0.
+    /// u_start, u_end : float
+    ///     The relative velocity (m/s, negative while the bodies approach) at the step's start
+    ///     and end, taken as linear in between.
+    ///
+    /// Returns
+    /// -------
+    /// Step
+    ///
+    /// Raises
+    /// ------
+    /// BwcError
+    ///     A bad argument (named) or a failed integration; the element is unchanged.
+    fn advance(&mut self, py: Python<'_>, dt: f64, u_start: f64, u_end: f64) -> PyResult<Step> {
+        let e = &mut self.element;
+        py.allow_threads(|| e.advance(dt, u_start, u_end))
+            .map(Step::from)
+            .map_err(|e| BwcError::new_err(format!("advance: {e}")))
+    }
+
+    /// Advances the element over a host step with the penetration.
+    ///
+    /// The penetration is the cubic Hermite interpolant of its values and rates at the ends.
+    /// Out of contact, a contact begins where the penetration rises through
+    /// :attr:`onset_depth`; it ends at ``F <= 0 <= u``. A step may hold several.
+    ///
+    /// Parameters
+    /// ----------
+    /// dt : float
+    ///     The step (s), > 0.
+    /// depth_start, rate_start : float
+    ///     The penetration (m, positive while the bodies overlap) and its rate (m/s, positive
+    ///     while they approach) at the step's start.
+    /// depth_end, rate_end : float
+    ///     The same at the step's end.
+    ///
+    /// Returns
+    /// -------
+    /// Step
+    ///
+    /// Raises
+    /// ------
+    /// BwcError
+    ///     A bad argument (named) or a failed integration; the element is unchanged.
+    fn advance_penetration(
+        &mut self,
+        py: Python<'_>,
+        dt: f64,
+        depth_start: f64,
+        rate_start: f64,
+        depth_end: f64,
+        rate_end: f64,
+    ) -> PyResult<Step> {
+        let (a, b) = ends(depth_start, rate_start, depth_end, rate_end);
+        let e = &mut self.element;
+        py.allow_threads(|| e.advance_penetration(dt, a, b))
+            .map(Step::from)
+            .map_err(|e| BwcError::new_err(format!("advance_penetration: {}", arguments(e))))
+    }
+
+    /// Back to the law at rest, out of contact, nothing absorbed.
+    fn reset(&mut self) {
+        self.element.reset();
+    }
+
+    /// An independent copy (to try a step before taking it).
+    fn copy(&self) -> Self {
+        self.clone()
+    }
+
+    fn __copy__(&self) -> Self {
+        self.clone()
+    }
+
+    fn __deepcopy__(&self, _memo: &Bound<'_, PyAny>) -> Self {
+        self.clone()
+    }
+
+    /// The force at the end of the last step (N).
+    #[getter]
+    fn force(&self) -> f64 {
+        self.element.force()
+    }
+
+    /// The law's state (m) as a new array: x, z (SHCCM) or r, y, z (MCM).
+    #[getter]
+    fn state<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, self.element.state())
+    }
+
+    /// The work the bodies did on the contact so far (J).
+    #[getter]
+    fn absorbed(&self) -> f64 {
+        self.element.absorbed()
+    }
+
+    /// The energy dissipated so far (J).
+    #[getter]
+    fn dissipated(&self) -> f64 {
+        self.element.dissipated()
+    }
+
+    /// Whether a contact is under way.
+    #[getter]
+    fn in_contact(&self) -> bool {
+        self.element.in_contact()
+    }
+
+    /// Contacts that have ended.
+    #[getter]
+    fn contacts(&self) -> u64 {
+        self.element.contacts()
+    }
+
+    /// The penetration (m) at which the next contact begins (penetration input).
+    #[getter]
+    fn onset_depth(&self) -> f64 {
+        self.element.onset_depth()
+    }
+
+    /// "shccm" or "mcm".
+    #[getter]
+    fn model(&self) -> &'static str {
+        self.element.kind().name()
+    }
+
+    /// "reset" or "carry".
+    #[getter]
+    fn policy(&self) -> &'static str {
+        policy_name(&self.element)
+    }
+
+    /// The mass (kg) base parameters were taken with (`T_b / U_b`); None for SI parameters.
+    #[getter]
+    fn mass(&self) -> Option<f64> {
+        self.mass
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Contact(model='{}', policy='{}', in_contact={}, force={:e}, dissipated={:e}, \
+             contacts={})",
+            self.model(),
+            self.policy(),
+            if self.in_contact() { "True" } else { "False" },
+            self.force(),
+            self.dissipated(),
+            self.contacts()
+        )
+    }
+}
+
+fn ends(d0: f64, r0: f64, d1: f64, r1: f64) -> (Penetration, Penetration) {
+    (
+        Penetration {
+            depth: d0,
+            rate: r0,
+        },
+        Penetration {
+            depth: d1,
+            rate: r1,
+        },
+    )
+}
+
+/// The library names the penetration's ends `start.depth` ...; here they are arguments.
+pub(crate) fn arguments(e: bw_models::ModelError) -> String {
+    let mut m = e.to_string();
+    for (from, to) in [
+        ("`start.depth`", "`depth_start`"),
+        ("`start.rate`", "`rate_start`"),
+        ("`end.depth`", "`depth_end`"),
+        ("`end.rate`", "`rate_end`"),
+    ] {
+        m = m.replace(from, to);
+    }
+    m
+}
