@@ -1,0 +1,367 @@
+//! One FMU instance: its parameters, its phase in the FMI 2.0 state machine, the contact
+//! element and its inputs and outputs. Everything here is plain Rust; `fmi2` wraps it for C.
+
+use crate::variables::{find, Type, Variable, REAL_PARAMETERS};
+use bw_models::sequence::Policy;
+use bw_models::{
+    AnyContactElement, ElementSettings, ModelKind, Penetration, Physical, PhysicalParams,
+};
+
+/// Where an instance is in FMI 2.0's Co-Simulation state machine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Phase {
+    /// After fmi2Instantiate: parameters may be set.
+    Instantiated,
+    /// Between fmi2EnterInitializationMode and fmi2ExitInitializationMode.
+    Initialization,
+    /// Stepping: fmi2DoStep.
+    Stepping,
+    /// After fmi2Terminate.
+    Terminated,
+}
+
+/// The parameters: the law's reals ([`REAL_PARAMETERS`]), the model and the policy.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Params {
+    /// `k, c, n, p, alpha, beta, gamma, A, rtol, atol`.
+    pub reals: [f64; 10],
+    /// 0: SHCCM, 1: MCM.
+    pub model: i32,
+    /// 0: reset, 1: carry.
+    pub policy: i32,
+}
+
+impl Default for Params {
+    /// The BWSHCCM of the paper's Table 4 (Cross's baseball), `rtol` 1e-10, `atol` 1e-16 m,
+    /// reset: the start values of `modelDescription.xml`.
+    fn default() -> Self {
+        Self {
+            reals: [
+                117080063.0,
+                5854003.0,
+                1.1,
+                1.7,
+                0.1,
+                981.05,
+                -961.4,
+                0.925,
+                1e-10,
+                1e-16,
+            ],
+            model: 0,
+            policy: 0,
+        }
+    }
+}
+
+/// What changes while stepping: what fmi2GetFMUstate saves.
+#[derive(Debug, Clone)]
+pub struct Dynamic {
+    element: Option<AnyContactElement>,
+    delta: f64,
+    delta_dot: f64,
+    /// The relative acceleration over the next step (m/s², the derivative of `delta_dot`),
+    /// 0 unless fmi2SetRealInputDerivatives gave it.
+    accel: f64,
+    impulse: f64,
+    time: f64,
+}
+
+/// One instance.
+#[derive(Debug, Clone)]
+pub struct Instance {
+    params: Params,
+    phase: Phase,
+    dynamic: Dynamic,
+}
+
+impl Default for Instance {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Instance {
+    /// A fresh instance with the default parameters.
+    pub fn new() -> Self {
+        Self {
+            params: Params::default(),
+            phase: Phase::Instantiated,
+            dynamic: Dynamic {
+                element: None,
+                delta: 0.0,
+                delta_dot: 0.0,
+                accel: 0.0,
+                impulse: 0.0,
+                time: 0.0,
+            },
+        }
+    }
+
+    /// The phase.
+    pub fn phase(&self) -> Phase {
+        self.phase
+    }
+
+    /// The time of the last communication point (s).
+    pub fn time(&self) -> f64 {
+        self.dynamic.time
+    }
+
+    /// fmi2SetupExperiment: the start time.
+    pub fn setup(&mut self, start: f64) -> Result<(), String> {
+        self.expect(&[Phase::Instantiated], "fmi2SetupExperiment")?;
+        if !start.is_finite() {
+            return Err(format!("startTime = {start} is not finite"));
+        }
+        self.dynamic.time = start;
+        Ok(())
+    }
+
+    /// fmi2EnterInitializationMode.
+    pub fn enter_initialization(&mut self) -> Result<(), String> {
+        self.expect(&[Phase::Instantiated], "fmi2EnterInitializationMode")?;
+        self.phase = Phase::Initialization;
+        Ok(())
+    }
+
+    /// fmi2ExitInitializationMode: the law from the parameters, checked.
+    pub fn exit_initialization(&mut self) -> Result<(), String> {
+        self.expect(&[Phase::Initialization], "fmi2ExitInitializationMode")?;
+        self.dynamic.element = Some(element(&self.params)?);
+        self.phase = Phase::Stepping;
+        Ok(())
+    }
+
+    /// fmi2Terminate.
+    pub fn terminate(&mut self) -> Result<(), String> {
+        self.expect(&[Phase::Stepping], "fmi2Terminate")?;
+        self.phase = Phase::Terminated;
+        Ok(())
+    }
+
+    /// fmi2Reset: as instantiated, with the default parameters.
+    pub fn reset(&mut self) {
+        *self = Self::new();
+    }
+
+    fn expect(&self, phases: &[Phase], what: &str) -> Result<(), String> {
+        if phases.contains(&self.phase) {
+            Ok(())
+        } else {
+            Err(format!("{what} is not allowed in phase {:?}", self.phase))
+        }
+    }
+
+    /// fmi2SetReal of one variable.
+    pub fn set_real(&mut self, vr: u32, value: f64) -> Result<(), String> {
+        let v = variable(vr, Type::Real)?;
+        match v.causality {
+            "parameter" => {
+                self.settable(v)?;
+                let i = REAL_PARAMETERS
+                    .iter()
+                    .position(|n| *n == v.name)
+                    .unwrap_or(0);
+                self.params.reals[i] = value;
+                Ok(())
+            }
+            "input" => {
+                if !value.is_finite() {
+                    return Err(format!(
+                        "input `{}` = {value} is not admissible: a finite number",
+                        v.name
+                    ));
+                }
+                match vr {
+                    30 => self.dynamic.delta = value,
+                    _ => self.dynamic.delta_dot = value,
+                }
+                Ok(())
+            }
+            _ => Err(format!("`{}` is an output: it cannot be set", v.name)),
+        }
+    }
+
+    /// fmi2SetInteger of one variable.
+    pub fn set_integer(&mut self, vr: u32, value: i32) -> Result<(), String> {
+        let v = variable(vr, Type::Integer)?;
+        if v.causality != "parameter" {
+            return Err(format!("`{}` is an output: it cannot be set", v.name));
+        }
+        self.settable(v)?;
+        if !(0..=1).contains(&value) {
+            return Err(format!(
+                "parameter `{}` = {value} is not admissible: {}",
+                v.name, v.description
+            ));
+        }
+        match vr {
+            20 => self.params.model = value,
+            _ => self.params.policy = value,
+        }
+        Ok(())
+    }
+
+    fn settable(&self, v: &Variable) -> Result<(), String> {
+        self.expect(&[Phase::Instantiated, Phase::Initialization], "")
+            .map_err(|_| {
+                format!(
+                    "parameter `{}` is fixed once initialized: set it before \
+                     fmi2ExitInitializationMode (or after fmi2Reset)",
+                    v.name
+                )
+            })
+    }
+
+    /// fmi2GetReal of one variable.
+    pub fn get_real(&self, vr: u32) -> Result<f64, String> {
+        let v = variable(vr, Type::Real)?;
+        let d = &self.dynamic;
+        let e = d.element.as_ref();
+        Ok(match vr {
+            30 => d.delta,
+            31 => d.delta_dot,
+            40 => e.map_or(0.0, |e| e.force()),
+            41 => d.impulse,
+            42 => e.map_or(0.0, |e| e.dissipated()),
+            43 => e.map_or(0.0, |e| e.absorbed()),
+            _ => {
+                let i = REAL_PARAMETERS
+                    .iter()
+                    .position(|n| *n == v.name)
+                    .unwrap_or(0);
+                self.params.reals[i]
+            }
+        })
+    }
+
+    /// fmi2GetInteger of one variable.
+    pub fn get_integer(&self, vr: u32) -> Result<i32, String> {
+        variable(vr, Type::Integer)?;
+        let e = self.dynamic.element.as_ref();
+        Ok(match vr {
+            20 => self.params.model,
+            21 => self.params.policy,
+            _ => e.map_or(0, |e| i32::try_from(e.contacts()).unwrap_or(i32::MAX)),
+        })
+    }
+
+    /// fmi2GetBoolean of one variable.
+    pub fn get_boolean(&self, vr: u32) -> Result<bool, String> {
+        variable(vr, Type::Boolean)?;
+        Ok(self
+            .dynamic
+            .element
+            .as_ref()
+            .is_some_and(|e| e.in_contact()))
+    }
+
+    /// fmi2SetRealInputDerivatives of one input: order 1 of `delta_dot` (or order 2 of
+    /// `delta`) is the relative acceleration over the next step; order 1 of `delta` must be
+    /// `delta_dot`'s value and is taken as it.
+    pub fn set_input_derivative(&mut self, vr: u32, order: i32, value: f64) -> Result<(), String> {
+        let v = variable(vr, Type::Real)?;
+        if v.causality != "input" {
+            return Err(format!("`{}` is not an input", v.name));
+        }
+        if !value.is_finite() {
+            return Err(format!(
+                "the derivative of order {order} of `{}` = {value} is not admissible: a finite \
+                 number",
+                v.name
+            ));
+        }
+        match (vr, order) {
+            (31, 1) | (30, 2) => self.dynamic.accel = value,
+            (30, 1) => self.dynamic.delta_dot = value,
+            _ => {
+                return Err(format!(
+                    "derivative of order {order} of `{}`: the FMU takes order 1 of `delta_dot` \
+                     (or 1 and 2 of `delta`)",
+                    v.name
+                ))
+            }
+        }
+        Ok(())
+    }
+
+    /// fmi2DoStep from `t` over `h`: the penetration from its value and rate (and the
+    /// acceleration, where given) at `t`, quadratic over the step.
+    pub fn do_step(&mut self, t: f64, h: f64) -> Result<(), String> {
+        self.expect(&[Phase::Stepping], "fmi2DoStep")?;
+        if !(h > 0.0 && h.is_finite()) {
+            return Err(format!(
+                "communicationStepSize = {h} is not admissible: > 0 (s), finite"
+            ));
+        }
+        let d = &mut self.dynamic;
+        if (t - d.time).abs() > 1e-9 * d.time.abs().max(h) {
+            return Err(format!(
+                "currentCommunicationPoint = {t} is not the FMU's time {}: step on from the last \
+                 step's end (or restore an FMU state)",
+                d.time
+            ));
+        }
+        let start = Penetration {
+            depth: d.delta,
+            rate: d.delta_dot,
+        };
+        let end = Penetration {
+            depth: d.delta + h * (d.delta_dot + 0.5 * h * d.accel),
+            rate: d.delta_dot + h * d.accel,
+        };
+        let element = d.element.as_mut().ok_or("the FMU is not initialized")?;
+        let step = element
+            .advance_penetration(h, start, end)
+            .map_err(|e| e.to_string())?;
+        d.impulse = step.impulse;
+        d.time = t + h;
+        d.accel = 0.0;
+        Ok(())
+    }
+
+    /// What fmi2GetFMUstate saves.
+    pub fn snapshot(&self) -> Dynamic {
+        self.dynamic.clone()
+    }
+
+    /// fmi2SetFMUstate: back to a saved state.
+    pub fn restore(&mut self, saved: &Dynamic) {
+        self.dynamic = saved.clone();
+    }
+}
+
+fn variable(vr: u32, kind: Type) -> Result<&'static Variable, String> {
+    find(vr, kind).ok_or_else(|| format!("no {kind:?} variable has value reference {vr}"))
+}
+
+/// The element the parameters describe; an error names the parameter.
+fn element(p: &Params) -> Result<AnyContactElement, String> {
+    let [k, c, n, pp, alpha, beta, gamma, a, rtol, atol] = p.reals;
+    let kind = if p.model == 1 {
+        ModelKind::Mcm
+    } else {
+        ModelKind::Shccm
+    };
+    let law = Physical {
+        k,
+        c,
+        n,
+        p: pp,
+        alpha,
+        beta,
+        gamma,
+        a,
+    };
+    let params = PhysicalParams::new(kind, law).map_err(|e| e.to_string())?;
+    let mut settings = ElementSettings::default();
+    settings.rtol = rtol;
+    settings.atol = atol;
+    settings.policy = if p.policy == 1 {
+        Policy::Carry
+    } else {
+        Policy::Reset
+    };
+    AnyContactElement::new(&params, settings).map_err(|e| e.to_string())
+}
