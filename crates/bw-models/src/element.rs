@@ -30,8 +30,11 @@ use crate::sequence::Policy;
 use bwc_events::{Locator, Outcome, SwitchAt};
 use bwc_ode::{Integrator, Options, State, DOP853};
 
-/// The integrated state: the law's `N <= 3` displacements, then the absorbed work (J) and the
-/// impulse (N s) since the step's start, in components 3 and 4.
+/// The integrated state: the law's `N <= 3` displacements, then the energy dissipated (J) and
+/// the impulse (N s) since the step's start, in components 3 and 4. The work absorbed is the
+/// dissipated energy plus the change of the stored energy ([`ContactLaw::stored`], exact):
+/// only the dissipation is a quadrature, and its integrand is smooth where the work's is not
+/// (`F² / c` against `-F u` at the onset of a Maxwell law).
 type Augmented = State<5>;
 const WORK: usize = 3;
 const IMPULSE: usize = 4;
@@ -123,6 +126,11 @@ impl Motion {
     fn u(&self, t: f64) -> f64 {
         let [c0, c1, c2] = self.c;
         c0 + t * (c1 + t * c2)
+    }
+
+    fn du(&self, t: f64) -> f64 {
+        let [_, c1, c2] = self.c;
+        c1 + 2.0 * c2 * t
     }
 
     fn depth(&self, t: f64) -> f64 {
@@ -335,10 +343,23 @@ impl<L: ContactLaw<N>, const N: usize> ContactElement<L, N> {
                 }
                 t = t_on;
             }
-            let end = self.contact(&s.state, motion, t, dt)?;
+            // A contact at whose start the bodies are parting and the law pushes nothing (at
+            // rest, or a carried state without compression) ends there: the condition holds
+            // from the start, and the event location looks for where it begins to hold.
+            let end = if self.parted(&s.state, motion, t) {
+                PhaseEnd {
+                    t,
+                    y: augmented(&s.state),
+                    separated: true,
+                }
+            } else {
+                self.contact(&s.state, motion, t, dt)?
+            };
+            let held = self.law.stored(&s.state);
             s.state = law_state::<N>(&end.y);
-            s.absorbed += end.y[WORK];
-            step.work += end.y[WORK];
+            let work = end.y[WORK] + self.law.stored(&s.state) - held;
+            s.absorbed += work;
+            step.work += work;
             step.impulse += end.y[IMPULSE];
             if !end.separated {
                 s.force = self.law.eval(&s.state, motion.u(dt)).1;
@@ -357,6 +378,14 @@ impl<L: ContactLaw<N>, const N: usize> ContactElement<L, N> {
             reason: "more than 8 contacts began and ended within one host step: take shorter \
                      host steps",
         })
+    }
+
+    /// Whether the law at `state` pushes nothing while the bodies part at `t`: `F <= 0` and
+    /// `u > 0`, or `u = 0` and not falling.
+    fn parted(&self, state: &State<N>, motion: &Motion, t: f64) -> bool {
+        let u = motion.u(t);
+        let parting = u > 0.0 || (u == 0.0 && motion.du(t) >= 0.0);
+        parting && self.law.eval(state, u).1 <= 0.0
     }
 
     /// A new contact: the law at rest, or as the last contact left it under
@@ -383,7 +412,7 @@ impl<L: ContactLaw<N>, const N: usize> ContactElement<L, N> {
             let (d, f) = law.eval(&law_state::<N>(y), u);
             let mut dy = Augmented::zeros();
             dy.fixed_rows_mut::<N>(0).copy_from(&d);
-            dy[WORK] = -f * u;
+            dy[WORK] = law.dissipation(&law_state::<N>(y), u);
             dy[IMPULSE] = f;
             dy
         };
@@ -393,13 +422,10 @@ impl<L: ContactLaw<N>, const N: usize> ContactElement<L, N> {
         };
         let kinks =
             SwitchAt(move |t: f64, y: &Augmented| law.kinks(&law_state::<N>(y), motion.u(t)));
-        let mut y0 = Augmented::zeros();
-        y0.fixed_rows_mut::<N>(0).copy_from(start);
+        let y0 = augmented(start);
         let mut options = Options::new(self.settings.rtol, self.settings.atol);
-        // The work and the impulse are quadratures of the state: they follow its steps and
-        // take no part in choosing them. Those steps do not resolve the onset's `|x|^p`, so
-        // the quadratures are good to about 1e-8 of a contact's work, not to `rtol`
-        // (tests/support/element.rs).
+        // The dissipation and the impulse are quadratures of the state: they follow its steps
+        // and take no part in choosing them (tests/support/element.rs measures how well).
         options.atol[WORK] = 1e300;
         options.atol[IMPULSE] = 1e300;
         let mut it = Integrator::new(rhs, &DOP853, t0, y0, options)
@@ -487,6 +513,13 @@ impl<L: ContactLaw<N>, const N: usize> ContactElement<L, N> {
             onset_depth: 0.0,
         };
     }
+}
+
+/// An augmented state with the law's `state`, no work and no impulse.
+fn augmented<const N: usize>(state: &State<N>) -> Augmented {
+    let mut y = Augmented::zeros();
+    y.fixed_rows_mut::<N>(0).copy_from(state);
+    y
 }
 
 /// The law's state in an augmented state.

@@ -175,6 +175,14 @@ pub trait ContactLaw<const N: usize> {
         0.0
     }
 
+    /// The rate at which the law dissipates energy at state `s` with input `u` (W): the
+    /// power the bodies put in, `-F u`, less the rate of [`ContactLaw::stored`]. The default
+    /// is `-F u` (consistent with the default `stored` of 0); the built-in laws override it
+    /// with their closed forms, which are `>= 0` on their admissible sets.
+    fn dissipation(&self, s: &State<N>, u: f64) -> f64 {
+        -self.eval(s, u).1 * u
+    }
+
     /// Functions whose zeros are the non-smooth points of [`ContactLaw::eval`]: the rate
     /// across the hysteretic element (m/s) and `z` (m). An integrator that stops exactly at
     /// them keeps its order (`bwc_events::Switches`).
@@ -217,6 +225,18 @@ impl Coefficients {
         let spring = |d: f64| self.k * d.abs().powf(p1) / p1;
         self.alpha * spring(x) + (1.0 - self.alpha) * spring(z) / self.a
     }
+
+    /// The Bouc-Wen element's dissipation (W) at `z` whose rate across is `w` (m/s):
+    /// `(1-α) k / A |z|^(p+n) (β |w| + γ sgn(z) w)`, the work it takes, `(1-α) k |z|^p sgn(z)
+    /// w`, less the rate of its stored energy, `(1-α) k |z|^p sgn(z) ż / A`.
+    fn hysteretic(&self, z: f64, w: f64) -> f64 {
+        let za = z.abs();
+        let m = self.beta * w.abs() + self.gamma * w * z.signum();
+        if m == 0.0 || za == 0.0 {
+            return 0.0;
+        }
+        (1.0 - self.alpha) * self.k / self.a * self.p.of_abs(za) * self.n.of_abs(za) * m
+    }
 }
 
 impl ContactLaw<2> for Bwshccl {
@@ -226,6 +246,11 @@ impl ContactLaw<2> for Bwshccl {
     /// `α k |x|^(p+1) / (p+1) + (1-α) k |z|^(p+1) / ((p+1) A)` (J).
     fn stored(&self, s: &State<2>) -> f64 {
         self.0.stored(s[0], s[1])
+    }
+    /// `c |x|^p u² + (1-α) k / A |z|^(p+n) (β |u| + γ sgn(z) u)` (W).
+    fn dissipation(&self, s: &State<2>, u: f64) -> f64 {
+        let c = &self.0;
+        c.c * c.p.of_abs(s[0].abs()) * u * u + c.hysteretic(s[1], u)
     }
     fn kinks(&self, s: &State<2>, u: f64) -> [f64; 2] {
         [u, s[1]]
@@ -241,6 +266,12 @@ impl ContactLaw<3> for Bwmcl {
     fn stored(&self, s: &State<3>) -> f64 {
         self.0.stored(s[1], s[2])
     }
+    /// `F² / c + (1-α) k / A |z|^(p+n) (β |ẏ| + γ sgn(z) ẏ)` (W): the dashpot's and the
+    /// Bouc-Wen element's, `ẏ` the rate across it.
+    fn dissipation(&self, s: &State<3>, u: f64) -> f64 {
+        let (rate, f) = Bwmcl::eval(self, s, u);
+        f * f / self.0.c + self.0.hysteretic(s[2], rate[1])
+    }
     fn kinks(&self, s: &State<3>, u: f64) -> [f64; 2] {
         [Bwmcl::eval(self, s, u).0[1], s[2]]
     }
@@ -250,6 +281,44 @@ impl ContactLaw<3> for Bwmcl {
 mod tests {
     use super::*;
     use crate::Physical;
+
+    /// The closed-form dissipation rates are the power put in, `-F u`, less the rate of the
+    /// stored energy, `∇stored · ṡ` (here by central differences along `ṡ`), at states on
+    /// every branch of the hysteresis; and they are `>= 0`.
+    #[test]
+    fn dissipation_rates_are_the_power_less_the_storage_rate() {
+        let law = Physical {
+            k: 3e5,
+            c: 60.0,
+            n: 1.4,
+            p: 1.6,
+            alpha: 0.4,
+            beta: 80.0,
+            gamma: -30.0,
+            a: 0.8,
+        };
+        fn check<L: ContactLaw<N>, const N: usize>(law: &L, s: State<N>, u: f64) {
+            let (rate, f) = law.eval(&s, u);
+            let h = 1e-7 / rate.norm().max(1e-300);
+            let storage = (law.stored(&(s + rate * h)) - law.stored(&(s - rate * h))) / (2.0 * h);
+            let expected = -f * u - storage;
+            let got = law.dissipation(&s, u);
+            let scale = (f * u).abs();
+            assert!(got >= 0.0, "{got}");
+            assert!(
+                (got - expected).abs() <= 1e-6 * scale,
+                "{got} vs {expected} ({scale})"
+            );
+        }
+        let shccl = Bwshccl::new(&PhysicalParams::new(ModelKind::Shccm, law).unwrap()).unwrap();
+        let mcl = Bwmcl::new(&PhysicalParams::new(ModelKind::Mcm, law).unwrap()).unwrap();
+        for (x, z) in [(-1e-3, -8e-4), (-1e-3, 5e-4), (2e-4, -3e-4)] {
+            for u in [-0.7, 0.4] {
+                check(&shccl, State::<2>::new(x, z), u);
+                check(&mcl, State::<3>::new(1e-4, x, z), u);
+            }
+        }
+    }
 
     #[test]
     fn jacobians_of_the_laws_match_closed_forms() {
