@@ -51,6 +51,8 @@ int main(void) {
     BwcContact trial = 0; /* a scratch element for the predictor */
     CHECK(bwc_contact_clone(contact, &trial));
 
+    printf("# contacts of a baseball dropped from %g m (BWSHCCM, Table 4; carry policy):\n", H0);
+    printf("# bounce N, impact speed (m/s), rebound speed (m/s), energy dissipated so far (J)\n");
     double y = H0, v = 0.0, force = 0.0, v_in = NAN, first_v_in = NAN;
     int bounces = 0;
     while (bounces < BOUNCES) {
@@ -84,6 +86,7 @@ int main(void) {
 
     BwcImpact impact;
     CHECK(bwc_impact(law, M, first_v_in, -M * G, &impact));
+    printf("# the library's one impact at the first impact speed: impact e, t_s (s)\n");
     printf("impact %.17g %.17g\n", impact.e, impact.t_s);
 
     CHECK(bwc_contact_free(trial));

@@ -277,7 +277,8 @@ impl<L: ContactLaw<N>, const N: usize> ContactElement<L, N> {
     /// may hold several contacts.
     ///
     /// # Errors
-    /// [`ModelError::InvalidSetting`] for `dt <= 0` or a non-finite depth or rate,
+    /// [`ModelError::InvalidSetting`] for `dt <= 0` or a non-finite depth or rate (named
+    /// `depth_start`, `rate_start`, `depth_end`, `rate_end`, as the bindings call them),
     /// [`ModelError::Solver`] where the law's integration fails and
     /// [`ModelError::NotApplicable`] for a step that holds more than 8 contacts; the element
     /// is then unchanged.
@@ -289,10 +290,10 @@ impl<L: ContactLaw<N>, const N: usize> ContactElement<L, N> {
     ) -> Result<ElementStep, ModelError> {
         check_dt(dt)?;
         let finite = "a finite penetration (m) and rate (m/s)";
-        check_finite("start.depth", start.depth, finite)?;
-        check_finite("start.rate", start.rate, finite)?;
-        check_finite("end.depth", end.depth, finite)?;
-        check_finite("end.rate", end.rate, finite)?;
+        check_finite("depth_start", start.depth, finite)?;
+        check_finite("rate_start", start.rate, finite)?;
+        check_finite("depth_end", end.depth, finite)?;
+        check_finite("rate_end", end.rate, finite)?;
         self.commit(dt, &Motion::hermite(dt, start, end), true)
     }
 
@@ -408,11 +409,10 @@ impl<L: ContactLaw<N>, const N: usize> ContactElement<L, N> {
     ) -> Result<PhaseEnd, ModelError> {
         let law = &self.law;
         let rhs = move |t: f64, y: &Augmented| {
-            let u = motion.u(t);
-            let (d, f) = law.eval(&law_state::<N>(y), u);
-            let mut dy = Augmented::zeros();
-            dy.fixed_rows_mut::<N>(0).copy_from(&d);
-            dy[WORK] = law.dissipation(&law_state::<N>(y), u);
+            let (u, s) = (motion.u(t), law_state::<N>(y));
+            let (d, f) = law.eval(&s, u);
+            let mut dy = augmented(&d);
+            dy[WORK] = law.dissipation(&s, u, &d, f);
             dy[IMPULSE] = f;
             dy
         };

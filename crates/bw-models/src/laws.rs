@@ -175,12 +175,13 @@ pub trait ContactLaw<const N: usize> {
         0.0
     }
 
-    /// The rate at which the law dissipates energy at state `s` with input `u` (W): the
-    /// power the bodies put in, `-F u`, less the rate of [`ContactLaw::stored`]. The default
-    /// is `-F u` (consistent with the default `stored` of 0); the built-in laws override it
-    /// with their closed forms, which are `>= 0` on their admissible sets.
-    fn dissipation(&self, s: &State<N>, u: f64) -> f64 {
-        -self.eval(s, u).1 * u
+    /// The rate at which the law dissipates energy at state `s` with input `u` (W), given
+    /// what [`ContactLaw::eval`] returned there (`rate`, `force`): the power the bodies put
+    /// in, `-F u`, less the rate of [`ContactLaw::stored`]. The default is `-F u` (consistent
+    /// with the default `stored` of 0); the built-in laws override it with their closed
+    /// forms, which are `>= 0` on their admissible sets.
+    fn dissipation(&self, _s: &State<N>, u: f64, _rate: &State<N>, force: f64) -> f64 {
+        -force * u
     }
 
     /// Functions whose zeros are the non-smooth points of [`ContactLaw::eval`]: the rate
@@ -248,7 +249,7 @@ impl ContactLaw<2> for Bwshccl {
         self.0.stored(s[0], s[1])
     }
     /// `c |x|^p u² + (1-α) k / A |z|^(p+n) (β |u| + γ sgn(z) u)` (W).
-    fn dissipation(&self, s: &State<2>, u: f64) -> f64 {
+    fn dissipation(&self, s: &State<2>, u: f64, _rate: &State<2>, _force: f64) -> f64 {
         let c = &self.0;
         c.c * c.p.of_abs(s[0].abs()) * u * u + c.hysteretic(s[1], u)
     }
@@ -268,9 +269,8 @@ impl ContactLaw<3> for Bwmcl {
     }
     /// `F² / c + (1-α) k / A |z|^(p+n) (β |ẏ| + γ sgn(z) ẏ)` (W): the dashpot's and the
     /// Bouc-Wen element's, `ẏ` the rate across it.
-    fn dissipation(&self, s: &State<3>, u: f64) -> f64 {
-        let (rate, f) = Bwmcl::eval(self, s, u);
-        f * f / self.0.c + self.0.hysteretic(s[2], rate[1])
+    fn dissipation(&self, s: &State<3>, _u: f64, rate: &State<3>, force: f64) -> f64 {
+        force * force / self.0.c + self.0.hysteretic(s[2], rate[1])
     }
     fn kinks(&self, s: &State<3>, u: f64) -> [f64; 2] {
         [Bwmcl::eval(self, s, u).0[1], s[2]]
@@ -302,7 +302,7 @@ mod tests {
             let h = 1e-7 / rate.norm().max(1e-300);
             let storage = (law.stored(&(s + rate * h)) - law.stored(&(s - rate * h))) / (2.0 * h);
             let expected = -f * u - storage;
-            let got = law.dissipation(&s, u);
+            let got = law.dissipation(&s, u, &rate, f);
             let scale = (f * u).abs();
             assert!(got >= 0.0, "{got}");
             assert!(

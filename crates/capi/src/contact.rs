@@ -62,18 +62,24 @@ pub struct BwcContactInfo {
     pub in_contact: i32,
 }
 
-type Element = AnyContactElement;
-
-static CONTACTS: RwLock<Registry<Mutex<Element>>> = RwLock::new(Registry::new());
+static CONTACTS: RwLock<Registry<Mutex<AnyContactElement>>> = RwLock::new(Registry::new());
 
 /// Runs `f` on the element of a live handle, holding only that element's lock.
-fn with<T>(handle: BwcContact, f: impl FnOnce(&mut Element) -> T) -> Result<T, Failure> {
+fn with<T>(handle: BwcContact, f: impl FnOnce(&mut AnyContactElement) -> T) -> Result<T, Failure> {
     let contacts = CONTACTS.read().unwrap_or_else(|e| e.into_inner());
     let cell = contacts
         .get(handle)
         .ok_or_else(|| dead("contact", handle))?;
     let mut element = cell.lock().unwrap_or_else(|e| e.into_inner());
     Ok(f(&mut element))
+}
+
+/// Keeps `element` behind a new handle.
+fn keep(element: AnyContactElement) -> Result<BwcContact, Failure> {
+    let mut contacts = CONTACTS.write().unwrap_or_else(|e| e.into_inner());
+    contacts
+        .insert(Mutex::new(element))
+        .ok_or_else(|| Failure::new(BwcStatus::Failed, "no handles left: free some contacts"))
 }
 
 /// The default settings: `rtol` 1e-10, `atol` 1e-16 m, `BWC_POLICY_RESET`.
@@ -125,11 +131,8 @@ pub unsafe extern "C" fn bwc_contact_new(
             None => ElementSettings::default(),
         };
         let params = self::law(law)?;
-        let element = Element::new(&params, settings)?;
-        let mut contacts = CONTACTS.write().unwrap_or_else(|e| e.into_inner());
-        *out = contacts.insert(Mutex::new(element)).ok_or_else(|| {
-            Failure::new(BwcStatus::Failed, "no handles left: free some contacts")
-        })?;
+        let element = AnyContactElement::new(&params, settings)?;
+        *out = keep(element)?;
         Ok(())
     })
 }
@@ -211,27 +214,13 @@ pub unsafe extern "C" fn bwc_contact_advance_penetration(
             depth: depth_end,
             rate: rate_end,
         };
-        let step = with(contact, |el| el.advance_penetration(dt, start, end))
-            .and_then(|r| r.map_err(|e| rename(e.into())))?;
+        let step = with(contact, |el| el.advance_penetration(dt, start, end))??;
         // SAFETY: the caller's contract; NULL is allowed.
         if let Some(out) = unsafe { out.as_mut() } {
             *out = c_step(step);
         }
         Ok(())
     })
-}
-
-/// The library names the penetration's ends `start.depth` ...; here they are arguments.
-fn rename(mut f: Failure) -> Failure {
-    for (from, to) in [
-        ("`start.depth`", "`depth_start`"),
-        ("`start.rate`", "`rate_start`"),
-        ("`end.depth`", "`depth_end`"),
-        ("`end.rate`", "`rate_end`"),
-    ] {
-        f.message = f.message.replace(from, to);
-    }
-    f
 }
 
 /// The element's force, energies, onset depth and counts.
@@ -345,10 +334,7 @@ pub unsafe extern "C" fn bwc_contact_clone(from: BwcContact, out: *mut BwcContac
         // SAFETY: the caller's contract; NULL is checked.
         let out = unsafe { self::out(out, "out")? };
         let element = with(from, |e| e.clone()).map_err(|_| dead("from", from))?;
-        let mut contacts = CONTACTS.write().unwrap_or_else(|e| e.into_inner());
-        *out = contacts.insert(Mutex::new(element)).ok_or_else(|| {
-            Failure::new(BwcStatus::Failed, "no handles left: free some contacts")
-        })?;
+        *out = keep(element)?;
         Ok(())
     })
 }

@@ -173,8 +173,8 @@ impl Instance {
                         v.name
                     ));
                 }
-                match vr {
-                    30 => self.dynamic.delta = value,
+                match v.name {
+                    "delta" => self.dynamic.delta = value,
                     _ => self.dynamic.delta_dot = value,
                 }
                 Ok(())
@@ -196,8 +196,8 @@ impl Instance {
                 v.name, v.description
             ));
         }
-        match vr {
-            20 => self.params.model = value,
+        match v.name {
+            "model" => self.params.model = value,
             _ => self.params.policy = value,
         }
         Ok(())
@@ -219,13 +219,13 @@ impl Instance {
         let v = variable(vr, Type::Real)?;
         let d = &self.dynamic;
         let e = d.element.as_ref();
-        Ok(match vr {
-            30 => d.delta,
-            31 => d.delta_dot,
-            40 => e.map_or(0.0, |e| e.force()),
-            41 => d.impulse,
-            42 => e.map_or(0.0, |e| e.dissipated()),
-            43 => e.map_or(0.0, |e| e.absorbed()),
+        Ok(match v.name {
+            "delta" => d.delta,
+            "delta_dot" => d.delta_dot,
+            "force" => e.map_or(0.0, |e| e.force()),
+            "impulse" => d.impulse,
+            "dissipated" => e.map_or(0.0, |e| e.dissipated()),
+            "absorbed" => e.map_or(0.0, |e| e.absorbed()),
             _ => {
                 let i = REAL_PARAMETERS
                     .iter()
@@ -238,11 +238,11 @@ impl Instance {
 
     /// fmi2GetInteger of one variable.
     pub fn get_integer(&self, vr: u32) -> Result<i32, String> {
-        variable(vr, Type::Integer)?;
+        let v = variable(vr, Type::Integer)?;
         let e = self.dynamic.element.as_ref();
-        Ok(match vr {
-            20 => self.params.model,
-            21 => self.params.policy,
+        Ok(match v.name {
+            "model" => self.params.model,
+            "policy" => self.params.policy,
             _ => e.map_or(0, |e| i32::try_from(e.contacts()).unwrap_or(i32::MAX)),
         })
     }
@@ -272,9 +272,9 @@ impl Instance {
                 v.name
             ));
         }
-        match (vr, order) {
-            (31, 1) | (30, 2) => self.dynamic.accel = value,
-            (30, 1) => self.dynamic.delta_dot = value,
+        match (v.name, order) {
+            ("delta_dot", 1) | ("delta", 2) => self.dynamic.accel = value,
+            ("delta", 1) => self.dynamic.delta_dot = value,
             _ => {
                 return Err(format!(
                     "derivative of order {order} of `{}`: the FMU takes order 1 of `delta_dot` \

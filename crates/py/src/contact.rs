@@ -332,7 +332,7 @@ impl Contact {
         let e = &mut self.element;
         py.allow_threads(|| e.advance_penetration(dt, a, b))
             .map(Step::from)
-            .map_err(|e| BwcError::new_err(format!("advance_penetration: {}", arguments(e))))
+            .map_err(|e| BwcError::new_err(format!("advance_penetration: {e}")))
     }
 
     /// Back to the law at rest, out of contact, nothing absorbed.
@@ -438,18 +438,4 @@ fn ends(d0: f64, r0: f64, d1: f64, r1: f64) -> (Penetration, Penetration) {
             rate: r1,
         },
     )
-}
-
-/// The library names the penetration's ends `start.depth` ...; here they are arguments.
-pub(crate) fn arguments(e: bw_models::ModelError) -> String {
-    let mut m = e.to_string();
-    for (from, to) in [
-        ("`start.depth`", "`depth_start`"),
-        ("`start.rate`", "`rate_start`"),
-        ("`end.depth`", "`depth_end`"),
-        ("`end.rate`", "`rate_end`"),
-    ] {
-        m = m.replace(from, to);
-    }
-    m
 }

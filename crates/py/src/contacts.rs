@@ -1,6 +1,6 @@
 //! `bwc.Contacts`: many contact elements of one law, advanced together in parallel.
 
-use crate::contact::{arguments, element, policy_name, Contact};
+use crate::contact::{element, policy_name, Contact};
 use crate::BwcError;
 use bw_models::{AnyContactElement, ElementStep, ModelError, Penetration};
 use numpy::ndarray::Array2;
@@ -115,8 +115,7 @@ impl Contacts {
             steps.push(r.map_err(|e| {
                 BwcError::new_err(format!(
                     "{what}: contact {} (the {k}-th advanced): {}; no contact was advanced",
-                    chosen[k],
-                    arguments(e)
+                    chosen[k], e
                 ))
             })?);
         }

@@ -179,10 +179,10 @@ fn policies_and_bad_steps() {
     let at = |depth, rate| Penetration { depth, rate };
     for (dt, a, b, name) in [
         (f64::NAN, at(0.0, 1.0), at(1e-5, 1.0), "dt"),
-        (1e-5, at(f64::NAN, 1.0), at(1e-5, 1.0), "start.depth"),
-        (1e-5, at(0.0, f64::INFINITY), at(1e-5, 1.0), "start.rate"),
-        (1e-5, at(0.0, 1.0), at(f64::NEG_INFINITY, 1.0), "end.depth"),
-        (1e-5, at(0.0, 1.0), at(1e-5, f64::NAN), "end.rate"),
+        (1e-5, at(f64::NAN, 1.0), at(1e-5, 1.0), "depth_start"),
+        (1e-5, at(0.0, f64::INFINITY), at(1e-5, 1.0), "rate_start"),
+        (1e-5, at(0.0, 1.0), at(f64::NEG_INFINITY, 1.0), "depth_end"),
+        (1e-5, at(0.0, 1.0), at(1e-5, f64::NAN), "rate_end"),
     ] {
         let err = carry.advance_penetration(dt, a, b).unwrap_err();
         assert!(
