@@ -27,6 +27,7 @@
 #![deny(missing_docs)]
 
 pub mod config;
+pub mod corner;
 mod error;
 mod format;
 pub mod identify;

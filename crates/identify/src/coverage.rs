@@ -3,12 +3,15 @@
 //! [`CoverageTask`] and its seed: synthetic CoR data from known parameters plus Gaussian noise,
 //! a fit from the bounds, the band at the data speeds, and how many of its points contain the
 //! truth. Replicates run in parallel with rayon and give identical results on any thread count
-//! or machine, so a study can be spread over a cluster one replicate per task.
+//! or machine, so a study can be spread over a cluster one replicate per task. The same holds for
+//! the posterior's credible band ([`PosteriorTask`], [`posterior_replicate`]).
 
 use crate::data::{Dataset, Point};
 use crate::error::IdentifyError;
 use crate::fit::{fit, Budget};
 use crate::objective::{Objective, Weights};
+use crate::posterior::{band as posterior_band, NoiseScale, PosteriorProblem, PosteriorSpec};
+use crate::smc::{sample, SmcSettings};
 use crate::space::Space;
 use crate::uncertainty::uncertainty;
 use bw_models::input::Zero;
@@ -50,6 +53,8 @@ pub struct Replicate {
     pub j1: f64,
     /// The free quantities the fit left on a bound of the search (held there by the band).
     pub at_bound: Vec<&'static str>,
+    /// Model evaluations of the fit or the posterior.
+    pub evaluations: u64,
     /// Why there are no intervals, if there are none.
     pub error: Option<String>,
 }
@@ -81,10 +86,13 @@ pub fn replicate(task: &CoverageTask, seed: u64) -> Result<Replicate, IdentifyEr
                 e: Some(e + normal.sample(&mut rng)),
                 t_d: None,
                 spread: None,
+                noise: None,
+                line: 0,
             })
             .collect(),
         warnings: Vec::new(),
         reconstructed: false,
+        noise_column: None,
     };
     let weights = Weights { j1: 1.0, j2: 0.0 };
     let search = Objective::new(&task.space, &data, &Zero, task.settings, weights)?;
@@ -106,6 +114,7 @@ pub fn replicate(task: &CoverageTask, seed: u64) -> Result<Replicate, IdentifyEr
             halfwidth: band.iter().map(|b| (b.e[2] - b.e[1]) / 2.0).sum::<f64>() / points as f64,
             j1,
             at_bound: result.at_bound.clone(),
+            evaluations: result.evaluations,
             error: None,
         },
         Err(e) => Replicate {
@@ -115,8 +124,81 @@ pub fn replicate(task: &CoverageTask, seed: u64) -> Result<Replicate, IdentifyEr
             halfwidth: f64::NAN,
             j1,
             at_bound: result.at_bound.clone(),
+            evaluations: result.evaluations,
             error: Some(e.to_string()),
         },
+    })
+}
+
+/// A coverage study of the posterior's 95 % credible band: the truth, the design, the noise,
+/// and how the posterior is sampled.
+#[derive(Debug, Clone)]
+pub struct PosteriorTask {
+    /// The search space (its bounds are the prior; its model is the truth's model).
+    pub space: Space,
+    /// The true base parameters (`u = 0`).
+    pub truth: BaseParams,
+    /// Impact speeds of the synthetic data (m/s); repeats allowed.
+    pub speeds: Vec<f64>,
+    /// Standard deviation of the Gaussian noise added to `e`.
+    pub noise: f64,
+    /// Whether the posterior is told the noise (an `e_std` column) or samples it.
+    pub given_noise: bool,
+    /// The sampler.
+    pub smc: SmcSettings,
+    /// The budget of the fit whose optimum centres the sampler's reference.
+    pub budget: Budget,
+    /// Posterior draws behind the band.
+    pub draws: usize,
+    /// Solver settings of the likelihood.
+    pub settings: Settings,
+}
+
+/// Runs replicate `seed` of a posterior coverage study: synthetic data, the posterior, its band
+/// at the data's distinct speeds, and how many of them contain the true `e`.
+///
+/// # Errors
+/// [`IdentifyError::Model`] if the truth cannot be simulated; sampler failures as
+/// [`crate::sample`].
+pub fn posterior_replicate(task: &PosteriorTask, seed: u64) -> Result<Replicate, IdentifyError> {
+    let map = task.space.map(&task.truth)?;
+    let truth_at = |v0: f64| impact_at(&map, Zero, v0, &Settings::default()).map(|o| o.e);
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    let normal = Normal::new(0.0, task.noise).map_err(|e| IdentifyError::Objectives {
+        reason: format!("noise {}: {e}", task.noise),
+    })?;
+    let mut csv = String::from("v_0,e,e_std\n");
+    for &v0 in &task.speeds {
+        let e = truth_at(v0)? + normal.sample(&mut rng);
+        csv += &format!("{v0},{e},{}\n", task.noise);
+    }
+    let data = Dataset::parse(Path::new(&format!("synthetic-{seed}.csv")), &csv)?;
+    let mut spec = PosteriorSpec::new(&data, Weights { j1: 1.0, j2: 0.0 });
+    if !task.given_noise {
+        spec.e_noise = NoiseScale::Sampled { lo: 1e-4, hi: 0.5 };
+    }
+    let problem = PosteriorProblem::new(&task.space, &data, &Zero, task.settings, &spec)?;
+    let objective = Objective::new(&task.space, &data, &Zero, task.settings, spec.weights)?;
+    let optimum = fit(&objective, &task.budget, seed, None)?;
+    let reference = problem.reference_at(&optimum.point, &optimum.costs);
+    let post = sample(&problem, &task.smc, &reference, seed)?;
+    let speeds = crate::objective::distinct_speeds(&data);
+    let band = posterior_band(&problem, &post, &speeds, (task.draws, seed), task.noise)?;
+    let mut covered = 0;
+    for b in &band {
+        let t = truth_at(b.v0)?;
+        covered += usize::from(b.e[1] <= t && t <= b.e[2]);
+    }
+    let points = band.len();
+    Ok(Replicate {
+        seed,
+        covered,
+        points,
+        halfwidth: band.iter().map(|b| (b.e[2] - b.e[1]) / 2.0).sum::<f64>() / points as f64,
+        j1: f64::NAN,
+        at_bound: Vec::new(),
+        evaluations: post.evaluations,
+        error: None,
     })
 }
 

@@ -32,6 +32,8 @@ pub(crate) struct CsvText<'a> {
     pub headers: csv::StringRecord,
     /// The header's 1-based line (after any comment and blank lines).
     pub header_line: u64,
+    /// The 1-based line of each record.
+    record_lines: Vec<u64>,
 }
 
 impl<'a> CsvText<'a> {
@@ -52,11 +54,21 @@ impl<'a> CsvText<'a> {
             .headers()
             .map_err(|e| data_error(path, header_line, e.to_string()))?
             .clone();
+        // The csv reader's own line numbers skip the comment lines: the file's lines of the
+        // records, in order, are the non-blank, non-comment lines after the header.
+        let record_lines = text
+            .lines()
+            .enumerate()
+            .skip(header_line as usize)
+            .filter(|(_, l)| !l.trim_start().starts_with('#') && !l.trim().is_empty())
+            .map(|(i, _)| i as u64 + 1)
+            .collect();
         Ok(Self {
             path,
             reader,
             headers,
             header_line,
+            record_lines,
         })
     }
 
@@ -86,16 +98,17 @@ impl<'a> CsvText<'a> {
         mut row: impl FnMut(&csv::StringRecord, u64) -> Result<T, String>,
     ) -> Result<Vec<T>, IdentifyError> {
         let mut out = Vec::new();
-        for record in self.reader.records() {
+        let (path, lines) = (self.path, &self.record_lines);
+        let line_of = |k: u64| lines.get(k as usize).copied().unwrap_or(0);
+        for (k, record) in self.reader.records().enumerate() {
             let record = record.map_err(|e| {
-                data_error(
-                    self.path,
-                    e.position().map_or(0, |p| p.line()),
-                    e.to_string(),
-                )
+                let k = e
+                    .position()
+                    .map_or(k as u64, |p| p.record().saturating_sub(1));
+                data_error(path, line_of(k), e.to_string())
             })?;
-            let line = record.position().map_or(0, |p| p.line());
-            out.push(row(&record, line).map_err(|message| data_error(self.path, line, message))?);
+            let line = line_of(k as u64);
+            out.push(row(&record, line).map_err(|message| data_error(path, line, message))?);
         }
         Ok(out)
     }

@@ -18,6 +18,12 @@ pub struct Point {
     /// `e_std` (a standard deviation, taken as it is) or else `e_spread` (a range, halved).
     /// Drawn in plots, not used by the fit.
     pub spread: Option<f64>,
+    /// The standard deviation of this point's CoR as a measurement, if the data give it: column
+    /// `e_sem` (the standard error of a mean) or else `e_std` (the scatter of one rebound). The
+    /// noise scale of a posterior with given noise.
+    pub noise: Option<f64>,
+    /// The 1-based line of the file the point was read from (0 for points made in code).
+    pub line: u64,
 }
 
 /// A dataset: measurements with a common known input.
@@ -32,6 +38,8 @@ pub struct Dataset {
     /// Whether a comment line calls the data `RECONSTRUCTED`: rebuilt from published results
     /// (e.g. a paper's fitted parameters), not measured.
     pub reconstructed: bool,
+    /// The column of the CoR's measurement noise ([`Point::noise`]), if the header has one.
+    pub noise_column: Option<&'static str>,
 }
 
 impl Dataset {
@@ -56,7 +64,7 @@ impl Dataset {
         let headers = csv.headers.clone();
         let mut warnings = Vec::new();
         let points = csv.rows(|record, line| {
-            let point = columns.point(&headers, record)?;
+            let point = columns.point(&headers, record, line)?;
             if let Some(e) = point.e.filter(|&e| e == 0.0 || e > 1.0) {
                 let why = if e == 0.0 {
                     "e = 0 (no rebound): the models give e = 0 only when the bodies never separate"
@@ -81,6 +89,7 @@ impl Dataset {
             points,
             warnings,
             reconstructed,
+            noise_column: columns.noise_name(&headers),
         })
     }
 
@@ -95,10 +104,13 @@ impl Dataset {
                     e: None,
                     t_d: None,
                     spread: None,
+                    noise: None,
+                    line: 0,
                 })
                 .collect(),
             warnings: Vec::new(),
             reconstructed: false,
+            noise_column: None,
         }
     }
 
@@ -120,6 +132,8 @@ struct Columns {
     t_d: Option<usize>,
     /// The spread's column, and the factor to its half-length (`e_std` 1, `e_spread` 0.5).
     spread: Option<(usize, f64)>,
+    /// The noise column (`e_sem`, else `e_std`).
+    noise: Option<usize>,
 }
 
 impl Columns {
@@ -141,7 +155,20 @@ impl Columns {
             (None, Some(c)) => Some((c, 0.5)),
             (None, None) => None,
         };
-        Ok(Self { v0, e, t_d, spread })
+        let noise = col("e_sem").or(col("e_std"));
+        Ok(Self {
+            v0,
+            e,
+            t_d,
+            spread,
+            noise,
+        })
+    }
+
+    /// The name of the noise column, if there is one.
+    fn noise_name(&self, headers: &csv::StringRecord) -> Option<&'static str> {
+        let name = headers.get(self.noise?)?;
+        ["e_sem", "e_std"].into_iter().find(|n| *n == name)
     }
 
     /// The measurement of one row; a message for a missing, malformed or inadmissible value.
@@ -149,6 +176,7 @@ impl Columns {
         &self,
         headers: &csv::StringRecord,
         record: &csv::StringRecord,
+        line: u64,
     ) -> Result<Point, String> {
         let field = |c: usize, name: &str| -> Result<f64, String> {
             let raw = record
@@ -182,7 +210,19 @@ impl Columns {
         if let Some(t) = t_d.filter(|&t| t <= 0.0) {
             return Err(format!("column `t_d`: {t} is not admissible: t_d > 0 (s)"));
         }
-        Ok(Point { v0, e, t_d, spread })
+        // Checked where it is used (a posterior with given noise): plots do not need it.
+        let noise = self
+            .noise
+            .and_then(|c| record.get(c))
+            .and_then(|raw| raw.parse::<f64>().ok());
+        Ok(Point {
+            v0,
+            e,
+            t_d,
+            spread,
+            noise,
+            line,
+        })
     }
 }
 
@@ -283,7 +323,9 @@ mod tests {
                 v0: 0.5,
                 e: Some(0.91),
                 t_d: None,
-                spread: Some(0.0)
+                spread: Some(0.0),
+                noise: None,
+                line: 5,
             }
         );
         assert!(d.has_cor() && !d.has_durations());
@@ -328,6 +370,15 @@ mod tests {
         );
         let spread = Dataset::parse(Path::new("d.csv"), "v_0,e,e_std\n1,0.5,0.01\n").unwrap();
         assert_eq!(spread.points[0].spread, Some(0.01));
+        assert_eq!(spread.points[0].noise, Some(0.01));
+        assert_eq!(spread.noise_column, Some("e_std"));
+        // A standard error of the mean is the noise of a mean, preferred to the scatter.
+        let sem = Dataset::parse(Path::new("d.csv"), "v_0,e,e_std,e_sem\n1,0.5,0.01,0.004\n");
+        let sem = sem.unwrap();
+        assert_eq!(
+            (sem.points[0].noise, sem.noise_column),
+            (Some(0.004), Some("e_sem"))
+        );
     }
 
     #[test]
@@ -337,6 +388,10 @@ mod tests {
             e.to_string().contains("d.csv:4") && e.to_string().contains("abc"),
             "{e}"
         );
+        // Comment and blank lines between the rows count too.
+        let text = "# c\nv_0,e\n0.5,0.9\n# mid\n\n0.7,abc\n";
+        let e = Dataset::parse(Path::new("d.csv"), text).unwrap_err();
+        assert!(e.to_string().contains("d.csv:6"), "{e}");
         let e = Dataset::parse(Path::new("d.csv"), "v_0,e\n-1,0.9\n").unwrap_err();
         assert!(
             e.to_string().contains("d.csv:2") && e.to_string().contains("v_0 > 0"),

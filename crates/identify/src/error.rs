@@ -54,6 +54,12 @@ pub enum IdentifyError {
         /// argmin's message.
         message: String,
     },
+    /// A posterior cannot be sampled as asked.
+    #[error("posterior: {reason}")]
+    Posterior {
+        /// Why, and what setting would help.
+        reason: String,
+    },
     /// A model could not be built or simulated.
     #[error(transparent)]
     Model(#[from] bw_models::ModelError),

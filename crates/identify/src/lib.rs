@@ -18,7 +18,12 @@
 //! * [`analyse`]: singular values of the sensitivity matrix at the optimum (faer);
 //! * [`uncertainty`]: linearised 95 % intervals of the parameters and bands of `e(v0)`,
 //!   `t_d(v0)`, validated by the coverage studies of [`study`];
-//! * [`LoopObjective`]: hysteresis-loop fitting of the SI contact law with known mass.
+//! * [`LoopObjective`]: hysteresis-loop fitting of the SI contact law with known mass;
+//! * [`sample`]: sequential Monte Carlo on the unit cube (tempering, resampling, Metropolis moves
+//!   with differential-evolution proposals; independent runs pooled, the evidence's error their
+//!   spread) of any [`Target`]; [`PosteriorProblem`] is the posterior of a [`Space`] given a
+//!   [`Dataset`] under a Gaussian noise model ([`PosteriorSpec`]), summarised by [`marginals`]
+//!   and [`posterior_band`], its credible band validated by [`posterior_replicate`].
 //!
 //! ```
 //! use bw_models::{input::Zero, BaseMap, BaseParams, ModelKind, Settings};
@@ -51,11 +56,15 @@ mod identifiability;
 mod lm;
 mod loops;
 mod objective;
+mod posterior;
 mod problem;
+mod smc;
 mod space;
 mod uncertainty;
 
-pub use coverage::{coverage, replicate, study, CoverageTask, Replicate};
+pub use coverage::{
+    coverage, posterior_replicate, replicate, study, CoverageTask, PosteriorTask, Replicate,
+};
 pub use data::{Dataset, Point, PLAUSIBLE_DURATION, PLAUSIBLE_SPEED};
 pub use drops::{DropData, DropKind, DropObjective, DropRow, DropSetup};
 pub use error::IdentifyError;
@@ -63,6 +72,14 @@ pub use fit::{at_bound, fit, minimize, Budget, Convergence, FitResult, Minimum, 
 pub use identifiability::{analyse, Identifiability, WEAK};
 pub use loops::{loop_cost, Curve, LawSpace, Loop, LoopObjective, LAW_NAMES};
 pub use objective::{predict, Costs, Objective, Prediction, TermOrder, Weights, FAILED};
+pub use posterior::{
+    band as posterior_band, marginals, Marginal, NoiseScale, PosteriorBandPoint, PosteriorProblem,
+    PosteriorSpec, Prior, REFERENCE_SD,
+};
 pub use problem::CubeProblem;
+pub use smc::{
+    draws, pool, run as smc_run, sample, weighted_quantiles, Pooled, SmcReference, SmcRun,
+    SmcSettings, Stage, Target,
+};
 pub use space::{KnownMassStiffness, Param, Space, NAMES};
 pub use uncertainty::{uncertainty, BandPoint, Uncertainty, LEVEL};

@@ -43,7 +43,7 @@ pub fn predict<I: Input + Sync>(
 }
 
 /// The distinct impact speeds of `data`, in increasing order.
-fn distinct_speeds(data: &Dataset) -> Vec<f64> {
+pub(crate) fn distinct_speeds(data: &Dataset) -> Vec<f64> {
     let mut speeds: Vec<f64> = data.points.iter().map(|p| p.v0).collect();
     speeds.sort_by(f64::total_cmp);
     speeds.dedup();
@@ -59,7 +59,7 @@ fn in_data_order(data: &Dataset, speeds: &[f64], at: &[Prediction]) -> Vec<Predi
 }
 
 /// The prediction at one speed.
-fn prediction<I: Input + Sync>(
+pub(crate) fn prediction<I: Input + Sync>(
     map: &BaseMap,
     u: &I,
     v0: f64,

@@ -228,6 +228,11 @@ impl Space {
         self.free.len()
     }
 
+    /// The free quantities' indices into [`NAMES`], in search order.
+    pub fn free_indices(&self) -> &[usize] {
+        &self.free
+    }
+
     /// Names of the free quantities, in search order.
     pub fn free_names(&self) -> Vec<&'static str> {
         self.free.iter().map(|&i| NAMES[i]).collect()

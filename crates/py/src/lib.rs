@@ -351,6 +351,158 @@ fn coverage_json(
     Ok(v.to_string())
 }
 
+/// `bwc.posterior`: the JSON text `bwc-identify posterior --json` prints for the config, each
+/// posterior with its weighted sample under `"samples"`.
+#[pyfunction]
+#[pyo3(signature = (path=None, config_json=None, seed=0, fit=None, particles=None, runs=None, threads=None))]
+#[allow(clippy::too_many_arguments)]
+fn posterior_json(
+    py: Python<'_>,
+    path: Option<PathBuf>,
+    config_json: Option<&str>,
+    seed: u64,
+    fit: Option<&str>,
+    particles: Option<usize>,
+    runs: Option<usize>,
+    threads: Option<usize>,
+) -> PyResult<String> {
+    let (file, config) = config_of(path, config_json)?;
+    let sizes = posterior_sizes(particles, runs)?;
+    let reports = py
+        .allow_threads(|| {
+            bwc_app::with_threads(threads, || {
+                bwc_app::identify::posterior_all(&file, &config, seed, fit, sizes)
+            })
+        })
+        .map_err(error)?;
+    Ok(posterior_text(&config, &reports))
+}
+
+/// The JSON of posteriors with their samples.
+fn posterior_text(config: &Config, reports: &[bwc_app::identify::PosteriorReport]) -> String {
+    let mut v = bwc_app::outdir::provenance("bwc-identify");
+    v["posteriors"] = bwc_app::identify::posterior_summary(reports)["posteriors"].take();
+    for (p, r) in v["posteriors"]
+        .as_array_mut()
+        .into_iter()
+        .flatten()
+        .zip(reports)
+    {
+        p["samples"] = bwc_app::identify::samples_json(r);
+    }
+    v["config"] = config.describe();
+    v.to_string()
+}
+
+/// Particles and runs as the command line admits them.
+fn posterior_sizes(
+    particles: Option<usize>,
+    runs: Option<usize>,
+) -> PyResult<(Option<usize>, Option<usize>)> {
+    if particles.is_some_and(|p| !(16..=1_000_000).contains(&p)) {
+        return Err(BwcError::new_err(format!(
+            "particles = {}: needs 16 <= particles <= 1000000",
+            particles.unwrap_or(0)
+        )));
+    }
+    if runs.is_some_and(|r| !(2..=10_000).contains(&r)) {
+        return Err(BwcError::new_err(format!(
+            "runs = {}: needs 2 <= runs <= 10000 (their spread is the evidence's error)",
+            runs.unwrap_or(0)
+        )));
+    }
+    Ok((particles, runs))
+}
+
+/// The fit named `name` of a config (or an error listing the names).
+fn fit_named<'a>(config: &'a Config, name: &str) -> PyResult<&'a bwc_app::config::FitConfig> {
+    config.fits.iter().find(|f| f.name == name).ok_or_else(|| {
+        let names: Vec<&str> = config.fits.iter().map(|f| f.name.as_str()).collect();
+        BwcError::new_err(format!("fit = {name:?} names no [[fit]]: one of {names:?}"))
+    })
+}
+
+/// The names of a config's `[[fit]]` tables, in file order.
+#[pyfunction]
+#[pyo3(signature = (path=None, config_json=None))]
+fn fit_names(path: Option<PathBuf>, config_json: Option<&str>) -> PyResult<Vec<String>> {
+    let (_, config) = config_of(path, config_json)?;
+    Ok(config.fits.iter().map(|f| f.name.clone()).collect())
+}
+
+/// The runs `[fit.posterior]` of fit `fit` asks for.
+#[pyfunction]
+#[pyo3(signature = (fit, path=None, config_json=None))]
+fn posterior_runs(fit: &str, path: Option<PathBuf>, config_json: Option<&str>) -> PyResult<usize> {
+    let (_, config) = config_of(path, config_json)?;
+    Ok(fit_named(&config, fit)?.posterior.runs)
+}
+
+/// One run (number `index`) of the posterior sampler of fit `fit`, as JSON text: what a worker
+/// of `bwc.dask.posterior` computes.
+#[pyfunction]
+#[pyo3(signature = (fit, index, path=None, config_json=None, seed=0, particles=None, runs=None))]
+#[allow(clippy::too_many_arguments)]
+fn posterior_run_json(
+    py: Python<'_>,
+    fit: &str,
+    index: usize,
+    path: Option<PathBuf>,
+    config_json: Option<&str>,
+    seed: u64,
+    particles: Option<usize>,
+    runs: Option<usize>,
+) -> PyResult<String> {
+    let (file, config) = config_of(path, config_json)?;
+    let sizes = posterior_sizes(particles, runs)?;
+    let f = fit_named(&config, fit)?;
+    let run = py
+        .allow_threads(|| {
+            bwc_app::with_threads(Some(1), || {
+                bwc_app::identify::posterior_run(&file, f, seed, sizes, index)
+            })
+        })
+        .map_err(error)?;
+    Ok(bwc_app::identify::run_json(&run).to_string())
+}
+
+/// Pools the runs (JSON texts of `posterior_run_json`) of each fit named in `fits` into the JSON
+/// text `posterior_json` gives.
+#[pyfunction]
+#[pyo3(signature = (fits, runs_json, path=None, config_json=None, seed=0, threads=None))]
+fn posterior_pool_json(
+    py: Python<'_>,
+    fits: Vec<String>,
+    runs_json: Vec<Vec<String>>,
+    path: Option<PathBuf>,
+    config_json: Option<&str>,
+    seed: u64,
+    threads: Option<usize>,
+) -> PyResult<String> {
+    let (file, config) = config_of(path, config_json)?;
+    let mut reports = Vec::new();
+    for (name, texts) in fits.iter().zip(&runs_json) {
+        let f = fit_named(&config, name)?;
+        let runs = texts
+            .iter()
+            .map(|t| {
+                let v: serde_json::Value = serde_json::from_str(t)
+                    .map_err(|e| BwcError::new_err(format!("a posterior run's JSON: {e}")))?;
+                bwc_app::identify::run_of_json(&v).map_err(error)
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        let report = py
+            .allow_threads(|| {
+                bwc_app::with_threads(threads, || {
+                    bwc_app::identify::posterior_from_runs(&file, f, seed, runs)
+                })
+            })
+            .map_err(error)?;
+        reports.push(report);
+    }
+    Ok(posterior_text(&config, &reports))
+}
+
 /// A config from a path or from the JSON text of a dict shaped like a config file (data paths
 /// relative to the working directory).
 fn config_of(path: Option<PathBuf>, json: Option<&str>) -> PyResult<(PathBuf, Config)> {
@@ -378,6 +530,11 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate_json, m)?)?;
     m.add_function(wrap_pyfunction!(identify_json, m)?)?;
     m.add_function(wrap_pyfunction!(coverage_json, m)?)?;
+    m.add_function(wrap_pyfunction!(posterior_json, m)?)?;
+    m.add_function(wrap_pyfunction!(posterior_run_json, m)?)?;
+    m.add_function(wrap_pyfunction!(posterior_pool_json, m)?)?;
+    m.add_function(wrap_pyfunction!(fit_names, m)?)?;
+    m.add_function(wrap_pyfunction!(posterior_runs, m)?)?;
     m.add_class::<contact::Contact>()?;
     m.add_class::<contact::Step>()?;
     m.add_class::<contacts::Contacts>()?;

@@ -133,6 +133,8 @@ pub(super) fn parse_fit(
         .filter_map(|(key, m)| crate::plausible::mass_hint(ctx.path, key, m?))
         .collect();
     let (budget, seed, settings, pareto) = search(ctx, r, index)?;
+    let posterior =
+        super::posterior::posterior(ctx, r.posterior.as_ref(), r.prior.as_ref(), &space)?;
     Ok(Draft {
         fit: FitConfig {
             name,
@@ -151,6 +153,7 @@ pub(super) fn parse_fit(
             hints,
             pareto,
             drops: None,
+            posterior,
         },
         setup,
         data_path,

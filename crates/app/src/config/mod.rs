@@ -17,14 +17,18 @@
 //! [fit.start]                         # optional starting point (full P*)
 //! [fit.params]                        # P* for `bwc-identify eval`
 //! [fit.pareto]                        # count: weights of a Pareto sweep over (J1, J2)
+//! [fit.posterior]                     # particles, runs, noise, sigma_e, sigma_t, draws
+//! [fit.prior]                         # kappa = { normal = [mean, sd] }, ...
 //! ```
 
 mod describe;
 mod fit;
 mod loops;
+mod posterior;
 mod search;
 
 pub use loops::LoopFitConfig;
+pub use posterior::PosteriorConfig;
 
 use crate::signal::Signal;
 use crate::tables::{Ctx, Num, RawInput, RawSolver};
@@ -62,6 +66,8 @@ struct RawFit {
     solver: Option<Spanned<RawSolver>>,
     pareto: Option<Spanned<RawPareto>>,
     sequence: Option<Spanned<RawDropSequence>>,
+    posterior: Option<Spanned<posterior::RawPosterior>>,
+    prior: Option<posterior::RawPriors>,
 }
 
 /// `[fit.sequence]` of a drop-test fit: the ball's mass, gravity and air drag.
@@ -199,6 +205,8 @@ pub struct FitConfig {
     /// For a drop-test fit (data of intervals or rebound heights): the data and the physics
     /// around the contacts; `data` is then empty.
     pub drops: Option<DropFit>,
+    /// How `bwc-identify posterior` samples the fit (`[fit.posterior]`, `[fit.prior]`).
+    pub posterior: PosteriorConfig,
 }
 
 /// A reference vector of a fit (a published fit, an earlier one): `run` reports its cost on the

@@ -3,11 +3,17 @@
 
 mod coverage;
 mod drops;
+mod posterior;
 mod reference;
 mod render;
 mod report;
 
 pub use coverage::{coverage_study, coverage_summary, coverage_task, run_coverage, CoverageReport};
+pub use posterior::{
+    posterior_all, posterior_from_runs, posterior_run, posterior_summary, render_posterior,
+    run_json, run_of_json, run_posterior, samples_json, unit_of, PosteriorReport, BAND_COLUMNS,
+    SAMPLE_COLUMNS,
+};
 pub use reference::{ReferenceReport, Standing};
 pub use render::{loop_summary, render, render_loops, slug, summary, units};
 use report::{fail, missing_params, reporting, search_warnings};

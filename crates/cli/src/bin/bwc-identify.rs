@@ -15,7 +15,7 @@ use std::process::ExitCode;
     name = "bwc-identify",
     version,
     about = "Identify base parameters P* of the NDBWSHCCM / NDBWMCM from CoR and duration data",
-    after_help = "Examples:\n  bwc-identify run fixtures/kharaz.toml --out out/kharaz\n  bwc-identify run fixtures/villegas.toml --json --seed 7\n  bwc-identify eval fixtures/kharaz.toml   # costs at the paper's published vectors\n  bwc-identify coverage fixtures/tennis.toml --replicates 40"
+    after_help = "Examples:\n  bwc-identify run fixtures/kharaz.toml --out out/kharaz\n  bwc-identify run fixtures/villegas.toml --json --seed 7\n  bwc-identify eval fixtures/kharaz.toml   # costs at the paper's published vectors\n  bwc-identify coverage fixtures/tennis.toml --replicates 40\n  bwc-identify posterior fixtures/tennis.toml --fit \"Tennis NDBWSHCCM\" --out out/tennis"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -65,6 +65,34 @@ enum Command {
         #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1024))]
         threads: Option<u64>,
     },
+    /// Sample the posterior of each fit's searched quantities (sequential Monte Carlo): weighted
+    /// samples, marginal 95 % credible intervals, the log evidence with its Monte Carlo error,
+    /// and credible bands of e(v0) and t_d(v0).
+    Posterior {
+        /// The config file (TOML).
+        config: PathBuf,
+        /// Directory for summary.json and per-fit CSV and SVG files.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Print exactly one JSON object on stdout: {"posteriors": [...]}.
+        #[arg(long)]
+        json: bool,
+        /// Base seed (combined with each fit's seed).
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Only the fit with this name.
+        #[arg(long)]
+        fit: Option<String>,
+        /// Particles per run (default: [fit.posterior].particles, 500).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(16..=1_000_000))]
+        particles: Option<u64>,
+        /// Independent runs (default: [fit.posterior].runs, 4).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(2..=10_000))]
+        runs: Option<u64>,
+        /// Worker threads (default: all cores, or RAYON_NUM_THREADS).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1024))]
+        threads: Option<u64>,
+    },
     /// Evaluate the costs at each fit's [fit.params] without optimizing.
     Eval {
         /// The config file (TOML).
@@ -94,6 +122,23 @@ fn main() -> ExitCode {
             threads.map(|t| t as usize),
         ),
         Command::Eval { config, out, json } => run(&config, out.as_deref(), json, None, None),
+        Command::Posterior {
+            config,
+            out,
+            json,
+            seed,
+            fit,
+            particles,
+            runs,
+            threads,
+        } => posterior(
+            &config,
+            out.as_deref(),
+            json,
+            (seed, fit.as_deref()),
+            (particles.map(|p| p as usize), runs.map(|r| r as usize)),
+            threads.map(|t| t as usize),
+        ),
         Command::Coverage {
             config,
             replicates,
@@ -290,6 +335,85 @@ fn print_loop_fit(r: &LoopReport) {
         l.gamma,
         l.a
     );
+}
+
+/// `bwc-identify posterior`.
+fn posterior(
+    path: &Path,
+    out: Option<&Path>,
+    json: bool,
+    (seed, only): (u64, Option<&str>),
+    sizes: (Option<usize>, Option<usize>),
+    threads: Option<usize>,
+) -> Result<(), AppError> {
+    let config = Config::load(path)?;
+    if let Some(dir) = out {
+        outdir::prepare(dir)?;
+    }
+    let work = || bwc_app::identify::posterior_all(path, &config, seed, only, sizes);
+    let reports = bwc_app::with_threads(threads, work)?;
+    for w in reports.iter().flat_map(|r| &r.warnings) {
+        eprintln!("bwc-identify: warning: {w}");
+    }
+    let mut summary = outdir::provenance("bwc-identify");
+    summary["posteriors"] = bwc_app::identify::posterior_summary(&reports)["posteriors"].take();
+    summary["config"] = config.describe();
+    // The results are printed before the files are written: a failed write loses nothing.
+    if json {
+        bwc_app::out!("{summary}");
+    } else {
+        for r in &reports {
+            print_posterior(r);
+        }
+    }
+    if let Some(dir) = out {
+        let mut files = Vec::new();
+        for r in &reports {
+            let f = config
+                .fits
+                .iter()
+                .find(|f| f.name == r.name)
+                .expect("a fit");
+            files.extend(bwc_app::identify::render_posterior(f, r, dir)?);
+        }
+        let written = outdir::write_all(dir, summary, files)?;
+        if !json {
+            for p in written {
+                eprintln!("wrote {}", p.display());
+            }
+        }
+    }
+    Ok(())
+}
+
+/// One posterior as text: the evidence, the sampler's effort, the marginals.
+fn print_posterior(r: &bwc_app::identify::PosteriorReport) {
+    bwc_app::out!(
+        "{} ({}): log Z = {:.3} +- {:.3}, {} evaluations, {:.2} s, {} runs x {} particles, ESS {:.0}",
+        r.name,
+        r.model,
+        r.log_evidence,
+        r.log_evidence_error,
+        r.evaluations,
+        r.wall_s,
+        r.runs,
+        r.particles,
+        r.ess
+    );
+    bwc_app::out!("    noise: {}", r.noise);
+    for m in &r.marginals {
+        let unit = match bwc_app::identify::unit_of(m.name) {
+            "-" => String::new(),
+            u => format!(" {u}"),
+        };
+        bwc_app::out!(
+            "    {:8} median {:.4e}, 95 % credible [{:.4e}, {:.4e}]{unit}",
+            m.name,
+            m.median,
+            m.interval[0],
+            m.interval[1]
+        );
+    }
 }
 
 /// `bwc-identify coverage`.

@@ -499,3 +499,103 @@ fn a_mass_in_grams_gets_a_hint() {
         "{err}"
     );
 }
+
+#[test]
+fn identify_posterior_reports_its_contract_on_any_thread_count() {
+    let dir = scratch("identify-posterior");
+    let config = synthetic_config(&dir);
+    let out_dir = dir.join("out");
+    let run = |threads: &str, out: Option<&Path>| {
+        let mut args = vec![
+            "posterior",
+            config.to_str().unwrap(),
+            "--json",
+            "--particles",
+            "64",
+            "--runs",
+            "2",
+            "--threads",
+            threads,
+        ];
+        if let Some(o) = out {
+            args.extend(["--out", o.to_str().unwrap()]);
+        }
+        let mut v = json(&identify(&args));
+        v["posteriors"][0]["wall_s"] = serde_json::Value::Null;
+        v["command"] = serde_json::Value::Null;
+        v
+    };
+    let (one, two) = (run("1", None), run("2", Some(&out_dir)));
+    assert_eq!(one, two);
+    let p = &one["posteriors"][0];
+    for key in [
+        "log_evidence",
+        "log_evidence_error",
+        "run_log_evidence",
+        "evaluations",
+        "particles",
+        "runs",
+        "ess",
+        "noise",
+        "prior",
+        "marginals",
+        "band",
+        "stages",
+    ] {
+        assert!(p.get(key).is_some(), "missing {key}");
+    }
+    // Noise-free data: the CoR's noise scale is sampled (no e_std column) and sits at the
+    // bottom of its range; κ's credible interval holds the truth, 0.6.
+    let kappa = &p["marginals"]["kappa"];
+    assert!(kappa["lo"].as_f64().unwrap() <= 0.6 && 0.6 <= kappa["hi"].as_f64().unwrap());
+    assert!(p["marginals"]["sigma_e"]["median"].as_f64().unwrap() < 1e-2);
+    assert!(p["log_evidence_error"].as_f64().unwrap().is_finite());
+    let csv = std::fs::read_to_string(out_dir.join("synthetic_posterior.csv")).unwrap();
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        "run,weight,log_likelihood,B_b,Gamma_b,kappa,sigma_b,n,p,U_b,T_b,sigma_e"
+    );
+    assert_eq!(csv.lines().count(), 1 + 128);
+    let band = std::fs::read_to_string(out_dir.join("synthetic_posterior_band.csv")).unwrap();
+    assert_eq!(
+        band.lines().next().unwrap(),
+        "v_0,e,e_lo,e_hi,e_new_lo,e_new_hi,t_d,t_d_lo,t_d_hi,t_d_new_lo,t_d_new_hi"
+    );
+    for f in [
+        "synthetic_posterior_cor.svg",
+        "synthetic_corner.svg",
+        "summary.json",
+    ] {
+        assert!(out_dir.join(f).exists(), "{f}");
+    }
+}
+
+#[test]
+fn a_posterior_of_data_it_cannot_use_is_a_clear_error_and_writes_nothing() {
+    let cases = [
+        ("one point", "v_0,e\n1.0,0.8\n", "at least 2"),
+        (
+            "zero noise",
+            "v_0,e,e_std\n0.5,0.9,0.01\n1.0,0.8,0\n",
+            "d.csv:3: column `e_std`: 0 is not a noise scale",
+        ),
+    ];
+    for (name, data, needle) in cases {
+        let dir = scratch(&format!("posterior-{}", name.replace(' ', "-")));
+        std::fs::write(dir.join("d.csv"), data).unwrap();
+        let path = dir.join("c.toml");
+        std::fs::write(&path, format!("{HEAD}{BOUNDS}")).unwrap();
+        let out_dir = dir.join("out");
+        let out = identify(&[
+            "posterior",
+            path.to_str().unwrap(),
+            "--out",
+            out_dir.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{name}: {err}");
+        assert!(err.contains(needle), "{name}: {needle:?} not in {err}");
+        let written = std::fs::read_dir(&out_dir).map_or(0, |d| d.count());
+        assert_eq!(written, 0, "{name}: output written");
+    }
+}

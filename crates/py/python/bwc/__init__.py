@@ -24,8 +24,10 @@ import warnings
 
 from ._native import BwcError, BwcWarning, __version__, cor as _cor, coverage_json as _coverage
 from ._native import identify_json as _identify, simulate_json as _simulate
+from ._native import posterior_json as _posterior
 from ._native import Contact, Contacts, Step
-from ._results import Cor, Coverage, Fit, Identification, Params, Result, Run, Simulation, wrap
+from ._results import Cor, Coverage, Fit, Identification, Params, Posterior, Posteriors, Result, Run
+from ._results import Simulation, samples_as_arrays, wrap
 
 __all__ = [
     "BwcError",
@@ -37,6 +39,8 @@ __all__ = [
     "Fit",
     "Identification",
     "Params",
+    "Posterior",
+    "Posteriors",
     "Result",
     "Run",
     "Simulation",
@@ -45,6 +49,7 @@ __all__ = [
     "cor",
     "coverage",
     "identify",
+    "posterior",
     "simulate",
 ]
 
@@ -367,3 +372,62 @@ def coverage(config, *, replicates=40, first_seed=1, noise=None, fit=None, threa
     text = _coverage(replicates=int(replicates), first_seed=int(first_seed), noise=noise, fit=fit,
                      threads=threads, **_source(config, "config"))
     return wrap(json.loads(text), Coverage)
+
+
+def _posteriors(text):
+    """The JSON text of posteriors as :class:`Posteriors`, samples as numpy arrays, each
+    posterior's warnings issued."""
+    value = wrap(json.loads(text), Posteriors, {"posteriors": Posterior})
+    for p in value["posteriors"]:
+        samples_as_arrays(p)
+    _warn_fits(value["posteriors"])
+    return value
+
+
+def posterior(config, *, fit=None, seed=0, particles=None, runs=None, threads=None):
+    """The posterior of each fit's searched quantities, as ``bwc-identify posterior --json``
+    samples it: sequential Monte Carlo over the bounds (uniform on each quantity's search scale,
+    or the priors of ``[fit.prior]``) with a Gaussian likelihood of the CoRs (and durations).
+
+    Parameters
+    ----------
+    config : str, os.PathLike or dict
+        A config file or a dict shaped like one; ``[fit.posterior]`` sets the sampler.
+    fit : str, optional
+        Only the fit of this name.
+    seed : int, default 0
+        Base seed, combined with each fit's own. Results do not depend on ``threads``.
+    particles, runs : int, optional
+        Particles per run and independent runs (default: ``[fit.posterior]``, 500 and 4).
+    threads : int, optional
+        Worker threads (default: all cores).
+
+    Returns
+    -------
+    Posteriors
+        ``posteriors``: one :class:`Posterior` per fit (``log_evidence``,
+        ``log_evidence_error``, ``marginals``, ``band``, ``noise``, ``samples`` as numpy
+        arrays, ...), the config and the provenance.
+
+    Raises
+    ------
+    BwcError
+        A bad config, data a posterior cannot use (one point, a noise column with zeros, a
+        prior outside the bounds), or a sampler that does not reach the posterior.
+
+    Examples
+    --------
+    >>> import bwc
+    >>> import warnings
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore", bwc.BwcWarning)   # a small sample warns of its size
+    ...     post = bwc.posterior("fixtures/kharaz.toml", fit="DSS NDBWSHCCM", particles=32, runs=2)
+    >>> p = post.posteriors[0]
+    >>> sorted(p.marginals)   # the searched quantities and the CoR's noise scale
+    ['B_b', 'g', 'kappa', 'n', 'p', 'sigma_b', 'sigma_e']
+    >>> bool(abs(p.samples.weight.sum() - 1) < 1e-9), len(p.samples.kappa)
+    (True, 64)
+    """
+    text = _posterior(seed=int(seed), fit=fit, particles=particles, runs=runs, threads=threads,
+                      **_source(config, "config"))
+    return _posteriors(text)

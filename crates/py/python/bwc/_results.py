@@ -124,6 +124,41 @@ class Coverage(Result):
     __slots__ = ()
 
 
+class Posterior(Result):
+    """One fit's posterior: ``log_evidence`` and ``log_evidence_error``, ``marginals`` (per
+    sampled quantity ``median``, ``lo``, ``hi``, ``mean``, ``sd``, ``unit``), ``band`` (the 95 %
+    credible band of ``e`` and ``t_d`` on a speed grid), ``noise``, ``priors``, ``stages`` and
+    ``samples``: the weighted sample as numpy arrays, one per column (``B_b`` ... ``T_b``, the
+    sampled noise scales), with ``weight``, ``run`` and ``log_likelihood``."""
+
+    __slots__ = ()
+
+    def __repr__(self):
+        return "Posterior(name=%r, log_evidence=%.4g +- %.2g, particles=%d, ess=%.0f)" % (
+            self.get("name"), self.get("log_evidence", float("nan")),
+            self.get("log_evidence_error", float("nan")), len(self["samples"]["weight"]),
+            self.get("ess", float("nan")),
+        )
+
+
+class Posteriors(Result):
+    """What ``bwc.posterior`` returns: ``posteriors`` (one :class:`Posterior` per fit), the
+    config as parsed and the provenance."""
+
+    __slots__ = ()
+
+
+def samples_as_arrays(posterior):
+    """Turns a posterior's ``samples`` (JSON columns) into a :class:`Result` of numpy arrays."""
+    raw = posterior["samples"]
+    out = Result({name: np.asarray(col, dtype=float) for name, col in zip(raw["columns"], raw["values"])})
+    out["weight"] = np.asarray(raw["weight"], dtype=float)
+    out["run"] = np.asarray(raw["run"], dtype=np.int64)
+    out["log_likelihood"] = np.asarray(
+        [float("-inf") if v is None else v for v in raw["log_likelihood"]], dtype=float)
+    posterior["samples"] = out
+
+
 def wrap(value, cls=Result, kinds=None):
     """``value`` (parsed JSON) with its dicts as results: the top one as ``cls``, those under a
     key of ``kinds`` as the class given there (lists element by element), ``params`` as

@@ -76,3 +76,39 @@ def coverage(config, client, *, replicates=40, first_seed=1, chunk=5, noise=None
         study["replicates"] = replicates_all
         study["coverage"] = covered / max(points, 1)
     return merged
+
+
+def _posterior_run_task(config, fit, index, seed, particles, runs):
+    source = bwc._source(config, "config")
+    return bwc._native.posterior_run_json(fit, index, seed=seed, particles=particles, runs=runs, **source)
+
+
+def posterior(config, client, *, fit=None, seed=0, particles=None, runs=None, threads=None):
+    """``bwc.posterior`` with its independent runs spread over ``client``, one task per fit and
+    run, pooled here: the same posterior, bit for bit, as a local run with the same seed (each
+    run depends only on the config, the seed and its index). ``runs`` defaults to
+    ``[fit.posterior].runs``; pass it to use more workers."""
+    names = bwc._native.fit_names(**bwc._source(config, "config"))
+    if fit is not None:
+        if fit not in names:
+            raise bwc.BwcError("fit = %r names no [[fit]]: one of %r" % (fit, names))
+        names = [fit]
+    counts = [runs or _configured_runs(config, name) for name in names]
+    tasks = [(name, k) for name, count in zip(names, counts) for k in range(count)]
+    futures = client.map(
+        _posterior_run_task, [config] * len(tasks), [t[0] for t in tasks], [t[1] for t in tasks],
+        [int(seed)] * len(tasks), [particles] * len(tasks), [runs] * len(tasks), pure=False,
+    )
+    texts = client.gather(futures)
+    grouped, start = [], 0
+    for count in counts:
+        grouped.append(texts[start:start + count])
+        start += count
+    text = bwc._native.posterior_pool_json(names, grouped, seed=int(seed), threads=threads,
+                                           **bwc._source(config, "config"))
+    return bwc._posteriors(text)
+
+
+def _configured_runs(config, name):
+    """The runs ``[fit.posterior]`` of fit ``name`` asks for (as ``config`` echoes it)."""
+    return bwc._native.posterior_runs(name, **bwc._source(config, "config"))
