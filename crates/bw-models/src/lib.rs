@@ -51,6 +51,7 @@ mod cor;
 mod double_double;
 mod element;
 mod error;
+mod families;
 mod fast_paths;
 pub mod input;
 mod laws;
@@ -72,6 +73,7 @@ pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use cor::{impact, impact_at, impact_double_double};
 pub use element::{ContactElement, ElementSettings, ElementStep, Penetration};
 pub use error::ModelError;
+pub use families::{family_impact, Family, FamilyParams, Ndkv, FAMILIES};
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};
 pub use models::{
     Bwmcm, BwmcmEarlier, Bwshccm, CollisionModel, Ndbwmcm, NdbwmcmEarlier, Ndbwshccm,

@@ -15,7 +15,7 @@ use crate::smc::{sample, SmcSettings};
 use crate::space::Space;
 use crate::uncertainty::uncertainty;
 use bw_models::input::Zero;
-use bw_models::{impact_at, BaseParams, Settings};
+use bw_models::{BaseParams, Settings};
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 use rayon::prelude::*;
@@ -69,7 +69,7 @@ pub fn replicate(task: &CoverageTask, seed: u64) -> Result<Replicate, IdentifyEr
     let truth: Vec<f64> = task
         .speeds
         .iter()
-        .map(|&v0| impact_at(&map, Zero, v0, &settings).map(|o| o.e))
+        .map(|&v0| map.impact(Zero, v0, &settings).map(|o| o.e))
         .collect::<Result<_, _>>()?;
     let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
     let normal = Normal::new(0.0, task.noise).map_err(|e| IdentifyError::Objectives {
@@ -162,7 +162,7 @@ pub struct PosteriorTask {
 /// [`crate::sample`].
 pub fn posterior_replicate(task: &PosteriorTask, seed: u64) -> Result<Replicate, IdentifyError> {
     let map = task.space.map(&task.truth)?;
-    let truth_at = |v0: f64| impact_at(&map, Zero, v0, &Settings::default()).map(|o| o.e);
+    let truth_at = |v0: f64| map.impact(Zero, v0, &Settings::default()).map(|o| o.e);
     let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
     let normal = Normal::new(0.0, task.noise).map_err(|e| IdentifyError::Objectives {
         reason: format!("noise {}: {e}", task.noise),

@@ -16,10 +16,11 @@ use crate::csv_file::{self, CsvText};
 use crate::error::IdentifyError;
 use crate::objective::{passes, TermOrder};
 use crate::problem::CubeProblem;
+use crate::space::FitModel;
 use crate::space::Space;
 use bw_models::input::Constant;
 use bw_models::sequence::{drop_sequence, Contact, Flight, Policy, SequenceSettings, Start};
-use bw_models::{impact_at, BaseMap, ModelError, Settings};
+use bw_models::{ModelError, Settings};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -222,7 +223,7 @@ impl<'a> DropObjective<'a> {
     /// The sequence from `h0` for base map `map`, up to `bounces` contacts.
     fn sequence(
         &self,
-        map: &BaseMap,
+        map: &FitModel,
         h0: f64,
         bounces: usize,
     ) -> Result<Vec<bw_models::sequence::Bounce>, ModelError> {
@@ -233,7 +234,7 @@ impl<'a> DropObjective<'a> {
             0.0
         };
         let contact = |v_in: f64, _: Option<&()>| {
-            let out = impact_at(map, Constant(u), v_in, &self.settings)?;
+            let out = map.impact(Constant(u), v_in, &self.settings)?;
             let t_s = out.t_s.map(|t| {
                 if setup.timed_contacts {
                     t * map.time_scale(v_in)

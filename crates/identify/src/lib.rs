@@ -81,5 +81,5 @@ pub use smc::{
     draws, pool, run as smc_run, sample, weighted_quantiles, Pooled, SmcReference, SmcRun,
     SmcSettings, Stage, Target,
 };
-pub use space::{KnownMassStiffness, Param, Space, NAMES};
+pub use space::{FitModel, KnownMassStiffness, Param, Space, NAMES};
 pub use uncertainty::{uncertainty, BandPoint, Uncertainty, LEVEL};

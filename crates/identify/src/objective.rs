@@ -3,9 +3,10 @@
 
 use crate::data::{Dataset, Point};
 use crate::error::IdentifyError;
+use crate::space::FitModel;
 use crate::space::Space;
 use bw_models::input::Input;
-use bw_models::{impact_at, BaseMap, ModelError, Settings};
+use bw_models::{ModelError, Settings};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -29,7 +30,7 @@ pub struct Prediction {
 /// # Errors
 /// The first [`ModelError`] of a failed simulation.
 pub fn predict<I: Input + Sync>(
-    map: &BaseMap,
+    map: &FitModel,
     u: &I,
     data: &Dataset,
     settings: &Settings,
@@ -60,12 +61,12 @@ fn in_data_order(data: &Dataset, speeds: &[f64], at: &[Prediction]) -> Vec<Predi
 
 /// The prediction at one speed.
 pub(crate) fn prediction<I: Input + Sync>(
-    map: &BaseMap,
+    map: &FitModel,
     u: &I,
     v0: f64,
     settings: &Settings,
 ) -> Result<Prediction, ModelError> {
-    let out = impact_at(map, u, v0, settings)?;
+    let out = map.impact(u, v0, settings)?;
     Ok(Prediction {
         v0,
         e: out.e,

@@ -4,7 +4,11 @@
 //! `-B_b <= Γ_b <= B_b` holds by construction.
 
 use crate::error::IdentifyError;
-use bw_models::{BaseMap, BaseParams, ModelKind};
+use bw_models::input::Input;
+use bw_models::{
+    family_impact, impact_at, BaseMap, BaseParams, Cor, Family, FamilyParams, ModelError,
+    ModelKind, Settings,
+};
 
 /// Names of the searchable quantities, in order.
 pub const NAMES: [&str; 8] = ["B_b", "g", "kappa", "sigma_b", "n", "p", "U_b", "T_b"];
@@ -44,6 +48,56 @@ pub struct Space {
     params: [Param; 8],
     known: Option<KnownMassStiffness>,
     free: Vec<usize>,
+    /// A contact-law family in place of the Bouc-Wen models: its damping parameter takes the
+    /// slot of `sigma_b`, its `T_b` that of `T_b`; the other slots are fixed.
+    family: Option<Family>,
+}
+
+/// The model a point of a [`Space`] describes: a Bouc-Wen model through its base map, or a
+/// contact-law family.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FitModel {
+    /// The NDBWSHCCM or NDBWMCM at base parameters.
+    BoucWen(BaseMap),
+    /// A contact-law family.
+    Family(FamilyParams),
+}
+
+impl FitModel {
+    /// One impact at `v0` (m/s) with physical input `u` (N): `e`, and `t_s` in the
+    /// nondimensional time.
+    ///
+    /// # Errors
+    /// As [`bw_models::impact_at`] and [`bw_models::family_impact`];
+    /// [`ModelError::InvalidParameter`] for a family under an input (the families are fitted
+    /// to unforced impacts).
+    pub fn impact<I: Input>(&self, u: I, v0: f64, settings: &Settings) -> Result<Cor, ModelError> {
+        match self {
+            FitModel::BoucWen(map) => impact_at(map, u, v0, settings),
+            FitModel::Family(p) if u.is_zero() => family_impact(p, v0, settings),
+            FitModel::Family(_) => Err(ModelError::InvalidParameter {
+                name: "input",
+                value: f64::NAN,
+                allowed: "no input: the contact-law families are fitted to unforced impacts",
+            }),
+        }
+    }
+
+    /// The time scale at `v0` (s): a nondimensional duration times this is in seconds.
+    pub fn time_scale(&self, v0: f64) -> f64 {
+        match self {
+            FitModel::BoucWen(map) => map.time_scale(v0),
+            FitModel::Family(p) => p.time_scale(v0),
+        }
+    }
+}
+
+/// An admissible damping of `family` (for checking `T_b` alone).
+fn family_default_damping(family: Family) -> f64 {
+    match family {
+        Family::HuntCrossley | Family::KelvinVoigt => 0.0,
+        _ => 1.0,
+    }
 }
 
 /// The value at `t` (clamped into `[0, 1]`) of `[lo, hi]` on a linear or log scale, exactly `lo`
@@ -199,6 +253,7 @@ impl Space {
             params,
             known,
             free,
+            family: None,
         };
         if space.known.is_some() {
             // The inequality is easiest to meet at small κ, large T_b (large U_b) and small p.
@@ -218,6 +273,85 @@ impl Space {
         Ok(space)
     }
 
+    /// The space of a contact-law family: its damping parameter ([`Family::damping_name`]) and
+    /// `T_b` (s), each searched or fixed.
+    ///
+    /// # Errors
+    /// [`IdentifyError::Bounds`] naming the parameter for bounds it does not admit, `lo > hi`,
+    /// or a log scale with `lo <= 0`.
+    pub fn family(family: Family, damping: Param, t_b: Param) -> Result<Self, IdentifyError> {
+        let name = family.damping_name();
+        let check = |name: &'static str, p: Param, test: &dyn Fn(f64) -> Result<(), ModelError>| {
+            let (lo, hi, log) = match p {
+                Param::Fixed(v) => (v, v, false),
+                Param::Free { lo, hi, log } => (lo, hi, log),
+                Param::Derived => (f64::NAN, f64::NAN, false),
+            };
+            let bad = |allowed| IdentifyError::Bounds {
+                name,
+                lo,
+                hi,
+                allowed,
+            };
+            if lo.is_nan() || hi.is_nan() || lo > hi {
+                return Err(bad("lower bound <= upper bound"));
+            }
+            if log && lo <= 0.0 {
+                return Err(bad("lower bound > 0 on a logarithmic scale"));
+            }
+            for v in [lo, hi] {
+                if let Err(ModelError::InvalidParameter { allowed, .. }) = test(v) {
+                    return Err(bad(allowed));
+                }
+            }
+            Ok(())
+        };
+        let with = |damping, t_b| {
+            FamilyParams {
+                family,
+                damping,
+                t_b,
+            }
+            .validate()
+        };
+        check(name, damping, &|v| with(v, 1.0))?;
+        check("T_b", t_b, &|v| with(family_default_damping(family), v))?;
+        let params = [
+            Param::Fixed(0.0),
+            Param::Fixed(0.0),
+            Param::Fixed(0.5),
+            damping,
+            Param::Fixed(1.0),
+            Param::Fixed(family.exponent()),
+            Param::Fixed(1.0),
+            t_b,
+        ];
+        let free = (0..8)
+            .filter(|&i| matches!(params[i], Param::Free { .. }))
+            .collect();
+        Ok(Self {
+            kind: ModelKind::Shccm,
+            params,
+            known: None,
+            free,
+            family: Some(family),
+        })
+    }
+
+    /// The contact-law family, if the space is one's.
+    pub fn family_of(&self) -> Option<Family> {
+        self.family
+    }
+
+    /// The name of quantity `i` (index into [`NAMES`]) in this space: a family's damping
+    /// parameter in the slot of `sigma_b`.
+    pub fn name(&self, i: usize) -> &'static str {
+        match self.family {
+            Some(f) if i == 3 => f.damping_name(),
+            _ => NAMES[i],
+        }
+    }
+
     /// The model.
     pub fn kind(&self) -> ModelKind {
         self.kind
@@ -235,7 +369,7 @@ impl Space {
 
     /// Names of the free quantities, in search order.
     pub fn free_names(&self) -> Vec<&'static str> {
-        self.free.iter().map(|&i| NAMES[i]).collect()
+        self.free.iter().map(|&i| self.name(i)).collect()
     }
 
     /// The bounds `(lo, hi)` of quantity `i` (index into [`NAMES`]) if it is searched.
@@ -350,12 +484,24 @@ impl Space {
         }
     }
 
-    /// The base map of `p`.
+    /// The model `p` describes: the base map of `p`, or a family's law (damping `p.sigma_b`,
+    /// `T_b = p.t_b`).
     ///
     /// # Errors
     /// [`IdentifyError::Model`] if `p` is not admissible for the model.
-    pub fn map(&self, p: &BaseParams) -> Result<BaseMap, IdentifyError> {
-        Ok(BaseMap::new(self.kind, *p)?)
+    pub fn map(&self, p: &BaseParams) -> Result<FitModel, IdentifyError> {
+        match self.family {
+            Some(family) => {
+                let law = FamilyParams {
+                    family,
+                    damping: p.sigma_b,
+                    t_b: p.t_b,
+                };
+                law.validate()?;
+                Ok(FitModel::Family(law))
+            }
+            None => Ok(FitModel::BoucWen(BaseMap::new(self.kind, *p)?)),
+        }
     }
 }
 

@@ -259,7 +259,8 @@ impl Uncertainty {
                 "B_b" => p.b_b,
                 "g" => p.gamma_b / p.b_b.max(f64::MIN_POSITIVE),
                 "kappa" => p.kappa,
-                "sigma_b" => p.sigma_b,
+                // A family's damping parameter sits in the slot of sigma_b.
+                "sigma_b" | "alpha" | "zeta" | "e_r" => p.sigma_b,
                 "n" => p.n,
                 "p" => p.p,
                 "U_b" => p.u_b,

@@ -21,7 +21,7 @@ impl Config {
 fn fit(f: &FitConfig) -> Value {
     json!({
         "name": f.name,
-        "model": f.kind.name(),
+        "model": f.model_name(),
         "data": f.data.path.display().to_string(),
         "points": f.data.points.len(),
         "objectives": {"J1": f.weights.j1, "J2": f.weights.j2},

@@ -7,7 +7,7 @@ use super::{RawFit, RawPoint, RawQuantities};
 use crate::signal::Signal;
 use crate::tables::{model_kind, signal, solver_settings, span, Ctx, Num};
 use crate::AppError;
-use bw_models::{BaseParams, ModelKind, Settings};
+use bw_models::{BaseParams, Family, ModelKind, Settings};
 use bwc_identify::{
     Budget, Dataset, IdentifyError, KnownMassStiffness, Param, Space, Weights, NAMES,
 };
@@ -93,6 +93,10 @@ pub(super) fn parse_fit(
     let t = f.span();
     let r = f.get_ref();
     let (name, kind, data_path) = head(ctx, dir, r, &t, index)?;
+    if let Some(family) = r.model.as_ref().and_then(|m| Family::parse(m.get_ref())) {
+        return parse_family_fit(ctx, r, (&t, index), (name, family, data_path));
+    }
+    family_keys_absent(ctx, r)?;
     let drop = header_of(&data_path).is_some_and(|h| bwc_identify::DropData::is_drop_header(&h));
     let weights = if drop {
         drop_objectives(ctx, r)?
@@ -154,12 +158,99 @@ pub(super) fn parse_fit(
             pareto,
             drops: None,
             posterior,
+            family: None,
         },
         setup,
         data_path,
         objective_span: r.objectives.as_ref().map_or(t.clone(), |o| o.span()),
         pareto_span: r.pareto.as_ref().map_or(t.clone(), |p| p.span()),
     })
+}
+
+/// A `[[fit]]` of a contact-law family ([`super::family`]).
+fn parse_family_fit(
+    ctx: &Ctx,
+    r: &RawFit,
+    (t, index): (&Range<usize>, usize),
+    (name, family, data_path): (String, Family, PathBuf),
+) -> Result<Draft, AppError> {
+    if header_of(&data_path).is_some_and(|h| bwc_identify::DropData::is_drop_header(&h)) {
+        return Err(ctx.invalid(
+            t,
+            "[[fit]].data",
+            format!(
+                "drop-test data (intervals or heights) with model \"{}\": the contact-law \
+                 families are fitted to CoRs and durations (v_0, e, t_d)",
+                family.name()
+            ),
+        ));
+    }
+    let weights = objectives(ctx, r)?;
+    columns_for(ctx, r, &data_path, weights)?;
+    let space = super::family::family_space(ctx, r, t, family, weights.j2 > 0.0)?;
+    let (budget, seed, settings, pareto) = search(ctx, r, index)?;
+    let posterior =
+        super::posterior::posterior(ctx, r.posterior.as_ref(), r.prior.as_ref(), &space)?;
+    Ok(Draft {
+        fit: FitConfig {
+            name,
+            kind: ModelKind::Shccm,
+            family: Some(family),
+            data: Dataset::at_speeds(&data_path, &[]),
+            space,
+            input: Signal::zero(),
+            weights,
+            budget,
+            seed,
+            settings,
+            start: None,
+            params: None,
+            reference: None,
+            uses_input_scales: weights.j2 > 0.0,
+            hints: Vec::new(),
+            pareto,
+            drops: None,
+            posterior,
+        },
+        setup: None,
+        data_path,
+        objective_span: r.objectives.as_ref().map_or(t.clone(), |o| o.span()),
+        pareto_span: r.pareto.as_ref().map_or(t.clone(), |p| p.span()),
+    })
+}
+
+/// A Bouc-Wen fit names no family parameter.
+fn family_keys_absent(ctx: &Ctx, r: &RawFit) -> Result<(), AppError> {
+    let mut given = Vec::new();
+    if let Some(b) = &r.bounds {
+        given.extend(
+            b.get_ref()
+                .family_entries()
+                .into_iter()
+                .filter(|e| e.1.is_some())
+                .map(|e| ("bounds", e.0, b.span())),
+        );
+    }
+    if let Some(v) = &r.fixed {
+        given.extend(
+            v.get_ref()
+                .family_entries()
+                .into_iter()
+                .filter(|e| e.1.is_some())
+                .map(|e| ("fixed", e.0, v.span())),
+        );
+    }
+    match given.into_iter().next() {
+        Some((table, key, span)) => Err(ctx.invalid(
+            &span,
+            format!("[fit.{table}].{key}"),
+            format!(
+                "{key} is a parameter of the contact-law families (model = \"hunt-crossley\", \
+                 \"kelvin-voigt\", \"hertz-ln\", \"hertz-flores\"), not of the Bouc-Wen models"
+            ),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// `[fit.start]` (encoded in the search space) and `[fit.params]`.
@@ -223,16 +314,29 @@ fn head(
         .name
         .as_ref()
         .map_or_else(|| format!("fit {}", index + 1), |n| n.get_ref().clone());
-    let kind = match &r.model {
-        Some(m) => model_kind(ctx, m, "[[fit]].model")?,
-        None => {
-            return Err(ctx.invalid(
-                t,
-                "[[fit]].model",
-                "missing required key: \"shccm\" or \"mcm\"",
-            ))
-        }
-    };
+    let kind =
+        match &r.model {
+            Some(m) if Family::parse(m.get_ref()).is_some() => ModelKind::Shccm,
+            Some(m) => model_kind(ctx, m, "[[fit]].model").map_err(|_| {
+                ctx.invalid(
+                    &m.span(),
+                    "[[fit]].model",
+                    format!(
+                    "\"{}\" is not a model: use \"shccm\" or \"mcm\" (the Bouc-Wen models), or \
+                     a contact-law family: {}",
+                    m.get_ref(),
+                    bw_models::FAMILIES.map(|f| format!("\"{}\"", f.name())).join(", ")
+                ),
+                )
+            })?,
+            None => {
+                return Err(ctx.invalid(
+                    t,
+                    "[[fit]].model",
+                    "missing required key: \"shccm\" or \"mcm\"",
+                ))
+            }
+        };
     let data = r.data.as_ref().ok_or_else(|| {
         ctx.invalid(
             t,

@@ -22,6 +22,7 @@
 //! ```
 
 mod describe;
+mod family;
 mod fit;
 mod loops;
 mod posterior;
@@ -103,6 +104,12 @@ struct RawQuantities<T> {
     u_b: Option<T>,
     #[serde(rename = "T_b")]
     t_b: Option<T>,
+    /// Hunt-Crossley's damping (s/m).
+    alpha: Option<T>,
+    /// Kelvin-Voigt's damping ratio.
+    zeta: Option<T>,
+    /// The restitution parameter of the Lankarani-Nikravesh and Flores dampings.
+    e_r: Option<T>,
 }
 
 impl<T> Default for RawQuantities<T> {
@@ -116,11 +123,32 @@ impl<T> Default for RawQuantities<T> {
             p: None,
             u_b: None,
             t_b: None,
+            alpha: None,
+            zeta: None,
+            e_r: None,
         }
     }
 }
 
 impl<T> RawQuantities<T> {
+    /// A family's damping parameter by name (`alpha`, `zeta`, `e_r`).
+    fn family_entry(&self, name: &str) -> &Option<T> {
+        match name {
+            "alpha" => &self.alpha,
+            "zeta" => &self.zeta,
+            _ => &self.e_r,
+        }
+    }
+
+    /// The family parameters given, by name.
+    fn family_entries(&self) -> [(&'static str, &Option<T>); 3] {
+        [
+            ("alpha", &self.alpha),
+            ("zeta", &self.zeta),
+            ("e_r", &self.e_r),
+        ]
+    }
+
     /// The entries in the order of [`NAMES`].
     fn by_name(&self) -> [&Option<T>; 8] {
         [
@@ -207,6 +235,16 @@ pub struct FitConfig {
     pub drops: Option<DropFit>,
     /// How `bwc-identify posterior` samples the fit (`[fit.posterior]`, `[fit.prior]`).
     pub posterior: PosteriorConfig,
+    /// The contact-law family fitted instead of a Bouc-Wen model, if any (`kind` is then
+    /// unused).
+    pub family: Option<bw_models::Family>,
+}
+
+impl FitConfig {
+    /// The model's name as the config gives it: `"shccm"`, `"mcm"` or a family's.
+    pub fn model_name(&self) -> &'static str {
+        self.family.map_or(self.kind.name(), |f| f.name())
+    }
 }
 
 /// A reference vector of a fit (a published fit, an earlier one): `run` reports its cost on the

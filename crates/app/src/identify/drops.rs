@@ -30,7 +30,7 @@ fn outcome(f: &FitConfig, d: &DropFit, s: &[f64], config: &Path) -> Result<DropO
 fn report(f: &FitConfig, params: bw_models::BaseParams, drop: DropOutcome) -> FitReport {
     FitReport {
         name: f.name.clone(),
-        model: f.kind.name(),
+        model: f.model_name(),
         params,
         uses_input_scales: f.uses_input_scales,
         costs: Costs { j1: None, j2: None },

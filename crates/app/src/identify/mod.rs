@@ -1,6 +1,7 @@
 //! Runs and evaluates the fits of an identification config ([`run_fit`], [`eval_fit`],
 //! [`run_loop_fit`], [`eval_loop_fit`]); [`render`] turns their reports into JSON, CSV and SVG.
 
+mod compare;
 mod coverage;
 mod drops;
 mod posterior;
@@ -8,6 +9,7 @@ mod reference;
 mod render;
 mod report;
 
+pub use compare::{compare_all, compare_summary, groups, verdict, Comparison};
 pub use coverage::{coverage_study, coverage_summary, coverage_task, run_coverage, CoverageReport};
 pub use posterior::{
     posterior_all, posterior_from_runs, posterior_run, posterior_summary, render_posterior,
@@ -43,7 +45,7 @@ pub fn curve_speeds(data: &Dataset) -> Vec<f64> {
 /// The model `map` at `speeds` without a band (limits equal to the value).
 fn plain_curve(
     f: &FitConfig,
-    map: &bw_models::BaseMap,
+    map: &bwc_identify::FitModel,
     speeds: &[f64],
 ) -> Result<Vec<BandPoint>, bw_models::ModelError> {
     let grid = Dataset::at_speeds(&f.data.path, speeds);
@@ -127,7 +129,7 @@ pub fn run_fit(
     }
     Ok(FitReport {
         name: f.name.clone(),
-        model: f.kind.name(),
+        model: f.model_name(),
         params: result.params,
         uses_input_scales: f.uses_input_scales,
         costs,
@@ -247,7 +249,7 @@ pub fn eval_fit(config: &Path, f: &FitConfig) -> Result<FitReport, AppError> {
     let curve = plain_curve(f, &map, &curve_speeds(&f.data)).map_err(|e| err(e.into()))?;
     Ok(FitReport {
         name: f.name.clone(),
-        model: f.kind.name(),
+        model: f.model_name(),
         params,
         uses_input_scales: f.uses_input_scales,
         costs,

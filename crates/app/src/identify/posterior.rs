@@ -50,9 +50,12 @@ pub struct PosteriorReport {
     pub noise: String,
     /// The priors other than uniform.
     pub priors: Vec<Prior>,
-    /// Per particle: the full base parameters `P*` (B_b, Γ_b, κ, σ_b, n, p, U_b, T_b) and the
-    /// sampled noise scales.
+    /// Per particle: the full base parameters `P*` (B_b, Γ_b, κ, σ_b, n, p, U_b, T_b), or a
+    /// family's damping parameter and `T_b`, then the sampled noise scales
+    /// ([`PosteriorReport::columns`]).
     pub samples: Vec<Vec<f64>>,
+    /// The names of the columns of `samples`.
+    pub columns: Vec<&'static str>,
     /// Per particle: the sampled coordinates' values, in the order of `names`.
     pub values: Vec<Vec<f64>>,
     /// Whether each of `names` is sampled on a log scale.
@@ -209,7 +212,10 @@ pub fn posterior_from_runs(
         .iter()
         .map(|s| {
             let b = f.space.decode(&s[..f.space.dim()]);
-            let mut row = vec![b.b_b, b.gamma_b, b.kappa, b.sigma_b, b.n, b.p, b.u_b, b.t_b];
+            let mut row = match f.family {
+                Some(_) => vec![b.sigma_b, b.t_b],
+                None => vec![b.b_b, b.gamma_b, b.kappa, b.sigma_b, b.n, b.p, b.u_b, b.t_b],
+            };
             let (se, st) = p.noise_at(s);
             row.extend([se, st].into_iter().filter(|x| !x.is_nan()));
             row
@@ -217,7 +223,7 @@ pub fn posterior_from_runs(
         .collect();
     Ok(PosteriorReport {
         name: f.name.clone(),
-        model: f.kind.name(),
+        model: f.model_name(),
         names: p.names(),
         marginals: marginals(&p, &post),
         log_evidence: post.log_evidence,
@@ -229,6 +235,7 @@ pub fn posterior_from_runs(
         ess: post.ess,
         noise: noise_words(f, &spec, column_noise),
         priors: spec.priors.clone(),
+        columns: sample_columns(f, &p.names()),
         samples,
         values: post.particles.iter().map(|s| p.values(s)).collect(),
         log_scale: log_scales(f, &p.names()),
@@ -241,6 +248,23 @@ pub fn posterior_from_runs(
         uses: (f.weights.j1 > 0.0, f.weights.j2 > 0.0),
         warnings,
     })
+}
+
+/// The columns of a posterior's samples: `P*` or a family's parameters, then the sampled noise
+/// scales among `names`.
+fn sample_columns(f: &FitConfig, names: &[&'static str]) -> Vec<&'static str> {
+    let head: Vec<&'static str> = match f.family {
+        Some(family) => vec![family.damping_name(), "T_b"],
+        None => SAMPLE_COLUMNS.to_vec(),
+    };
+    head.into_iter()
+        .chain(
+            names
+                .iter()
+                .copied()
+                .filter(|n| *n == "sigma_e" || *n == "sigma_t"),
+        )
+        .collect()
 }
 
 /// Whether each coordinate named in `names` is sampled on a log scale (the noise scales are).
@@ -380,18 +404,10 @@ fn one_summary(r: &PosteriorReport) -> Value {
     })
 }
 
-/// The weighted sample of a posterior as JSON columns: `columns` (the full P*, then the sampled
-/// noise scales), `values` (one list per column), `weight`, `run`, `log_likelihood`.
+/// The weighted sample of a posterior as JSON columns: `columns` (the full P*, or a family's
+/// parameters, then the sampled noise scales), `values` (one list per column), `weight`, `run`, `log_likelihood`.
 pub fn samples_json(r: &PosteriorReport) -> Value {
-    let columns: Vec<&str> = SAMPLE_COLUMNS
-        .into_iter()
-        .chain(
-            r.names
-                .iter()
-                .copied()
-                .filter(|n| n.starts_with("sigma_") && *n != "sigma_b"),
-        )
-        .collect();
+    let columns = &r.columns;
     let values: Vec<Vec<f64>> = (0..columns.len())
         .map(|j| r.samples.iter().map(|s| s[j]).collect())
         .collect();
@@ -600,23 +616,17 @@ fn band_figure(f: &FitConfig, r: &PosteriorReport, cor: bool) -> Result<String, 
     )
 }
 
-/// The weighted sample as CSV: run, weight, log_likelihood, the full P*, the noise scales.
+/// The weighted sample as CSV: run, weight, log_likelihood, the full P* (or a family's
+/// parameters), the noise scales.
 fn samples_csv(r: &PosteriorReport, out: &Path, name: &str) -> Result<(String, Vec<u8>), AppError> {
     let cerr = |source| AppError::Csv {
         path: out.join(name),
         source,
     };
     let mut w = csv::Writer::from_writer(Vec::new());
-    let noise: Vec<&str> = r
-        .names
-        .iter()
-        .copied()
-        .filter(|n| n.starts_with("sigma_") && *n != "sigma_b")
-        .collect();
     let header: Vec<&str> = ["run", "weight", "log_likelihood"]
         .into_iter()
-        .chain(SAMPLE_COLUMNS)
-        .chain(noise)
+        .chain(r.columns.iter().copied())
         .collect();
     w.write_record(&header).map_err(cerr)?;
     for (i, row) in r.samples.iter().enumerate() {

@@ -10,7 +10,13 @@ use bwc_identify::{BandPoint, Uncertainty};
 use serde_json::{json, Value};
 use std::path::Path;
 
-fn params_json(p: &BaseParams, input_scales: bool) -> Value {
+fn params_json(model: &str, p: &BaseParams, input_scales: bool) -> Value {
+    if let Some(f) = bw_models::Family::parse(model) {
+        // A family's law: its damping parameter (in the slot of sigma_b) and T_b.
+        let mut v = json!({ "T_b": input_scales.then_some(p.t_b) });
+        v[f.damping_name()] = json!(p.sigma_b);
+        return v;
+    }
     json!({
         "B_b": p.b_b, "Gamma_b": p.gamma_b, "kappa": p.kappa, "sigma_b": p.sigma_b, "n": p.n, "p": p.p,
         "U_b": input_scales.then_some(p.u_b), "T_b": input_scales.then_some(p.t_b),
@@ -23,7 +29,7 @@ pub fn summary(reports: &[FitReport]) -> Value {
         .iter()
         .map(|r| {
             let mut v = json!({
-                "name": r.name, "model": r.model, "params": params_json(&r.params, r.uses_input_scales),
+                "name": r.name, "model": r.model, "params": params_json(r.model, &r.params, r.uses_input_scales),
                 "J1": r.costs.j1, "J2": r.costs.j2, "evaluations": r.evaluations, "wall_s": r.wall_s,
             });
             if let Some(id) = &r.identifiability {
@@ -63,7 +69,7 @@ pub fn summary(reports: &[FitReport]) -> Value {
             }
             v["warnings"] = json!(r.warnings);
             if !r.pareto.is_empty() {
-                v["pareto"] = r.pareto.iter().map(|p| json!({"w": p.w, "J1": p.j1, "J2": p.j2, "params": params_json(&p.params, r.uses_input_scales)})).collect();
+                v["pareto"] = r.pareto.iter().map(|p| json!({"w": p.w, "J1": p.j1, "J2": p.j2, "params": params_json(r.model, &p.params, r.uses_input_scales)})).collect();
             }
             v
         })
@@ -75,7 +81,7 @@ pub fn summary(reports: &[FitReport]) -> Value {
 fn reference_json(rf: &ReferenceReport, input_scales: bool) -> Value {
     json!({
         "label": rf.label,
-        "params": params_json(&rf.params, input_scales),
+        "params": params_json("shccm", &rf.params, input_scales),
         "J1": rf.costs.j1,
         "J2": rf.costs.j2,
         "cost_ratio": rf.cost_ratio,
@@ -278,10 +284,14 @@ fn fit_figure(
 
 /// The paper's name of a model given by its key (`"shccm"`, `"mcm"`).
 fn model_name(key: &str) -> &'static str {
-    if key == "mcm" {
-        "NDBWMCM"
-    } else {
-        "NDBWSHCCM"
+    match key {
+        "mcm" => "NDBWMCM",
+        "shccm" => "NDBWSHCCM",
+        "hunt-crossley" => "Hunt-Crossley",
+        "kelvin-voigt" => "Kelvin-Voigt",
+        "hertz-ln" => "Hertz, Lankarani-Nikravesh",
+        "hertz-flores" => "Hertz, Flores",
+        _ => "model",
     }
 }
 

@@ -93,6 +93,31 @@ enum Command {
         #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1024))]
         threads: Option<u64>,
     },
+    /// Which law the data support: every [[fit]] fitted, and the fits on the same data file
+    /// side by side: cost, AIC, BIC, log evidence and the held-out error of k-fold
+    /// cross-validation by speed group.
+    Compare {
+        /// The config file (TOML).
+        config: PathBuf,
+        /// Print exactly one JSON object on stdout: {"comparisons": [...]}.
+        #[arg(long)]
+        json: bool,
+        /// Base seed (combined with each fit's seed).
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Folds of the cross-validation (speed groups dealt in order of speed).
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(2..=1000))]
+        folds: u64,
+        /// Particles per run of the posteriors (default: [fit.posterior]).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(16..=1_000_000))]
+        particles: Option<u64>,
+        /// Runs of the posteriors (default: [fit.posterior]).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(2..=10_000))]
+        runs: Option<u64>,
+        /// Worker threads (default: all cores, or RAYON_NUM_THREADS).
+        #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1024))]
+        threads: Option<u64>,
+    },
     /// Evaluate the costs at each fit's [fit.params] without optimizing.
     Eval {
         /// The config file (TOML).
@@ -122,6 +147,21 @@ fn main() -> ExitCode {
             threads.map(|t| t as usize),
         ),
         Command::Eval { config, out, json } => run(&config, out.as_deref(), json, None, None),
+        Command::Compare {
+            config,
+            json,
+            seed,
+            folds,
+            particles,
+            runs,
+            threads,
+        } => compare(
+            &config,
+            json,
+            (seed, folds as usize),
+            (particles.map(|p| p as usize), runs.map(|r| r as usize)),
+            threads.map(|t| t as usize),
+        ),
         Command::Posterior {
             config,
             out,
@@ -255,16 +295,23 @@ fn print_fit(config: &Config, r: &FitReport) {
         r.evaluations,
         r.wall_s
     );
-    bwc_app::outp!(
-        "    B_b = {:.6}, Gamma_b = {:.6}, kappa = {:.6}, sigma_b = {:.6e}, n = {:.6}, p = {:.6}",
-        p.b_b,
-        p.gamma_b,
-        p.kappa,
-        p.sigma_b,
-        p.n,
-        p.p
-    );
-    if r.uses_input_scales {
+    if let Some(f) = bw_models::Family::parse(r.model) {
+        // A family's law: its damping parameter sits in the slot of sigma_b.
+        bwc_app::outp!("    {} = {:.6e}", f.damping_name(), p.sigma_b);
+    } else {
+        bwc_app::outp!(
+            "    B_b = {:.6}, Gamma_b = {:.6}, kappa = {:.6}, sigma_b = {:.6e}, n = {:.6}, p = {:.6}",
+            p.b_b,
+            p.gamma_b,
+            p.kappa,
+            p.sigma_b,
+            p.n,
+            p.p
+        );
+    }
+    if r.uses_input_scales && bw_models::Family::parse(r.model).is_some() {
+        bwc_app::outp!(", T_b = {:.6e} s", p.t_b);
+    } else if r.uses_input_scales {
         bwc_app::outp!(", U_b = {:.6e}, T_b = {:.6e}", p.u_b, p.t_b);
     }
     bwc_app::out!();
@@ -335,6 +382,57 @@ fn print_loop_fit(r: &LoopReport) {
         l.gamma,
         l.a
     );
+}
+
+/// `bwc-identify compare`.
+fn compare(
+    path: &Path,
+    json: bool,
+    (seed, folds): (u64, usize),
+    sizes: (Option<usize>, Option<usize>),
+    threads: Option<usize>,
+) -> Result<(), AppError> {
+    let config = Config::load(path)?;
+    let work = || bwc_app::identify::compare_all(path, &config, seed, folds, sizes);
+    let rows = bwc_app::with_threads(threads, work)?;
+    if json {
+        let mut v = outdir::provenance("bwc-identify");
+        v["comparisons"] = bwc_app::identify::compare_summary(&rows)["comparisons"].take();
+        bwc_app::out!("{v}");
+        return Ok(());
+    }
+    for (data, members) in bwc_app::identify::groups(&rows) {
+        bwc_app::out!("{data}:");
+        bwc_app::out!(
+            "    {:28} {:14} {:>2} {:>4} {:>10} {:>9} {:>9} {:>16} {:>10}",
+            "fit",
+            "model",
+            "k",
+            "n",
+            "cost",
+            "AIC",
+            "BIC",
+            "log Z",
+            "CV RMSE"
+        );
+        for r in &members {
+            bwc_app::out!(
+                "    {:28} {:14} {:>2} {:>4} {:>10.3e} {:>9.1} {:>9.1} {:>9.2} +- {:<4.2} {:>10.3e}",
+                r.name,
+                r.model,
+                r.free,
+                r.n,
+                r.cost,
+                r.aic,
+                r.bic,
+                r.log_evidence.0,
+                r.log_evidence.1,
+                r.cv_rmse
+            );
+        }
+        bwc_app::out!("    {}", bwc_app::identify::verdict(&members));
+    }
+    Ok(())
 }
 
 /// `bwc-identify posterior`.

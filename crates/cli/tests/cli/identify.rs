@@ -599,3 +599,122 @@ fn a_posterior_of_data_it_cannot_use_is_a_clear_error_and_writes_nothing() {
         assert_eq!(written, 0, "{name}: output written");
     }
 }
+
+#[test]
+fn compare_names_the_law_that_made_the_data() {
+    // Synthetic CoRs of a Hunt-Crossley law (alpha = 0.3 s/m) at eight speeds, with noise of
+    // 0.005 in e_std: the Hunt-Crossley family against Kelvin-Voigt, whose CoR does not depend
+    // on the speed.
+    use bw_models::{family_impact, Family, FamilyParams, Settings};
+    let dir = scratch("compare");
+    let law = FamilyParams {
+        family: Family::HuntCrossley,
+        damping: 0.3,
+        t_b: 1.0,
+    };
+    let mut csv = String::from("v_0,e,e_std\n");
+    let noise = [0.004, -0.003, 0.001, -0.005, 0.002, 0.0, -0.002, 0.003];
+    for (i, v0) in [0.2, 0.4, 0.6, 0.9, 1.2, 1.6, 2.0, 2.5]
+        .into_iter()
+        .enumerate()
+    {
+        let e = family_impact(&law, v0, &Settings::default()).unwrap().e;
+        csv += &format!("{v0},{},0.005\n", e + noise[i]);
+    }
+    std::fs::write(dir.join("hc.csv"), csv).unwrap();
+    let config = dir.join("laws.toml");
+    std::fs::write(
+        &config,
+        "[[fit]]\nname = \"HC\"\nmodel = \"hunt-crossley\"\ndata = \"hc.csv\"\n\
+         [[fit]]\nname = \"KV\"\nmodel = \"kelvin-voigt\"\ndata = \"hc.csv\"\n",
+    )
+    .unwrap();
+    let v = json(&identify(&[
+        "compare",
+        config.to_str().unwrap(),
+        "--json",
+        "--folds",
+        "4",
+        "--particles",
+        "64",
+        "--runs",
+        "2",
+    ]));
+    let group = &v["comparisons"][0];
+    let models = group["models"].as_array().unwrap();
+    assert_eq!(models.len(), 2);
+    let (hc, kv) = (&models[0], &models[1]);
+    for key in [
+        "cost",
+        "AIC",
+        "BIC",
+        "log_evidence",
+        "log_evidence_error",
+        "cv_rmse",
+    ] {
+        assert!(hc[key].as_f64().is_some(), "missing {key}");
+    }
+    let f = |m: &serde_json::Value, k: &str| m[k].as_f64().unwrap();
+    assert!(f(hc, "BIC") < f(kv, "BIC") && f(hc, "cv_rmse") < f(kv, "cv_rmse"));
+    assert!(f(hc, "log_evidence") > f(kv, "log_evidence") + 5.0);
+    let sentence = group["supported"].as_str().unwrap();
+    assert!(
+        sentence.starts_with("the evidence supports \"HC\" (hunt-crossley) decisively"),
+        "{sentence}"
+    );
+}
+
+#[test]
+fn family_fits_recover_their_damping_and_name_wrong_keys() {
+    let dir = scratch("family-keys");
+    std::fs::write(dir.join("d.csv"), GOOD_DATA).unwrap();
+    let bad = [
+        (
+            "[[fit]]\nname = \"f\"\nmodel = \"hunt-crossley\"\ndata = \"d.csv\"\n[fit.bounds]\nkappa = [0.1, 0.9]\n",
+            "[fit.bounds].kappa",
+        ),
+        (
+            "[[fit]]\nname = \"f\"\nmodel = \"shccm\"\ndata = \"d.csv\"\n[fit.bounds]\nalpha = [0.0, 1.0]\n",
+            "[fit.bounds].alpha",
+        ),
+        (
+            "[[fit]]\nname = \"f\"\nmodel = \"hooke\"\ndata = \"d.csv\"\n",
+            "\"hertz-flores\"",
+        ),
+        (
+            "[[fit]]\nname = \"f\"\nmodel = \"kelvin-voigt\"\ndata = \"d.csv\"\n[fit.input]\nkind = \"constant\"\nvalue = 1.0\n",
+            "[fit.input]",
+        ),
+        (
+            "[[fit]]\nname = \"f\"\nmodel = \"hertz-ln\"\ndata = \"d.csv\"\n[fit.bounds]\ne_r = [0.0, 1.0]\n",
+            "0 < e_r <= 1",
+        ),
+    ];
+    for (i, (text, needle)) in bad.into_iter().enumerate() {
+        let path = dir.join(format!("c{i}.toml"));
+        std::fs::write(&path, text).unwrap();
+        let out = identify(&["run", path.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{i}: {err}");
+        assert!(err.contains(needle), "{i}: {needle:?} not in {err}");
+    }
+    // A Flores fit of data made by its own law gives its e_r back.
+    use bw_models::{family_impact, Family, FamilyParams, Settings};
+    let law = FamilyParams {
+        family: Family::HertzFlores,
+        damping: 0.7,
+        t_b: 1.0,
+    };
+    let e = family_impact(&law, 1.0, &Settings::default()).unwrap().e;
+    std::fs::write(dir.join("f.csv"), format!("v_0,e\n0.5,{e}\n2.0,{e}\n")).unwrap();
+    let path = dir.join("flores.toml");
+    std::fs::write(
+        &path,
+        "[[fit]]\nname = \"f\"\nmodel = \"hertz-flores\"\ndata = \"f.csv\"\n",
+    )
+    .unwrap();
+    let v = json(&identify(&["run", path.to_str().unwrap(), "--json"]));
+    let e_r = v["fits"][0]["params"]["e_r"].as_f64().unwrap();
+    assert!((e_r - 0.7).abs() < 1e-6, "e_r {e_r}");
+    assert_eq!(v["fits"][0]["model"], "hertz-flores");
+}

@@ -1,0 +1,174 @@
+//! A `[[fit]]` of a contact-law family (`model = "hunt-crossley"`, `"kelvin-voigt"`,
+//! `"hertz-ln"`, `"hertz-flores"`): its damping parameter (`alpha` in s/m, `zeta`, `e_r`) and
+//! `T_b` (s, for durations), each in `[fit.bounds]` or `[fit.fixed]`; the Bouc-Wen quantities,
+//! an input, a known mass and drop-test data do not apply.
+//!
+//! ```toml
+//! [[fit]]
+//! name = "tennis Hunt-Crossley"
+//! model = "hunt-crossley"
+//! data = "data/real/tennis_v0_e.csv"
+//! [fit.bounds]
+//! alpha = [0.0, 2.0]        # s/m; default bounds for each family's damping otherwise
+//! ```
+
+use super::search::param_of;
+use super::RawFit;
+use crate::tables::Ctx;
+use crate::AppError;
+use bw_models::Family;
+use bwc_identify::{IdentifyError, Param, Space, NAMES};
+use std::ops::Range;
+
+/// The default bounds of a family's damping parameter: `alpha` in `[0, 5]` s/m (a CoR of 1 to
+/// about 0 at 0.1-2 m/s), `zeta` in `[0, 0.99]`, `e_r` in `[0.05, 1]`.
+pub(super) fn default_damping(family: Family) -> Param {
+    let (lo, hi) = match family {
+        Family::HuntCrossley => (0.0, 5.0),
+        Family::KelvinVoigt => (0.0, 0.99),
+        _ => (0.05, 1.0),
+    };
+    Param::Free { lo, hi, log: false }
+}
+
+/// The search space of a family's fit; `durations` whether `T_b` matters (a duration
+/// objective), then required.
+///
+/// # Errors
+/// [`AppError::Invalid`] naming the key: a Bouc-Wen quantity, an input, a known mass, a start
+/// or a parameter vector; bounds the family does not admit; `T_b` missing for durations.
+pub(super) fn family_space(
+    ctx: &Ctx,
+    r: &RawFit,
+    t: &Range<usize>,
+    family: Family,
+    durations: bool,
+) -> Result<Space, AppError> {
+    let model = family.name();
+    let not_here = |span: Range<usize>, key: &str, what: &str| {
+        ctx.invalid(
+            &span,
+            key,
+            format!("{what} does not apply to model \"{model}\""),
+        )
+    };
+    let given = |table: &str, span: Range<usize>, by_name: [bool; 8], family_keys: [bool; 3]| {
+        let bouc_wen = (0..7).find(|&i| by_name[i]).map(|i| NAMES[i]);
+        let other = ["alpha", "zeta", "e_r"]
+            .into_iter()
+            .zip(family_keys)
+            .find(|(n, g)| *g && *n != family.damping_name())
+            .map(|(n, _)| n);
+        match bouc_wen.or(other) {
+            Some(key) => Err(not_here(
+                span,
+                &format!("[fit.{table}].{key}"),
+                &format!("{key}: {model} takes {} and T_b", family.damping_name()),
+            )),
+            None => Ok(()),
+        }
+    };
+    if let Some(q) = &r.bounds {
+        let g = q.get_ref();
+        let keys = g.family_entries().map(|(_, v)| v.is_some());
+        given("bounds", q.span(), g.by_name().map(|v| v.is_some()), keys)?;
+    }
+    if let Some(q) = &r.fixed {
+        let g = q.get_ref();
+        let keys = g.family_entries().map(|(_, v)| v.is_some());
+        given("fixed", q.span(), g.by_name().map(|v| v.is_some()), keys)?;
+    }
+    let tables = [
+        (
+            r.input.as_ref().map(|x| x.span()),
+            "[fit.input]",
+            "an input",
+        ),
+        (
+            r.known.as_ref().map(|x| x.span()),
+            "[fit.known]",
+            "a known mass",
+        ),
+        (
+            r.start.as_ref().map(|x| x.span()),
+            "[fit.start]",
+            "a Bouc-Wen start",
+        ),
+        (
+            r.params.as_ref().map(|x| x.span()),
+            "[fit.params]",
+            "a Bouc-Wen vector",
+        ),
+        (
+            r.reference.as_ref().map(|x| x.span()),
+            "[fit.reference]",
+            "a Bouc-Wen vector",
+        ),
+        (
+            r.sequence.as_ref().map(|x| x.span()),
+            "[fit.sequence]",
+            "a drop-test sequence",
+        ),
+    ];
+    if let Some((Some(span), key, what)) = tables.into_iter().find(|x| x.0.is_some()) {
+        return Err(not_here(span, key, what));
+    }
+    let (log_damping, log_t) = log_flags(ctx, r, family)?;
+    let name = family.damping_name();
+    let b = r.bounds.as_ref().map(|b| b.get_ref());
+    let v = r.fixed.as_ref().map(|v| v.get_ref());
+    let bound_d = b.and_then(|b| b.family_entry(name).clone());
+    let fixed_d = v.and_then(|v| v.family_entry(name).clone());
+    let damping = param_of(ctx, "fit", name, &bound_d, &fixed_d, log_damping)?
+        .unwrap_or_else(|| default_damping(family));
+    let bound_t = b.and_then(|b| b.t_b.clone());
+    let fixed_t = v.and_then(|v| v.t_b.clone());
+    let t_b = param_of(ctx, "fit", "T_b", &bound_t, &fixed_t, log_t)?;
+    let t_b = match t_b {
+        Some(p) => p,
+        None if !durations => Param::Fixed(1.0),
+        None => {
+            return Err(ctx.invalid(
+                &r.bounds.as_ref().map_or(t.clone(), |b| b.span()),
+                "[fit.bounds].T_b",
+                "missing: durations need T_b = (m/k)^(1/(p+1)) (s): give bounds or a value",
+            ))
+        }
+    };
+    Space::family(family, damping, t_b).map_err(|e| match e {
+        IdentifyError::Bounds {
+            name,
+            lo,
+            hi,
+            allowed,
+        } => ctx.invalid(
+            &r.bounds.as_ref().map_or(t.clone(), |b| b.span()),
+            format!("[fit.bounds].{name}"),
+            format!("[{lo}, {hi}] is not admissible: {allowed}"),
+        ),
+        other => ctx.invalid(t, "[[fit]]", other.to_string()),
+    })
+}
+
+/// `log = [...]` of a family: its damping parameter and `T_b`.
+fn log_flags(ctx: &Ctx, r: &RawFit, family: Family) -> Result<(bool, bool), AppError> {
+    let (mut damping, mut t_b) = (false, false);
+    for item in r.log.as_ref().map_or(&[][..], |l| l.get_ref()) {
+        match item.get_ref().as_str() {
+            n if n == family.damping_name() => damping = true,
+            "T_b" => t_b = true,
+            other => {
+                return Err(ctx.invalid(
+                    &item.span(),
+                    "[[fit]].log",
+                    format!(
+                        "\"{other}\" is not a parameter of \"{}\": use {} or T_b",
+                        family.name(),
+                        family.damping_name()
+                    ),
+                ))
+            }
+        }
+    }
+    Ok((damping, t_b))
+}
