@@ -341,7 +341,8 @@ def test_errors_from_dicts_name_the_dict_key():
         bwc.identify(config)
     lines = str(caught.value).splitlines()
     assert lines == [
-        'config["fit"][1]["model"]: "shcm" is not a model: use "shccm" or "mcm"',
+        'config["fit"][1]["model"]: "shcm" is not a model: use "shccm" or "mcm" (the Bouc-Wen '
+        'models), or a contact-law family: "hunt-crossley", "kelvin-voigt", "hertz-ln", "hertz-flores"',
         'config["fit"][1]["bounds"]["n"]: [6, 1] is not admissible: lower bound <= upper bound',
     ], lines
 
