@@ -107,4 +107,7 @@ fn the_flores_damping_restitutes_about_e_r_across_the_range() {
     }
     assert!((e(Family::HertzLankaraniNikravesh, 0.95) - 0.95).abs() < 0.01);
     assert!(e(Family::HertzLankaraniNikravesh, 0.3) > 0.45);
+    // However small e_r, the Lankarani-Nikravesh damping restitutes at least 0.66 (0.664 at
+    // e_r = 0.05): it cannot fit CoRs below that (the baseballs on wood, about 0.5).
+    assert!(e(Family::HertzLankaraniNikravesh, 0.05) > 0.66);
 }

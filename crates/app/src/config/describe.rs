@@ -25,7 +25,7 @@ fn fit(f: &FitConfig) -> Value {
         "data": f.data.path.display().to_string(),
         "points": f.data.points.len(),
         "objectives": {"J1": f.weights.j1, "J2": f.weights.j2},
-        "quantities": quantities(&NAMES, f.space.params()),
+        "quantities": fit_quantities(f),
         "known": f.space.known().map(|k| json!({"m": k.m, "k": k.k})),
         "input": signal(&f.input),
         "optimizer": optimizer(&f.budget, f.seed),
@@ -34,6 +34,7 @@ fn fit(f: &FitConfig) -> Value {
         "params": f.params.as_ref().map(base),
         "reference": f.reference.as_ref().map(|r| json!({"label": r.label, "params": base(&r.params)})),
         "pareto": f.pareto.map(|count| json!({"count": count})),
+        "posterior": posterior(&f.posterior),
         "drops": f.drops.as_ref().map(|d| json!({
             "kind": match d.data.kind {
                 bwc_identify::DropKind::Intervals => "intervals",
@@ -58,6 +59,32 @@ fn loop_fit(f: &LoopFitConfig) -> Value {
 }
 
 /// Each quantity: its held value, `"derived"`, or its bounds and scale.
+/// A fit's quantities by name: a family's only its damping parameter and `T_b`.
+fn fit_quantities(f: &FitConfig) -> Value {
+    let mut names = NAMES;
+    for (i, n) in names.iter_mut().enumerate() {
+        *n = f.space.name(i);
+    }
+    let mut v = quantities(&names, f.space.params());
+    if let (Some(family), Some(m)) = (f.family, v.as_object_mut()) {
+        m.retain(|k, _| k == family.damping_name() || k == "T_b");
+    }
+    v
+}
+
+/// `[fit.posterior]` and `[fit.prior]` as parsed.
+fn posterior(p: &super::PosteriorConfig) -> Value {
+    json!({
+        "particles": p.particles,
+        "runs": p.runs,
+        "noise": p.given_noise.map(|g| if g { "given" } else { "sampled" }),
+        "sigma_e": p.sigma_e.map(|(lo, hi)| [lo, hi]),
+        "sigma_t": p.sigma_t.map(|(lo, hi)| [lo, hi]),
+        "draws": p.draws,
+        "prior": p.priors.iter().map(|q| json!({"quantity": q.name, "normal": [q.mean, q.sd]})).collect::<Vec<_>>(),
+    })
+}
+
 fn quantities(names: &[&str; 8], params: &[Param; 8]) -> Value {
     let mut m = Map::new();
     for (name, p) in names.iter().zip(params) {

@@ -207,7 +207,8 @@ pub fn groups(rows: &[Comparison]) -> Vec<(String, Vec<&Comparison>)> {
 }
 
 /// What the data support, in a sentence: the best fit by evidence, by BIC and by held-out
-/// error, and how decisively (a Bayes factor, differences of BIC).
+/// error, and how decisively: the log Bayes factor less twice its error, above 1 positively,
+/// above 3 strongly, above 5 decisively (Kass & Raftery 1995).
 pub fn verdict(members: &[&Comparison]) -> String {
     if members.len() < 2 {
         return "one model only: nothing to compare".into();
@@ -228,14 +229,16 @@ pub fn verdict(members: &[&Comparison]) -> String {
     });
     let ln_bf = ev.log_evidence.0 - ev2.log_evidence.0;
     let error = ev.log_evidence.1.hypot(ev2.log_evidence.1);
-    let strength = if ln_bf - 2.0 * error > 5.0 {
+    // Kass & Raftery's scale of the log Bayes factor, less twice its Monte Carlo error.
+    let sure = ln_bf - 2.0 * error;
+    let strength = if sure > 5.0 {
         "decisively"
-    } else if ln_bf - 2.0 * error > 2.3 {
+    } else if sure > 3.0 {
         "strongly"
-    } else if ln_bf - 2.0 * error > 0.0 {
-        "weakly"
+    } else if sure > 1.0 {
+        "positively"
     } else {
-        "not distinguishably (within the evidence's error)"
+        "not distinguishably"
     };
     let others = if ev.name == bic.name && ev.name == cv.name {
         format!(
