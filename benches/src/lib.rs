@@ -183,6 +183,32 @@ pub mod cor {
 
 pub mod stress;
 
+/// The truths of the coverage studies on the baseball design (`fixtures/baseball_wood.toml`):
+/// the default fits of the NDBWSHCCM and the NDBWMCM to the measured data (BENCHMARKS.md) and
+/// their residual standard deviations, `u = 0`.
+pub fn baseball_truths() -> [(bw_models::BaseParams, f64); 2] {
+    let base = |b_b, gamma_b, kappa, sigma_b, n, p| bw_models::BaseParams {
+        b_b,
+        gamma_b,
+        kappa,
+        sigma_b,
+        n,
+        p,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    [
+        (
+            base(0.041289, 0.013128, 0.02, 6.930122e-4, 3.43861, 4.0),
+            0.0215,
+        ),
+        (
+            base(0.015323, 0.015323, 0.074151, 4.162404e-2, 4.0, 4.0),
+            0.0222,
+        ),
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

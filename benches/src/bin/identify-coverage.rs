@@ -6,7 +6,6 @@
 //!
 //! `cargo run --release -p bwc-benches --bin identify-coverage -- [REPLICATES]` (default 40)
 
-use bw_models::BaseParams;
 use bwc_app::config::Config;
 use bwc_identify::{coverage, study};
 
@@ -17,35 +16,7 @@ fn main() {
         .unwrap_or(40);
     let config = Config::load(std::path::Path::new("fixtures/baseball_wood.toml"))
         .expect("run from the repository root");
-    // The default fits to the measured data (BENCHMARKS.md) and their residual sd.
-    let truths = [
-        (
-            BaseParams {
-                b_b: 0.041289,
-                gamma_b: 0.013128,
-                kappa: 0.02,
-                sigma_b: 6.930122e-4,
-                n: 3.43861,
-                p: 4.0,
-                u_b: 1.0,
-                t_b: 1.0,
-            },
-            0.0215,
-        ),
-        (
-            BaseParams {
-                b_b: 0.015323,
-                gamma_b: 0.015323,
-                kappa: 0.074151,
-                sigma_b: 4.162404e-2,
-                n: 4.0,
-                p: 4.0,
-                u_b: 1.0,
-                t_b: 1.0,
-            },
-            0.0222,
-        ),
-    ];
+    let truths = bwc_benches::baseball_truths();
     bwc_app::out!(
         "| model | replicates | noise | coverage | mean half-width | without intervals | wall s |"
     );

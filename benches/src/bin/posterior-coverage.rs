@@ -1,6 +1,6 @@
 //! Coverage of the posterior's 95 % credible band of `e(v0)` by simulation: synthetic CoR data
-//! at the 28 speeds of the measured baseball dataset, from the two models' fits to it, with
-//! Gaussian noise of the fits' residual standard deviation; per replicate the posterior over the
+//! at the 28 points (26 distinct speeds) of the measured baseball dataset, from the two models'
+//! fits to it, with Gaussian noise of the fits' residual standard deviation; per replicate the posterior over the
 //! fixture's bounds (uniform prior), told the noise (`given`) or sampling it (`sampled`). Prints,
 //! per model and noise model, the fraction of the distinct speeds whose band contains the true
 //! curve, pooled over the replicates (target 0.90-0.99), and the band's mean half-width.
@@ -23,36 +23,7 @@ fn main() {
     let (replicates, particles) = (arg(1, 20) as u64, arg(2, 250));
     let config = Config::load(std::path::Path::new("fixtures/baseball_wood.toml"))
         .expect("run from the repository root");
-    // The default fits to the measured data (BENCHMARKS.md) and their residual sd, as in
-    // identify-coverage.
-    let truths = [
-        (
-            BaseParams {
-                b_b: 0.041289,
-                gamma_b: 0.013128,
-                kappa: 0.02,
-                sigma_b: 6.930122e-4,
-                n: 3.43861,
-                p: 4.0,
-                u_b: 1.0,
-                t_b: 1.0,
-            },
-            0.0215,
-        ),
-        (
-            BaseParams {
-                b_b: 0.015323,
-                gamma_b: 0.015323,
-                kappa: 0.074151,
-                sigma_b: 4.162404e-2,
-                n: 4.0,
-                p: 4.0,
-                u_b: 1.0,
-                t_b: 1.0,
-            },
-            0.0222,
-        ),
-    ];
+    let truths = bwc_benches::baseball_truths();
     // BWC_INTERIOR=1: truths moved inside the bounds (kappa, n, p off their bounds).
     let truths = if std::env::var("BWC_INTERIOR").is_ok() {
         truths.map(|(t, noise)| {

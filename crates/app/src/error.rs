@@ -88,6 +88,15 @@ pub enum AppError {
     /// Several mistakes in one file, in file order.
     #[error("{}", .0.iter().map(ToString::to_string).collect::<Vec<_>>().join("\n"))]
     Many(Vec<AppError>),
+    /// A command-line argument (or its Python keyword) names nothing the config holds, or asks
+    /// what the data cannot give.
+    #[error("{argument}: {message}")]
+    Argument {
+        /// The argument, as typed: `--fit`, `--folds`.
+        argument: String,
+        /// What is wrong and what is admissible.
+        message: String,
+    },
     /// The thread pool could not be built.
     #[error("cannot start {threads} threads: {message}")]
     Threads {

@@ -297,15 +297,10 @@ fn ess_of(t: &[f64], delta: f64) -> f64 {
 }
 
 /// The tempered log density `log prior + log L - log reference` of a particle (the part raised
-/// to `β`).
-fn tempered<T: Target>(
-    target: &T,
-    reference: &SmcReference,
-    s: &[f64],
-    counter: &AtomicU64,
-) -> f64 {
+/// to `β`), `log_reference` the reference's log density at `s`.
+fn tempered<T: Target>(target: &T, s: &[f64], log_reference: f64, counter: &AtomicU64) -> f64 {
     counter.fetch_add(1, Ordering::Relaxed);
-    let v = target.log_prior(s) + target.log_likelihood(s) - reference.log_density(s);
+    let v = target.log_prior(s) + target.log_likelihood(s) - log_reference;
     if v.is_nan() {
         f64::NEG_INFINITY
     } else {
@@ -334,20 +329,21 @@ fn next_step(t: &[f64], beta: f64, target: f64) -> f64 {
     lo.max(hi * 1e-3).max(1e-12 * rest)
 }
 
-/// Systematic resampling: indices of `weights` (normalised) from one uniform.
-fn systematic(weights: &[f64], u: f64) -> Vec<usize> {
-    let n = weights.len();
-    let mut out = Vec::with_capacity(n);
-    let (mut cum, mut i) = (weights[0], 0);
-    for k in 0..n {
-        let point = (k as f64 + u) / n as f64;
-        while point > cum && i + 1 < n {
-            i += 1;
-            cum += weights[i];
-        }
-        out.push(i);
-    }
-    out
+/// Systematic resampling: `m` indices of `weights` (normalised here) from one uniform `u`.
+fn systematic(weights: &[f64], m: usize, u: f64) -> Vec<usize> {
+    let total: f64 = weights.iter().sum();
+    let last = weights.len() - 1;
+    let (mut cum, mut i) = (weights[0] / total, 0);
+    (0..m)
+        .map(|k| {
+            let point = (k as f64 + u) / m as f64;
+            while point > cum && i < last {
+                i += 1;
+                cum += weights[i] / total;
+            }
+            i
+        })
+        .collect()
 }
 
 /// The weighted covariance of `x`, with a floor on the diagonal so that a collapsed coordinate
@@ -445,8 +441,9 @@ fn metropolis<T: Target>(
             if y.iter().any(|v| !(0.0..=1.0).contains(v)) {
                 return 0;
             }
-            let ty = tempered(target, reference, &y, counter);
-            let base = reference.log_density(&y) - reference.log_density(xi);
+            let log_ry = reference.log_density(&y);
+            let ty = tempered(target, &y, log_ry, counter);
+            let base = log_ry - reference.log_density(xi);
             if ty > f64::NEG_INFINITY && u.ln() < base + beta * (ty - *ti) {
                 *xi = y;
                 *ti = ty;
@@ -492,7 +489,7 @@ pub fn run<T: Target>(
         .collect();
     let mut t: Vec<f64> = x
         .par_iter()
-        .map(|s| tempered(target, reference, s, &counter))
+        .map(|s| tempered(target, s, reference.log_density(s), &counter))
         .collect();
     let admissible = t.iter().filter(|v| **v > f64::NEG_INFINITY).count();
     if admissible < 2 {
@@ -546,7 +543,7 @@ pub fn run<T: Target>(
         let cov = covariance(&x, &w);
         let stage = stages.len() as u64 + 1;
         let u: f64 = stream(seed, [run, stage, u64::MAX, 0]).random();
-        let picks = systematic(&w, u);
+        let picks = systematic(&w, n, u);
         x = picks.iter().map(|&i| x[i].clone()).collect();
         t = picks.iter().map(|&i| t[i]).collect();
         let (mut moves, mut accepted, mut k) = (settings.max_moves, 0, 0);
@@ -683,20 +680,7 @@ pub fn weighted_quantiles(values: &[f64], weights: &[f64], qs: &[f64]) -> Vec<f6
 /// `m` indices drawn from `weights` by systematic resampling with the stream of `seed` (for
 /// bands computed on fewer points than the sample holds).
 pub fn draws(weights: &[f64], m: usize, seed: u64) -> Vec<usize> {
-    let u: f64 = stream(seed, [u64::MAX; 4]).random();
-    let total: f64 = weights.iter().sum();
-    let mut cum = 0.0;
-    let mut out = Vec::with_capacity(m);
-    let mut i = 0;
-    for k in 0..m {
-        let point = (k as f64 + u) / m as f64;
-        while i < weights.len() && cum + weights[i] / total < point {
-            cum += weights[i] / total;
-            i += 1;
-        }
-        out.push(i.min(weights.len() - 1));
-    }
-    out
+    systematic(weights, m, stream(seed, [u64::MAX; 4]).random())
 }
 
 #[cfg(test)]
@@ -707,7 +691,7 @@ mod tests {
     fn systematic_resampling_keeps_each_weight_within_one_copy() {
         let w = [0.1, 0.45, 0.05, 0.4];
         for u in [0.0, 0.3, 0.77, 0.999] {
-            let picks = systematic(&w, u);
+            let picks = systematic(&w, 4, u);
             for (i, wi) in w.iter().enumerate() {
                 let copies = picks.iter().filter(|&&p| p == i).count() as f64;
                 assert!((copies - 4.0 * wi).abs() < 1.0, "u {u}: {picks:?}");

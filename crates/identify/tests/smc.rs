@@ -3,7 +3,7 @@
 //! conjugate Gaussian prior; posterior means and credible intervals; the coverage of the 95 %
 //! credible interval over replicates with known truth; identical results on any thread count.
 
-use bwc_identify::{sample, weighted_quantiles, SmcReference, SmcSettings, Target};
+use bwc_identify::{sample, weighted_quantiles, Pooled, SmcReference, SmcSettings, Target};
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 use statrs::distribution::{Continuous, ContinuousCDF, Normal as Gauss};
@@ -85,6 +85,22 @@ impl Target for Means {
     }
 }
 
+/// The sampler's evidence is within 3 of its stated errors of the closed form `exact`, and that
+/// error below 0.1.
+fn assert_evidence(what: &str, post: &Pooled, exact: f64) {
+    let err = post.log_evidence - exact;
+    eprintln!(
+        "{what}: log Z {:.4} (closed form {exact:.4}, stated error {:.4}), {} evaluations",
+        post.log_evidence, post.log_evidence_error, post.evaluations
+    );
+    assert!(
+        err.abs() < 3.0 * post.log_evidence_error && post.log_evidence_error < 0.1,
+        "{what}: log Z {} against {exact}: error {err:.4}, stated {:.4}",
+        post.log_evidence,
+        post.log_evidence_error
+    );
+}
+
 /// Synthetic data: `m` measurements of each of `truth`, noise `sigma`, from `seed`.
 fn data(truth: &[f64], m: usize, sigma: f64, seed: u64) -> Vec<Vec<f64>> {
     let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
@@ -114,17 +130,7 @@ fn the_evidence_under_a_uniform_prior_matches_its_closed_form_within_the_stated_
         5,
     )
     .unwrap();
-    let err = post.log_evidence - exact;
-    eprintln!(
-        "log Z {:.4} (closed form {exact:.4}, stated error {:.4}), {} evaluations",
-        post.log_evidence, post.log_evidence_error, post.evaluations
-    );
-    assert!(
-        err.abs() < 3.0 * post.log_evidence_error && post.log_evidence_error < 0.1,
-        "log Z {} against {exact}: error {err:.4}, stated {:.4}",
-        post.log_evidence,
-        post.log_evidence_error
-    );
+    assert_evidence("", &post, exact);
     // The third mean lies 0.3 from the bound, 1.7 posterior standard deviations (0.18): its
     // posterior is truncated there, as the closed form's error function is.
     for j in 0..3 {
@@ -167,17 +173,7 @@ fn the_evidence_of_the_conjugate_gaussian_problem_matches_its_closed_form() {
         9,
     )
     .unwrap();
-    let err = post.log_evidence - exact;
-    eprintln!(
-        "log Z {:.4} (closed form {exact:.4}, stated error {:.4}), {} evaluations",
-        post.log_evidence, post.log_evidence_error, post.evaluations
-    );
-    assert!(
-        err.abs() < 3.0 * post.log_evidence_error && post.log_evidence_error < 0.1,
-        "log Z {} against {exact}: error {err:.4}, stated {:.4}",
-        post.log_evidence,
-        post.log_evidence_error
-    );
+    assert_evidence("", &post, exact);
     // The conjugate posterior mean: (ȳ/s² + μ0/s0²) / (1/s² + 1/s0²).
     for j in 0..2 {
         let (mean, _) = target.stats(j);
@@ -213,16 +209,7 @@ fn a_reference_changes_neither_the_evidence_nor_the_posterior() {
     for (what, center) in [("centre", centre), ("elsewhere", vec![0.2, 0.8, 0.5])] {
         let reference = SmcReference::around(center, 0.05);
         let post = sample(&target, &SmcSettings::new(400, 8), &reference, 5).unwrap();
-        let err = post.log_evidence - exact;
-        eprintln!(
-            "{what}: log Z {:.4} (closed form {exact:.4}, stated error {:.4})",
-            post.log_evidence, post.log_evidence_error
-        );
-        assert!(
-            err.abs() < 3.0 * post.log_evidence_error && post.log_evidence_error < 0.1,
-            "{what}: error {err:.4}, stated {:.4}",
-            post.log_evidence_error
-        );
+        assert_evidence(what, &post, exact);
         let (mean, _) = target.stats(0);
         let got: f64 = post
             .particles

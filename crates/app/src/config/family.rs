@@ -17,7 +17,7 @@ use super::RawFit;
 use crate::tables::Ctx;
 use crate::AppError;
 use bw_models::Family;
-use bwc_identify::{IdentifyError, Param, Space, NAMES};
+use bwc_identify::{IdentifyError, Param, Space};
 use std::ops::Range;
 
 /// The default bounds of a family's damping parameter: `alpha` in `[0, 5]` s/m (a CoR of 1 to
@@ -52,31 +52,17 @@ pub(super) fn family_space(
             format!("{what} does not apply to model \"{model}\""),
         )
     };
-    let given = |table: &str, span: Range<usize>, by_name: [bool; 8], family_keys: [bool; 3]| {
-        let bouc_wen = (0..7).find(|&i| by_name[i]).map(|i| NAMES[i]);
-        let other = ["alpha", "zeta", "e_r"]
-            .into_iter()
-            .zip(family_keys)
-            .find(|(n, g)| *g && *n != family.damping_name())
-            .map(|(n, _)| n);
-        match bouc_wen.or(other) {
-            Some(key) => Err(not_here(
-                span,
-                &format!("[fit.{table}].{key}"),
-                &format!("{key}: {model} takes {} and T_b", family.damping_name()),
-            )),
-            None => Ok(()),
-        }
-    };
-    if let Some(q) = &r.bounds {
-        let g = q.get_ref();
-        let keys = g.family_entries().map(|(_, v)| v.is_some());
-        given("bounds", q.span(), g.by_name().map(|v| v.is_some()), keys)?;
-    }
-    if let Some(q) = &r.fixed {
-        let g = q.get_ref();
-        let keys = g.family_entries().map(|(_, v)| v.is_some());
-        given("fixed", q.span(), g.by_name().map(|v| v.is_some()), keys)?;
+    let own = [family.damping_name(), "T_b"];
+    if let Some((table, key, span)) = r
+        .given_quantities()
+        .into_iter()
+        .find(|(_, n, _)| !own.contains(n))
+    {
+        return Err(not_here(
+            span,
+            &format!("[fit.{table}].{key}"),
+            &format!("{key}: {model} takes {} and T_b", family.damping_name()),
+        ));
     }
     let tables = [
         (

@@ -221,26 +221,12 @@ fn parse_family_fit(
 
 /// A Bouc-Wen fit names no family parameter.
 fn family_keys_absent(ctx: &Ctx, r: &RawFit) -> Result<(), AppError> {
-    let mut given = Vec::new();
-    if let Some(b) = &r.bounds {
-        given.extend(
-            b.get_ref()
-                .family_entries()
-                .into_iter()
-                .filter(|e| e.1.is_some())
-                .map(|e| ("bounds", e.0, b.span())),
-        );
-    }
-    if let Some(v) = &r.fixed {
-        given.extend(
-            v.get_ref()
-                .family_entries()
-                .into_iter()
-                .filter(|e| e.1.is_some())
-                .map(|e| ("fixed", e.0, v.span())),
-        );
-    }
-    match given.into_iter().next() {
+    let family = ["alpha", "zeta", "e_r"];
+    match r
+        .given_quantities()
+        .into_iter()
+        .find(|(_, n, _)| family.contains(n))
+    {
         Some((table, key, span)) => Err(ctx.invalid(
             &span,
             format!("[fit.{table}].{key}"),

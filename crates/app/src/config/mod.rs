@@ -140,13 +140,21 @@ impl<T> RawQuantities<T> {
         }
     }
 
-    /// The family parameters given, by name.
-    fn family_entries(&self) -> [(&'static str, &Option<T>); 3] {
-        [
+    /// The names of every quantity given (Bouc-Wen and family parameters alike).
+    fn given(&self) -> Vec<&'static str> {
+        let family = [
             ("alpha", &self.alpha),
             ("zeta", &self.zeta),
             ("e_r", &self.e_r),
-        ]
+        ];
+        bwc_identify::NAMES
+            .iter()
+            .copied()
+            .zip(self.by_name())
+            .chain(family)
+            .filter(|(_, v)| v.is_some())
+            .map(|(n, _)| n)
+            .collect()
     }
 
     /// The entries in the order of [`NAMES`].
@@ -238,6 +246,26 @@ pub struct FitConfig {
     /// The contact-law family fitted instead of a Bouc-Wen model, if any (`kind` is then
     /// unused).
     pub family: Option<bw_models::Family>,
+}
+
+impl RawFit {
+    /// Every quantity `[fit.bounds]` and `[fit.fixed]` give: the table, the name and the
+    /// table's span.
+    fn given_quantities(&self) -> Vec<(&'static str, &'static str, std::ops::Range<usize>)> {
+        let bounds = self.bounds.iter().flat_map(|b| {
+            b.get_ref()
+                .given()
+                .into_iter()
+                .map(|n| ("bounds", n, b.span()))
+        });
+        let fixed = self.fixed.iter().flat_map(|v| {
+            v.get_ref()
+                .given()
+                .into_iter()
+                .map(|n| ("fixed", n, v.span()))
+        });
+        bounds.chain(fixed).collect()
+    }
 }
 
 impl FitConfig {

@@ -46,7 +46,7 @@ pub struct Comparison {
 /// sampled with `sizes` (particles, runs; the config's where `None`).
 ///
 /// # Errors
-/// A fit's or a posterior's failure; [`AppError::Invalid`] for fewer than 2 folds or a fit
+/// A fit's or a posterior's failure; [`AppError::Argument`] for fewer than 2 folds or a fit
 /// whose data have fewer distinct speeds than folds.
 pub fn compare_all(
     path: &Path,
@@ -121,10 +121,8 @@ fn cross_validate(path: &Path, f: &FitConfig, seed: u64, folds: usize) -> Result
     speeds.sort_by(f64::total_cmp);
     speeds.dedup();
     if folds < 2 || speeds.len() < folds {
-        return Err(AppError::Invalid {
-            path: path.to_owned(),
-            line: 0,
-            key: "--folds".into(),
+        return Err(AppError::Argument {
+            argument: "--folds".into(),
             message: format!(
                 "{folds} folds for \"{}\", whose data have {} distinct speeds: need 2 <= folds <= \
                  distinct speeds",

@@ -99,14 +99,11 @@ fn problem<'a>(
 ) -> Result<(PosteriorProblem<'a, crate::signal::Signal>, PosteriorSpec), AppError> {
     let err = fail(config, &f.name);
     if f.drops.is_some() {
-        return Err(AppError::Invalid {
-            path: config.to_owned(),
-            line: 0,
-            key: format!("[[fit]] \"{}\"", f.name),
-            message: "posteriors of drop-test fits (intervals or heights) are not supported: \
-                      derive CoRs (v_0, e) from the drops and fit those"
+        return Err(err(bwc_identify::IdentifyError::Posterior {
+            reason: "posteriors of drop-test fits (intervals or heights) are not supported: \
+                     derive CoRs (v_0, e) from the drops and fit those"
                 .into(),
-        });
+        }));
     }
     let mut spec = PosteriorSpec::new(&f.data, f.weights);
     (spec.e_noise, spec.t_noise) = f.posterior.noise(PosteriorSpec::default_noise(&f.data));
@@ -151,7 +148,7 @@ pub fn posterior_run(
 /// Samples fit `f`'s posterior: every run of [`posterior_run`] in parallel, pooled.
 ///
 /// # Errors
-/// [`AppError::Invalid`] for a drop-test fit; [`AppError::Identify`] for data or settings a
+/// [`AppError::Identify`] for a drop-test fit, for data or settings a
 /// posterior cannot use (one point, a noise column with zeros, a prior outside the bounds) or
 /// a sampler that does not reach the posterior.
 pub fn run_posterior(
@@ -318,7 +315,7 @@ fn noise_words(f: &FitConfig, spec: &PosteriorSpec, column_noise: f64) -> String
 /// particles in parallel).
 ///
 /// # Errors
-/// [`AppError::Invalid`] when `only` names no fit; the first fit's failure.
+/// [`AppError::Argument`] when `only` names no fit; the first fit's failure.
 pub fn posterior_all(
     path: &Path,
     config: &Config,
@@ -333,10 +330,8 @@ pub fn posterior_all(
         .collect();
     if fits.is_empty() {
         let names: Vec<&str> = config.fits.iter().map(|f| f.name.as_str()).collect();
-        return Err(AppError::Invalid {
-            path: path.to_owned(),
-            line: 0,
-            key: "--fit".into(),
+        return Err(AppError::Argument {
+            argument: "--fit".into(),
             message: format!(
                 "{:?} names no [[fit]]: one of {names:?}",
                 only.unwrap_or("")
@@ -437,12 +432,10 @@ pub fn run_json(run: &SmcRun) -> Value {
 /// A sampler run from the JSON of [`run_json`].
 ///
 /// # Errors
-/// [`AppError::Invalid`] naming the key that is missing or malformed.
+/// [`AppError::Argument`] naming the key that is missing or malformed.
 pub fn run_of_json(v: &Value) -> Result<SmcRun, AppError> {
-    let bad = |key: &str| AppError::Invalid {
-        path: "<posterior run>".into(),
-        line: 0,
-        key: key.into(),
+    let bad = |key: &str| AppError::Argument {
+        argument: format!("a posterior run's `{key}`"),
         message: "missing or malformed: pass the JSON a posterior run returned".into(),
     };
     let floats = |key: &str| -> Result<Vec<f64>, AppError> {
