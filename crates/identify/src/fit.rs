@@ -17,17 +17,22 @@ use std::time::Instant;
 
 /// Optimizer budget and stopping rule of [`minimize`].
 ///
-/// Each *start* is an independent particle swarm (its own seed) whose best point is polished by
-/// Levenberg-Marquardt where the problem has residuals, and by Nelder-Mead where that does not
-/// converge or there are none, until a fresh simplex no longer improves it. Starts run in
-/// batches until `agree` of them end within `tolerance` (relative) of the best cost found, or
-/// `max_starts` have run; the best point is then verified by Nelder-Mead from a fresh simplex
-/// (and the batches go on if that moves it below the others).
+/// Each *start* is a point polished by Levenberg-Marquardt where the problem has residuals, and
+/// by Nelder-Mead where that does not converge or there are none, until a fresh simplex no
+/// longer improves it. The starts alternate between two kinds of origin: the even ones a point
+/// of a seeded Latin hypercube of the cube (unbiased: each alone in its stratum on every axis),
+/// the odd ones (and a search of one start) the best point of an independent particle swarm
+/// (its own seed). Each kind finds
+/// basins the other misses (BENCHMARKS.md, "Identification: the global optimum on measured
+/// data"). Starts run in batches until `agree` of them, from origins in distinct regions of
+/// the cube (see [`Convergence::agreeing`]), end within `tolerance` (relative) of the best cost
+/// found, or `max_starts` have run; the best point is then verified by Nelder-Mead from a fresh
+/// simplex (and the batches go on if that moves it below the others).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Budget {
-    /// Particles of each swarm.
+    /// Particles of each swarm (the odd starts).
     pub particles: usize,
-    /// Swarm iterations per start.
+    /// Swarm iterations per swarm start.
     pub iterations: u64,
     /// Nelder-Mead iterations per polishing round (a polish runs up to [`POLISH_ROUNDS`]
     /// rounds, each from a fresh simplex).
@@ -43,6 +48,11 @@ pub struct Budget {
     pub tolerance: f64,
 }
 
+/// The distance on the unit cube of six searched quantities between the origins of two starts
+/// that makes their agreement count twice (see [`Convergence::agreeing`]); in `d` dimensions
+/// it is `REGION √(d/6)`, the same fraction of the typical distance between two random points.
+pub const REGION: f64 = 0.5;
+
 /// Most Nelder-Mead rounds per polish.
 pub const POLISH_ROUNDS: u64 = 4;
 
@@ -55,9 +65,9 @@ impl Default for Budget {
             particles: 20,
             iterations: 30,
             polish_iterations: 60,
-            starts: 4,
-            max_starts: 12,
-            agree: 3,
+            starts: 10,
+            max_starts: 20,
+            agree: 4,
             tolerance: 0.01,
         }
     }
@@ -79,9 +89,13 @@ impl Budget {
         self.max_starts.max(self.starts) as u64 * self.per_start(dim)
     }
 
-    /// About how many cost evaluations one start takes.
+    /// About how many cost evaluations one start takes (the mean of a swarm start and a
+    /// Latin-hypercube start).
     pub fn per_start(&self, dim: usize) -> u64 {
-        self.particles as u64 * (self.iterations + 1) + self.polish_iterations * 2 + dim as u64 + 1
+        self.particles as u64 * (self.iterations + 1) / 2
+            + self.polish_iterations * 2
+            + dim as u64
+            + 1
     }
 
     /// Checks that the budget can run.
@@ -124,7 +138,11 @@ impl Budget {
 pub struct Convergence {
     /// Independent starts run.
     pub starts: usize,
-    /// Starts whose cost is within the tolerance of the best (the best itself included).
+    /// Starts whose cost is within the tolerance of the best (the best itself included), counted
+    /// once per region: a start counts only where its origin (the point its polish began from)
+    /// lies at least [`REGION`] (scaled to the dimension) from the origin of every start
+    /// counted before it. Swarms drawn into the same basin from the whole cube begin their polishes
+    /// at nearly the same point and count once.
     pub agreeing: usize,
     /// Cost evaluations of the whole search.
     pub evaluations: u64,
@@ -252,12 +270,21 @@ fn start_seed(seed: u64, k: usize) -> u64 {
     seed ^ (k as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
 }
 
-/// Minimises a cube problem: independent starts (a seeded particle swarm, then a polish) in
-/// batches until `budget.agree` of them agree with the best (see [`Budget`]), the best start
-/// verified by Nelder-Mead from a fresh simplex, `start` (if given) polished and verified too;
-/// the best point is then moved onto any bound it lies within 1e-3 of where that does not raise
-/// the cost. Deterministic for a seed, whatever the number of threads: each start depends only
-/// on its own seed, and the batches and the verification do not depend on the threads.
+/// The end of one start: where its polish began and where it ended.
+#[derive(Debug, Clone)]
+struct End {
+    origin: Vec<f64>,
+    point: Vec<f64>,
+    cost: f64,
+}
+
+/// Minimises a cube problem: independent starts (a Latin-hypercube point or a seeded particle
+/// swarm's best, then a polish; see [`Budget`]) in batches until `budget.agree` of them agree
+/// with the best from distinct regions, the best start verified by Nelder-Mead from a fresh
+/// simplex, `start` (if given) polished and verified too; the best point is then moved onto
+/// any bound it lies within 1e-3 of where that does not raise the cost. Deterministic for a
+/// seed, whatever the number of threads: each start depends only on the seed and its index,
+/// and the batches and the verification do not depend on the threads.
 ///
 /// # Errors
 /// [`IdentifyError::Optimizer`] for an inadmissible budget or an optimizer failure.
@@ -274,7 +301,15 @@ pub fn minimize<P: CubeProblem>(
         return Ok(nothing_free(problem, before));
     }
     let given = start
-        .map(|s| refine(problem, s.to_vec(), budget.polish_iterations, Polish::Full))
+        .map(|s| {
+            let (point, cost) =
+                refine(problem, s.to_vec(), budget.polish_iterations, Polish::Full)?;
+            Ok::<_, IdentifyError>(End {
+                origin: s.to_vec(),
+                point,
+                cost,
+            })
+        })
         .transpose()?;
     // Independent starts check each other; a single start polishes in full.
     let polish = if budget.agree >= 2 {
@@ -282,7 +317,8 @@ pub fn minimize<P: CubeProblem>(
     } else {
         Polish::Full
     };
-    let mut runs: Vec<(Vec<f64>, f64)> = Vec::new();
+    let origins = latin_hypercube(d, budget.max_starts.div_ceil(2), seed);
+    let mut runs: Vec<End> = Vec::new();
     // The start last verified by a fresh simplex (a verification only lowers its cost, so an
     // earlier one cannot be the best again once another is).
     let mut verified = None;
@@ -292,7 +328,10 @@ pub fn minimize<P: CubeProblem>(
         let batch = batch.min(budget.max_starts - k);
         let new: Vec<_> = (k..k + batch)
             .into_par_iter()
-            .map(|k| one_start(problem, budget, start_seed(seed, k), polish))
+            .map(|k| {
+                let origin = (k % 2 == 0 && budget.max_starts > 1).then(|| origins[k / 2].clone());
+                one_start(problem, budget, start_seed(seed, k), origin, polish)
+            })
             .collect::<Result<_, _>>()?;
         runs.extend(new);
         let mut agreeing = agreement(&runs, given.as_ref(), budget.tolerance);
@@ -306,13 +345,13 @@ pub fn minimize<P: CubeProblem>(
             break agreeing;
         }
     };
-    let costs: Vec<f64> = runs.iter().map(|(_, c)| *c).collect();
-    let (point, cost) = runs
+    let costs: Vec<f64> = runs.iter().map(|r| r.cost).collect();
+    let best = runs
         .into_iter()
         .chain(given)
-        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .min_by(|a, b| a.cost.total_cmp(&b.cost))
         .expect("at least one start");
-    let (point, cost) = snap_to_bounds(problem, point, cost);
+    let (point, cost) = snap_to_bounds(problem, best.point, best.cost);
     let evaluations = problem.evaluations() - before;
     Ok(Minimum {
         point,
@@ -325,6 +364,23 @@ pub fn minimize<P: CubeProblem>(
             costs,
         },
     })
+}
+
+/// `n` points of a Latin hypercube on `[0, 1]^d` seeded by `seed`: on every axis, each point
+/// alone in one of `n` equal strata, at a uniform place within it.
+fn latin_hypercube(d: usize, n: usize, seed: u64) -> Vec<Vec<f64>> {
+    use rand::seq::SliceRandom;
+    use rand::Rng;
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed ^ 0x4C41_5449_4E48_5950);
+    let mut points = vec![vec![0.0; d]; n];
+    for j in 0..d {
+        let mut strata: Vec<usize> = (0..n).collect();
+        strata.shuffle(&mut rng);
+        for (point, stratum) in points.iter_mut().zip(strata) {
+            point[j] = (stratum as f64 + rng.random::<f64>()) / n as f64;
+        }
+    }
+    points
 }
 
 /// The minimum where nothing is free: the cost of the empty point.
@@ -348,7 +404,7 @@ fn nothing_free<P: CubeProblem>(problem: &P, before: u64) -> Minimum {
 fn verify_best<P: CubeProblem>(
     problem: &P,
     budget: &Budget,
-    runs: &mut [(Vec<f64>, f64)],
+    runs: &mut [End],
     verified: &mut Option<usize>,
 ) -> Result<(), IdentifyError> {
     let best = best_start(runs);
@@ -356,43 +412,79 @@ fn verify_best<P: CubeProblem>(
         return Ok(());
     }
     *verified = Some(best);
-    let x = runs[best].0.clone();
+    let x = runs[best].point.clone();
     let (y, c) = refine(problem, x, budget.polish_iterations, Polish::Verify)?;
-    if c < runs[best].1 {
-        runs[best] = (y, c);
+    if c < runs[best].cost {
+        (runs[best].point, runs[best].cost) = (y, c);
     }
     Ok(())
 }
 
-fn best_cost(runs: &[(Vec<f64>, f64)], given: Option<&(Vec<f64>, f64)>) -> f64 {
-    runs.iter()
+/// The starts whose cost is within `tolerance` (relative) of the best, counted once per region
+/// (see [`Convergence::agreeing`]).
+fn agreement(runs: &[End], given: Option<&End>, tolerance: f64) -> usize {
+    let best = runs
+        .iter()
         .chain(given)
-        .map(|(_, c)| *c)
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// The starts whose cost is within `tolerance` (relative) of the best.
-fn agreement(runs: &[(Vec<f64>, f64)], given: Option<&(Vec<f64>, f64)>, tolerance: f64) -> usize {
-    let best = best_cost(runs, given);
-    runs.iter()
-        .filter(|(_, c)| *c <= best + tolerance * best.abs())
-        .count()
+        .map(|r| r.cost)
+        .fold(f64::INFINITY, f64::min);
+    let mut counted: Vec<&[f64]> = Vec::new();
+    let region = runs
+        .first()
+        .map_or(REGION, |r| REGION * (r.origin.len() as f64 / 6.0).sqrt());
+    for r in runs
+        .iter()
+        .filter(|r| r.cost <= best + tolerance * best.abs())
+    {
+        let apart = |o: &&[f64]| {
+            let squared: f64 = o
+                .iter()
+                .zip(&r.origin)
+                .map(|(a, b)| (a - b) * (a - b))
+                .sum();
+            squared.sqrt() >= region
+        };
+        if counted.iter().all(apart) {
+            counted.push(&r.origin);
+        }
+    }
+    counted.len()
 }
 
 /// The index of the start with the lowest cost (the first of equals).
-fn best_start(runs: &[(Vec<f64>, f64)]) -> usize {
+fn best_start(runs: &[End]) -> usize {
     (0..runs.len())
-        .min_by(|&a, &b| runs[a].1.total_cmp(&runs[b].1))
+        .min_by(|&a, &b| runs[a].cost.total_cmp(&runs[b].cost))
         .expect("at least one start")
 }
 
-/// One independent start: a particle swarm seeded by `seed`, its best point refined by `polish`.
+/// One independent start: the polish by `polish` of `origin`, or where there is none, of the
+/// best point of a particle swarm seeded by `seed`.
 fn one_start<P: CubeProblem>(
     problem: &P,
     budget: &Budget,
     seed: u64,
+    origin: Option<Vec<f64>>,
     polish: Polish,
-) -> Result<(Vec<f64>, f64), IdentifyError> {
+) -> Result<End, IdentifyError> {
+    let origin = match origin {
+        Some(origin) => origin,
+        None => swarm_best(problem, budget, seed)?,
+    };
+    let (point, cost) = refine(problem, origin.clone(), budget.polish_iterations, polish)?;
+    Ok(End {
+        origin,
+        point,
+        cost,
+    })
+}
+
+/// The best point of a particle swarm seeded by `seed`.
+fn swarm_best<P: CubeProblem>(
+    problem: &P,
+    budget: &Budget,
+    seed: u64,
+) -> Result<Vec<f64>, IdentifyError> {
     let d = problem.dim();
     let rng = rand::rngs::StdRng::seed_from_u64(seed);
     let swarm =
@@ -405,12 +497,11 @@ fn one_start<P: CubeProblem>(
         .configure(|s| s.max_iters(budget.iterations))
         .run()
         .map_err(optimizer_error)?;
-    let x = res
+    Ok(res
         .state()
         .get_best_param()
         .map(|b| b.position.clone())
-        .unwrap_or_else(|| vec![0.5; d]);
-    refine(problem, x, budget.polish_iterations, polish)
+        .unwrap_or_else(|| vec![0.5; d]))
 }
 
 /// How [`refine`] polishes a point.
@@ -552,4 +643,53 @@ fn polish<P: CubeProblem>(
     let state = res.state();
     let s = state.get_best_param().cloned().unwrap_or(x0);
     Ok((s, state.get_best_cost()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn latin_hypercube_points_each_hold_their_own_stratum_on_every_axis() {
+        let points = latin_hypercube(3, 10, 42);
+        assert_eq!(points.len(), 10);
+        for j in 0..3 {
+            let mut strata: Vec<usize> = points.iter().map(|p| (p[j] * 10.0) as usize).collect();
+            strata.sort_unstable();
+            assert_eq!(strata, (0..10).collect::<Vec<_>>(), "axis {j}");
+        }
+        assert_eq!(points, latin_hypercube(3, 10, 42));
+        assert_ne!(points, latin_hypercube(3, 10, 43));
+    }
+
+    fn end(origin: [f64; 2], cost: f64) -> End {
+        End {
+            origin: origin.to_vec(),
+            point: vec![0.5, 0.5],
+            cost,
+        }
+    }
+
+    #[test]
+    fn agreement_counts_starts_begun_in_the_same_region_once() {
+        // Three starts at the best cost, two of them begun 0.1 apart (the region in two
+        // dimensions is 0.5 √(1/3) = 0.289): two regions. The fourth is 2 % above the best,
+        // outside the 1 % tolerance.
+        let runs = [
+            end([0.1, 0.1], 1.0),
+            end([0.15, 0.18], 1.005),
+            end([0.9, 0.2], 1.0),
+            end([0.5, 0.9], 1.02),
+        ];
+        assert_eq!(agreement(&runs, None, 0.01), 2);
+        assert_eq!(agreement(&runs, None, 0.03), 3);
+        // Origins 0.3 apart are distinct regions, 0.28 apart not.
+        let apart = [end([0.0, 0.0], 1.0), end([0.18, 0.24], 1.0)];
+        assert_eq!(agreement(&apart, None, 0.0), 2);
+        let near = [end([0.0, 0.0], 1.0), end([0.168, 0.224], 1.0)];
+        assert_eq!(agreement(&near, None, 0.0), 1);
+        // A given point's lower cost sets the best that the starts must agree with.
+        let given = end([0.5, 0.5], 0.5);
+        assert_eq!(agreement(&runs, Some(&given), 0.01), 0);
+    }
 }

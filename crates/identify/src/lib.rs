@@ -9,9 +9,10 @@
 //! * [`Space`]: bounds, fixed values, `Γ_b = g B_b` with `g ∈ [-1, 1]`, and the Villegas
 //!   constraints `T_b = m U_b`, `(m/k) κ / T_b^(p+1) <= 1`;
 //! * [`Objective`]: the costs, evaluated in parallel over the data points;
-//! * [`fit`]: independent starts, each argmin's particle swarm (seeded, particles in parallel)
-//!   polished by Levenberg-Marquardt (and Nelder-Mead where that does not converge), until
-//!   several agree ([`Convergence`]), the best verified by Nelder-Mead;
+//! * [`fit`]: independent starts from Latin-hypercube points and argmin's particle swarms
+//!   (seeded, particles in parallel), polished by Levenberg-Marquardt (interior, then on the
+//!   bounds; Nelder-Mead where that does not converge), until several from distinct regions
+//!   agree ([`Convergence`]), the best verified by Nelder-Mead;
 //!   optimum snapped onto the bounds it touches ([`at_bound`]); identical results for any
 //!   thread count. A particle's evaluation stops once its cost passes the particle's best
 //!   ([`CubeProblem::cost_below`], [`TermOrder`]): the same search with less work;
@@ -68,7 +69,9 @@ pub use coverage::{
 pub use data::{Dataset, Point, PLAUSIBLE_DURATION, PLAUSIBLE_SPEED};
 pub use drops::{DropData, DropKind, DropObjective, DropRow, DropSetup};
 pub use error::IdentifyError;
-pub use fit::{at_bound, fit, minimize, Budget, Convergence, FitResult, Minimum, POLISH_ROUNDS};
+pub use fit::{
+    at_bound, fit, minimize, Budget, Convergence, FitResult, Minimum, POLISH_ROUNDS, REGION,
+};
 pub use identifiability::{analyse, Identifiability, WEAK};
 pub use loops::{loop_cost, Curve, LawSpace, Loop, LoopObjective, LAW_NAMES};
 pub use objective::{predict, Costs, Objective, Prediction, TermOrder, Weights, FAILED};

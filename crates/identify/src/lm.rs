@@ -1,7 +1,18 @@
 //! Least-squares polishing on the unit cube: Levenberg-Marquardt with a forward-difference
-//! Jacobian (the model is simulated, never differentiated), geodesic acceleration (Transtrum &
-//! Sethna 2012, arXiv:1201.5885), an active set for the faces of the cube, and coordinates held
-//! on a face while the gradient pushes them out of it.
+//! Jacobian (the model is simulated, never differentiated), in two phases.
+//!
+//! 1. **Interior** ([`interior`]): strictly inside the cube, in the variables of Coleman and Li
+//!    (SIAM J. Optim. 6, 1996) as SciPy's `least_squares(method="trf")` uses them: a coordinate
+//!    whose descent direction points at a face is scaled by the square root of its distance to
+//!    that face, and a step that would leave the cube is cut short of the face. A start does not
+//!    stick to the first face it meets, so the other coordinates keep moving: from uniform
+//!    random starts on the single-baseball fits, the interior phase reaches the best basin
+//!    several times as often as the face phase alone (BENCHMARKS.md, "Identification: the
+//!    global optimum on measured data").
+//! 2. **Faces** ([`faces`]): geodesic acceleration (Transtrum & Sethna 2012, arXiv:1201.5885),
+//!    an active set for the faces of the cube, and coordinates held on a face while the
+//!    gradient pushes them out of it: the exact end on the bounds that the interior phase only
+//!    approaches.
 //!
 //! Near an optimum this converges in tens of Jacobians where Nelder-Mead needs hundreds of
 //! simplex moves along the curved, nearly flat valleys of non-identifiable parameters. The
@@ -43,9 +54,25 @@ fn jacobian<P: CubeProblem>(problem: &P, x: &[f64], r: &[f64]) -> Option<Vec<Vec
 /// Solves `(JᵀJ + λ D) δ = -Jᵀr` over the coordinates in `free` (D the diagonal of JᵀJ,
 /// floored), `None` if the system is singular.
 fn step(columns: &[Vec<f64>], r: &[f64], free: &[usize], lambda: f64) -> Option<Vec<f64>> {
+    scaled_step(columns, r, free, lambda, None)
+}
+
+/// [`step`] with `diagonal` (indexed by coordinate) added to `JᵀJ` before the damping.
+fn scaled_step(
+    columns: &[Vec<f64>],
+    r: &[f64],
+    free: &[usize],
+    lambda: f64,
+    diagonal: Option<&[f64]>,
+) -> Option<Vec<f64>> {
     let k = free.len();
     let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
     let mut a = Mat::<f64>::from_fn(k, k, |i, j| dot(&columns[free[i]], &columns[free[j]]));
+    if let Some(diagonal) = diagonal {
+        for i in 0..k {
+            a[(i, i)] += diagonal[free[i]];
+        }
+    }
     let scale = (0..k).map(|i| a[(i, i)]).fold(0.0, f64::max).max(1e-300);
     for i in 0..k {
         a[(i, i)] += lambda * a[(i, i)].max(1e-12 * scale);
@@ -152,8 +179,142 @@ pub(crate) struct Polished {
     pub(crate) converged: bool,
 }
 
-/// Polishes `x` (cost `c`) by Levenberg-Marquardt; `None` if the problem has no residuals.
+/// Polishes `x` (cost `c`) by Levenberg-Marquardt, the [`interior`] phase and then the
+/// [`faces`] phase; `None` if the problem has no residuals.
 pub(crate) fn polish<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<Polished> {
+    match interior(problem, x, c) {
+        Some(inner) if inner.cost <= c || c.is_nan() => {
+            let end = faces(problem, &inner.x, inner.cost)?;
+            // Where the face phase finds nothing to gain, the interior phase's end stands.
+            let converged = end.converged || (inner.converged && end.cost == inner.cost);
+            Some(Polished { converged, ..end })
+        }
+        _ => faces(problem, x, c),
+    }
+}
+
+/// The interior phase ends when a step gains at most this (relative): the face phase finishes
+/// faster than the interior phase creeps towards a face, and on the measured fixtures 1e-4
+/// leaves the basins reached as 1e-9 does with a third fewer evaluations.
+const INTERIOR_GAIN: f64 = 1e-4;
+
+/// How far inside the cube the interior phase starts (on the unit cube's scale).
+const INSIDE: f64 = 1e-9;
+
+/// The interior phase: Levenberg-Marquardt steps in Coleman and Li's scaled variables, each
+/// kept strictly inside the cube. At `x` with gradient `g = Jᵀr`, coordinate `j` is scaled by
+/// `d_j = √v_j`, `v_j` the distance to the face that `-g_j` points at (1 where `g_j = 0`), and
+/// the scaled step `p` solves `(ĴᵀĴ + diag|g| + λ D) p = -Ĵᵀr` with `Ĵ = J diag(d)`; the
+/// `|g_j|` term is the curvature the scaling adds. A step `d∘p` that would leave the cube is
+/// shortened to `θ` of the way to the first face it meets, `θ = max(0.995, 1 - |Ĵᵀr|∞)`.
+/// `None` if the problem has no residuals or the start cannot be evaluated.
+pub(crate) fn interior<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<Polished> {
+    let mut x: Vec<f64> = x.iter().map(|v| v.clamp(INSIDE, 1.0 - INSIDE)).collect();
+    let mut r = problem.residuals_at(&x)?;
+    let mut c_now = cost(&r);
+    if c_now.is_nan() || (c.is_finite() && c_now > c * (1.0 + 1e-6) + 1e-300) {
+        return None;
+    }
+    let all: Vec<usize> = (0..x.len()).collect();
+    let mut lambda = 1e-3;
+    let mut converged = false;
+    for _ in 0..MAX_JACOBIANS {
+        let columns = jacobian(problem, &x, &r)?;
+        let gradient = gradient(&columns, &r);
+        let scale: Vec<f64> = x
+            .iter()
+            .zip(&gradient)
+            .map(|(&xj, &gj)| distance_to_face(xj, gj).sqrt())
+            .collect();
+        let scaled: Vec<Vec<f64>> = columns
+            .iter()
+            .zip(&scale)
+            .map(|(col, d)| col.iter().map(|a| a * d).collect())
+            .collect();
+        let curvature: Vec<f64> = gradient.iter().map(|g| g.abs()).collect();
+        let scaled_gradient = gradient
+            .iter()
+            .zip(&scale)
+            .map(|(g, d)| (g * d).abs())
+            .fold(0.0, f64::max);
+        let theta = (1.0 - scaled_gradient).max(0.995);
+        let mut improved = false;
+        while lambda < 1e12 {
+            let Some(p) = scaled_step(&scaled, &r, &all, lambda, Some(&curvature)) else {
+                lambda *= 10.0;
+                continue;
+            };
+            let step: Vec<f64> = p.iter().zip(&scale).map(|(p, d)| p * d).collect();
+            let y = inside(&x, &step, theta);
+            let ry = problem.residuals_at(&y)?;
+            let cy = cost(&ry);
+            if cy < c_now {
+                let gain = c_now - cy;
+                (x, r, c_now) = (y, ry, cy);
+                lambda = (lambda / 3.0).max(1e-12);
+                improved = gain > INTERIOR_GAIN * c_now;
+                converged = !improved;
+                break;
+            }
+            lambda *= 4.0;
+        }
+        if !improved {
+            break;
+        }
+    }
+    Some(Polished {
+        x,
+        converged: converged || c_now == 0.0,
+        cost: c_now,
+    })
+}
+
+/// `Jᵀr`.
+fn gradient(columns: &[Vec<f64>], r: &[f64]) -> Vec<f64> {
+    columns
+        .iter()
+        .map(|col| col.iter().zip(r).map(|(a, b)| a * b).sum())
+        .collect()
+}
+
+/// The distance from `x` to the face of `[0, 1]` that the descent direction `-g` points at (1
+/// where `g = 0`).
+fn distance_to_face(x: f64, g: f64) -> f64 {
+    if g < 0.0 {
+        1.0 - x
+    } else if g > 0.0 {
+        x
+    } else {
+        1.0
+    }
+}
+
+/// `x + step`, or where that leaves the cube, `x` plus `theta` of the part of `step` that
+/// reaches the first face it meets.
+fn inside(x: &[f64], step: &[f64], theta: f64) -> Vec<f64> {
+    let reach = x
+        .iter()
+        .zip(step)
+        .map(|(&xj, &sj)| {
+            if sj > 0.0 {
+                (1.0 - xj) / sj
+            } else if sj < 0.0 {
+                -xj / sj
+            } else {
+                f64::INFINITY
+            }
+        })
+        .fold(1.0, f64::min);
+    let t = if reach < 1.0 { theta * reach } else { 1.0 };
+    x.iter()
+        .zip(step)
+        .map(|(xj, sj)| (xj + t * sj).clamp(0.0, 1.0))
+        .collect()
+}
+
+/// The face phase: Levenberg-Marquardt with geodesic acceleration from `x` (cost `c`), a
+/// coordinate that a step carries out of the cube held on that face.
+pub(crate) fn faces<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<Polished> {
     let mut x: Vec<f64> = x.iter().map(|v| v.clamp(0.0, 1.0)).collect();
     let mut r = problem.residuals_at(&x)?;
     let mut c_now = cost(&r);
@@ -165,10 +326,7 @@ pub(crate) fn polish<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<P
     let mut converged = false;
     for _ in 0..MAX_JACOBIANS {
         let columns = jacobian(problem, &x, &r)?;
-        let gradient: Vec<f64> = columns
-            .iter()
-            .map(|col| col.iter().zip(&r).map(|(a, b)| a * b).sum())
-            .collect();
+        let gradient = gradient(&columns, &r);
         // Coordinates on a face whose gradient points out of the cube stay there.
         let free: Vec<usize> = (0..x.len())
             .filter(|&j| {
@@ -350,6 +508,68 @@ mod tests {
         let (x, c) = polished(1.3, [0.2, 0.8]);
         assert_eq!(x, vec![1.0, 1.0]);
         assert!((c - 0.09).abs() < 1e-15, "cost {c}");
+    }
+
+    #[test]
+    fn a_step_that_would_leave_the_cube_stops_short_of_the_face_it_meets() {
+        // From (0.5, 0.9), the step (1, 0.2) reaches s1 = 1 at half its length, before s0 = 1.
+        let y = inside(&[0.5, 0.9], &[1.0, 0.2], 0.995);
+        assert_near(&y, [0.5 + 0.4975, 0.9 + 0.0995], 1e-15);
+        // A step inside the cube is taken whole.
+        assert_eq!(inside(&[0.5, 0.5], &[0.1, -0.2], 0.995), vec![0.6, 0.3]);
+        assert_eq!(distance_to_face(0.3, 2.0), 0.3);
+        assert_eq!(distance_to_face(0.3, -2.0), 0.7);
+        assert_eq!(distance_to_face(0.3, 0.0), 1.0);
+    }
+
+    /// The single-baseball fit of fixtures/measured_cor.toml ("Baseball 3 on wood NDBWMCM")
+    /// has local minima on the faces 16-23 % above its optimum, J1 = 4.4302e-6 at `B_b` =
+    /// 0.039, `Γ_b = B_b`, `n = 4`, `p = 2.4` (BENCHMARKS.md). From 16 seeded uniform starts,
+    /// the face phase alone reaches it from none; both phases from six.
+    #[test]
+    fn the_interior_phase_reaches_the_best_basin_from_more_starts() {
+        use crate::{Dataset, Objective, Param, Space, Weights};
+        use bw_models::{input::Zero, ModelKind, Settings};
+        use rand::{Rng, SeedableRng};
+        let file = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../fixtures/data/real/baseball_ball3_v0_e.csv"
+        );
+        let data = Dataset::load(std::path::Path::new(file)).unwrap();
+        let free = |lo, hi| Param::Free { lo, hi, log: false };
+        let sigma_b = Param::Free {
+            lo: 1e-5,
+            hi: 1.0,
+            log: true,
+        };
+        let params = [free(0.0, 10.0), free(-1.0, 1.0), free(0.02, 0.98), sigma_b]
+            .into_iter()
+            .chain([
+                free(1.0, 4.0),
+                free(1.0, 4.0),
+                Param::Fixed(1.0),
+                Param::Fixed(1.0),
+            ]);
+        let params: [Param; 8] = params.collect::<Vec<_>>().try_into().unwrap();
+        let space = Space::new(ModelKind::Mcm, params, None).unwrap();
+        let weights = Weights { j1: 1.0, j2: 0.0 };
+        let objective = Objective::new(&space, &data, &Zero, Settings::default(), weights).unwrap();
+        let mut rng = rand::rngs::StdRng::seed_from_u64(7);
+        let starts: Vec<Vec<f64>> = (0..16)
+            .map(|_| (0..6).map(|_| rng.random::<f64>()).collect())
+            .collect();
+        let reached = |phases: &dyn Fn(&[f64], f64) -> Option<Polished>| {
+            starts
+                .iter()
+                .filter(|s| {
+                    let end = phases(s, objective.cost_at(s)).unwrap();
+                    end.cost <= 1.02 * 4.4302e-6
+                })
+                .count()
+        };
+        let face_only = reached(&|s, c| faces(&objective, s, c));
+        let both = reached(&|s, c| polish(&objective, s, c));
+        assert!(face_only <= 1 && both >= 4, "{face_only} and {both} of 16");
     }
 
     #[test]

@@ -99,8 +99,9 @@ pub(crate) fn search_warnings(
     // Nothing free: nothing was searched.
     if c.agreeing < 2 && f.space.dim() > 0 {
         w.push(format!(
-            "\"{}\": only {} of {} starts reached the best cost within {} %: the optimum may not \
-             be global; raise [fit.optimizer].max_starts or particles",
+            "\"{}\": only {} of {} starts reached the best cost within {} % (counted once per \
+             region of the box their polishes began in): the optimum may not be global; raise \
+             [fit.optimizer].max_starts",
             f.name,
             c.agreeing,
             c.starts,
