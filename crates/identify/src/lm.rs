@@ -179,6 +179,76 @@ pub(crate) struct Polished {
     pub(crate) converged: bool,
 }
 
+/// Where a polish stands: the point, its residuals and their cost.
+struct Point {
+    x: Vec<f64>,
+    r: Vec<f64>,
+    cost: f64,
+}
+
+impl Point {
+    /// `x` evaluated; `None` if the problem has no residuals.
+    fn at<P: CubeProblem>(problem: &P, x: Vec<f64>) -> Option<Self> {
+        let r = problem.residuals_at(&x)?;
+        Some(Self {
+            cost: cost(&r),
+            x,
+            r,
+        })
+    }
+
+    /// The end of a polish here (a zero cost cannot be lowered: converged).
+    fn polished(self, converged: bool) -> Polished {
+        Polished {
+            converged: converged || self.cost == 0.0,
+            x: self.x,
+            cost: self.cost,
+        }
+    }
+}
+
+/// How one Jacobian's damping search ended.
+enum Descent {
+    /// A step gained more than the tolerance: take another Jacobian.
+    Gained,
+    /// A step gained at most the tolerance (relative): converged.
+    Settled,
+    /// No damping below 1e12 lowered the cost (a kink, noise).
+    Stuck,
+}
+
+/// The damping search of one Jacobian: `trial` at damping `lambda`, raised 4x per trial that
+/// does not lower the cost and 10x where `trial` finds the damped system singular, until one
+/// lowers it; `at` moves there and the damping falls 3x. `None` if the problem has no
+/// residuals.
+fn descend<P: CubeProblem>(
+    problem: &P,
+    at: &mut Point,
+    lambda: &mut f64,
+    tolerance: f64,
+    trial: impl Fn(&Point, f64) -> Option<Vec<f64>>,
+) -> Option<Descent> {
+    while *lambda < 1e12 {
+        let Some(y) = trial(at, *lambda) else {
+            *lambda *= 10.0;
+            continue;
+        };
+        let next = Point::at(problem, y)?;
+        if next.cost < at.cost {
+            let gain = at.cost - next.cost;
+            *at = next;
+            *lambda = (*lambda / 3.0).max(1e-12);
+            return Some(if gain > tolerance * at.cost {
+                Descent::Gained
+            } else {
+                Descent::Settled
+            });
+        }
+        *lambda *= 4.0;
+    }
+    Some(Descent::Stuck)
+}
+
 /// Polishes `x` (cost `c`) by Levenberg-Marquardt, the [`interior`] phase and then the
 /// [`faces`] phase; `None` if the problem has no residuals.
 pub(crate) fn polish<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<Polished> {
@@ -209,23 +279,24 @@ const INSIDE: f64 = 1e-9;
 /// shortened to `θ` of the way to the first face it meets, `θ = max(0.995, 1 - |Ĵᵀr|∞)`.
 /// `None` if the problem has no residuals or the start cannot be evaluated.
 pub(crate) fn interior<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<Polished> {
-    let mut x: Vec<f64> = x.iter().map(|v| v.clamp(INSIDE, 1.0 - INSIDE)).collect();
-    let mut r = problem.residuals_at(&x)?;
-    let mut c_now = cost(&r);
-    if c_now.is_nan() || (c.is_finite() && c_now > c * (1.0 + 1e-6) + 1e-300) {
+    let mut at = Point::at(
+        problem,
+        x.iter().map(|v| v.clamp(INSIDE, 1.0 - INSIDE)).collect(),
+    )?;
+    if at.cost.is_nan() || (c.is_finite() && at.cost > c * (1.0 + 1e-6) + 1e-300) {
         return None;
     }
-    let all: Vec<usize> = (0..x.len()).collect();
+    let all: Vec<usize> = (0..at.x.len()).collect();
     let mut lambda = 1e-3;
     let mut converged = false;
     for _ in 0..MAX_JACOBIANS {
-        let columns = jacobian(problem, &x, &r)?;
-        let gradient = gradient(&columns, &r);
-        let scale: Vec<f64> = x
-            .iter()
-            .zip(&gradient)
-            .map(|(&xj, &gj)| distance_to_face(xj, gj).sqrt())
-            .collect();
+        let columns = jacobian(problem, &at.x, &at.r)?;
+        let gradient = gradient(&columns, &at.r);
+        let scale: Vec<f64> =
+            at.x.iter()
+                .zip(&gradient)
+                .map(|(&xj, &gj)| distance_to_face(xj, gj).sqrt())
+                .collect();
         let scaled: Vec<Vec<f64>> = columns
             .iter()
             .zip(&scale)
@@ -238,35 +309,21 @@ pub(crate) fn interior<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option
             .map(|(g, d)| (g * d).abs())
             .fold(0.0, f64::max);
         let theta = (1.0 - scaled_gradient).max(0.995);
-        let mut improved = false;
-        while lambda < 1e12 {
-            let Some(p) = scaled_step(&scaled, &r, &all, lambda, Some(&curvature)) else {
-                lambda *= 10.0;
-                continue;
-            };
+        let trial = |at: &Point, lambda: f64| {
+            let p = scaled_step(&scaled, &at.r, &all, lambda, Some(&curvature))?;
             let step: Vec<f64> = p.iter().zip(&scale).map(|(p, d)| p * d).collect();
-            let y = inside(&x, &step, theta);
-            let ry = problem.residuals_at(&y)?;
-            let cy = cost(&ry);
-            if cy < c_now {
-                let gain = c_now - cy;
-                (x, r, c_now) = (y, ry, cy);
-                lambda = (lambda / 3.0).max(1e-12);
-                improved = gain > INTERIOR_GAIN * c_now;
-                converged = !improved;
+            Some(inside(&at.x, &step, theta))
+        };
+        match descend(problem, &mut at, &mut lambda, INTERIOR_GAIN, trial)? {
+            Descent::Gained => {}
+            Descent::Settled => {
+                converged = true;
                 break;
             }
-            lambda *= 4.0;
-        }
-        if !improved {
-            break;
+            Descent::Stuck => break,
         }
     }
-    Some(Polished {
-        x,
-        converged: converged || c_now == 0.0,
-        cost: c_now,
-    })
+    Some(at.polished(converged))
 }
 
 /// `Jᵀr`.
@@ -315,19 +372,18 @@ fn inside(x: &[f64], step: &[f64], theta: f64) -> Vec<f64> {
 /// The face phase: Levenberg-Marquardt with geodesic acceleration from `x` (cost `c`), a
 /// coordinate that a step carries out of the cube held on that face.
 pub(crate) fn faces<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<Polished> {
-    let mut x: Vec<f64> = x.iter().map(|v| v.clamp(0.0, 1.0)).collect();
-    let mut r = problem.residuals_at(&x)?;
-    let mut c_now = cost(&r);
-    if c.is_finite() && (c_now.is_nan() || c_now > c) {
+    let mut at = Point::at(problem, x.iter().map(|v| v.clamp(0.0, 1.0)).collect())?;
+    if c.is_finite() && (at.cost.is_nan() || at.cost > c) {
         // The clamped start is worse than the caller's point: nothing to polish from.
         return None;
     }
     let mut lambda = 1e-3;
     let mut converged = false;
     for _ in 0..MAX_JACOBIANS {
-        let columns = jacobian(problem, &x, &r)?;
-        let gradient = gradient(&columns, &r);
+        let columns = jacobian(problem, &at.x, &at.r)?;
+        let gradient = gradient(&columns, &at.r);
         // Coordinates on a face whose gradient points out of the cube stay there.
+        let x = &at.x;
         let free: Vec<usize> = (0..x.len())
             .filter(|&j| {
                 !((x[j] <= 0.0 && gradient[j] > 0.0) || (x[j] >= 1.0 && gradient[j] < 0.0))
@@ -337,34 +393,18 @@ pub(crate) fn faces<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<Po
             converged = true;
             break;
         }
-        let mut improved = false;
-        while lambda < 1e12 {
-            let Some(y) = trial(problem, (&columns, &r), &x, &free, lambda) else {
-                lambda *= 10.0;
-                continue;
-            };
-            let ry = problem.residuals_at(&y)?;
-            let cy = cost(&ry);
-            if cy < c_now {
-                let gain = c_now - cy;
-                (x, r, c_now) = (y, ry, cy);
-                lambda = (lambda / 3.0).max(1e-12);
-                improved = gain > 1e-9 * c_now;
-                converged = !improved;
+        let step =
+            |at: &Point, lambda: f64| trial(problem, (&columns, &at.r), &at.x, &free, lambda);
+        match descend(problem, &mut at, &mut lambda, 1e-9, step)? {
+            Descent::Gained => {}
+            Descent::Settled => {
+                converged = true;
                 break;
             }
-            lambda *= 4.0;
-        }
-        if !improved {
-            break;
+            Descent::Stuck => break,
         }
     }
-    Some(Polished {
-        x,
-        // A zero cost cannot be lowered.
-        converged: converged || c_now == 0.0,
-        cost: c_now,
-    })
+    Some(at.polished(converged))
 }
 
 #[cfg(test)]
