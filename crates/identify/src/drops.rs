@@ -360,6 +360,27 @@ impl<'a> DropObjective<'a> {
         r
     }
 
+    /// The residuals at `s` as [`CubeProblem::residuals_at`] gives them, or where the heights
+    /// simulated in `order` have passed `bound`, the partial cost. Counts as one evaluation.
+    fn residuals_or_partial(
+        &self,
+        s: &[f64],
+        bound: f64,
+        order: &mut TermOrder,
+    ) -> Result<Vec<f64>, f64> {
+        self.evaluations.fetch_add(1, Ordering::Relaxed);
+        if let Some(p) = self.progress {
+            p();
+        }
+        let outside: f64 = s.iter().map(|x| (x - x.clamp(0.0, 1.0)).powi(2)).sum();
+        let passed = passes(bound, FAILED_DROP);
+        if passed(outside) {
+            return Err(outside);
+        }
+        let p = self.predict_below(s, outside, passed, order)?;
+        Ok(self.residuals_with(p.as_deref(), outside))
+    }
+
     /// The space.
     pub fn space(&self) -> &Space {
         self.space
@@ -389,23 +410,13 @@ impl CubeProblem for DropObjective<'_> {
     /// As [`crate::Objective::scalar_below`], height by height: the cost bit for bit where it
     /// is below `bound`, else a partial sum above it (every term is nonnegative).
     fn cost_below(&self, s: &[f64], bound: f64, order: &mut TermOrder) -> f64 {
-        self.evaluations.fetch_add(1, Ordering::Relaxed);
-        if let Some(p) = self.progress {
-            p();
-        }
-        let outside: f64 = s.iter().map(|x| (x - x.clamp(0.0, 1.0)).powi(2)).sum();
-        let passed = passes(bound, FAILED_DROP);
-        if passed(outside) {
-            return outside;
-        }
-        match self.predict_below(s, outside, passed, order) {
-            Ok(p) => self
-                .residuals_with(p.as_deref(), outside)
-                .iter()
-                .map(|x| x * x)
-                .sum(),
+        match self.residuals_or_partial(s, bound, order) {
+            Ok(r) => r.iter().map(|x| x * x).sum(),
             Err(partial) => partial,
         }
+    }
+    fn residuals_below(&self, s: &[f64], bound: f64, order: &mut TermOrder) -> Option<Vec<f64>> {
+        self.residuals_or_partial(s, bound, order).ok()
     }
 }
 

@@ -63,7 +63,7 @@ impl Default for Budget {
     fn default() -> Self {
         Self {
             particles: 20,
-            iterations: 30,
+            iterations: 15,
             polish_iterations: 60,
             starts: 10,
             max_starts: 20,

@@ -324,19 +324,29 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
     /// with `bound` as before. Each simulated speed's weight in `order` becomes its squared
     /// residuals. Counts as one evaluation.
     pub fn scalar_below(&self, s: &[f64], bound: f64, order: &mut TermOrder) -> f64 {
+        match self.residuals_or_partial(s, bound, order) {
+            Ok(r) => r.iter().map(|x| x * x).sum(),
+            Err(partial) => partial,
+        }
+    }
+
+    /// The residuals at `s` as [`Objective::residuals`] gives them, or where the speeds
+    /// simulated in `order` have passed `bound`, the partial cost (see
+    /// [`Objective::scalar_below`]). Counts as one evaluation.
+    pub(crate) fn residuals_or_partial(
+        &self,
+        s: &[f64],
+        bound: f64,
+        order: &mut TermOrder,
+    ) -> Result<Vec<f64>, f64> {
         self.count();
         let penalty = self.penalty(s);
         let passed = passes(bound, FAILED);
         if passed(penalty) {
-            return penalty;
+            return Err(penalty);
         }
-        match self.predict_below(s, penalty, passed, order) {
-            Ok(p) => {
-                let r = self.residuals_of(p.as_deref(), penalty);
-                r.iter().map(|x| x * x).sum()
-            }
-            Err(partial) => partial,
-        }
+        let p = self.predict_below(s, penalty, passed, order)?;
+        Ok(self.residuals_of(p.as_deref(), penalty))
     }
 
     /// The predictions at `s` (`None` where a simulation fails), speed after speed in `order`,

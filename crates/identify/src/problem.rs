@@ -27,6 +27,15 @@ pub trait CubeProblem: Sync {
         let _ = (bound, order);
         self.cost_at(s)
     }
+    /// The residuals at `s` where their cost is below `bound`, the same as
+    /// [`CubeProblem::residuals_at`]; otherwise `None` or any residuals whose cost is not below
+    /// `bound`. Levenberg-Marquardt takes a trial step only if it lowers the cost, so it asks
+    /// this with the current cost as `bound`, and a problem may skip work as in
+    /// [`CubeProblem::cost_below`]. The default is [`CubeProblem::residuals_at`].
+    fn residuals_below(&self, s: &[f64], bound: f64, order: &mut TermOrder) -> Option<Vec<f64>> {
+        let _ = (bound, order);
+        self.residuals_at(s)
+    }
 }
 
 impl<I: Input + Sync> CubeProblem for Objective<'_, I> {
@@ -44,5 +53,8 @@ impl<I: Input + Sync> CubeProblem for Objective<'_, I> {
     }
     fn cost_below(&self, s: &[f64], bound: f64, order: &mut TermOrder) -> f64 {
         self.scalar_below(s, bound, order)
+    }
+    fn residuals_below(&self, s: &[f64], bound: f64, order: &mut TermOrder) -> Option<Vec<f64>> {
+        self.residuals_or_partial(s, bound, order).ok()
     }
 }

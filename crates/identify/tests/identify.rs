@@ -235,9 +235,13 @@ fn cor_space(b_hi: f64, kappa: (f64, f64), sigma_hi: f64, truth: BaseParams) -> 
 fn assert_cost_below_is_exact_below_it(problem: &impl CubeProblem, points: &[&[f64]]) {
     for &s in points {
         let full = problem.cost_at(s);
+        let residuals = problem.residuals_at(s);
         for bound in [f64::INFINITY, 2.0 * full, full * (1.0 + 1e-9)] {
             let mut order = TermOrder::default();
             assert_eq!(problem.cost_below(s, bound, &mut order), full, "{s:?}");
+            let mut order = TermOrder::default();
+            let below = problem.residuals_below(s, bound, &mut order);
+            assert_eq!(below, residuals, "{s:?}");
         }
         for bound in [0.5 * full, 1e-3 * full, 0.0] {
             let mut order = TermOrder::default();
@@ -245,6 +249,13 @@ fn assert_cost_below_is_exact_below_it(problem: &impl CubeProblem, points: &[&[f
             assert!(
                 c > bound && c <= full * (1.0 + 1e-12),
                 "{s:?}: {c} for bound {bound}, full {full}"
+            );
+            let mut order = TermOrder::default();
+            let below = problem.residuals_below(s, bound, &mut order);
+            let cost = below.map(|r| r.iter().map(|x| x * x).sum::<f64>());
+            assert!(
+                cost.is_none_or(|c| c >= bound),
+                "{s:?}: residuals of cost {cost:?} for bound {bound}"
             );
         }
     }
@@ -302,9 +313,10 @@ fn drop_cost_below_a_bound_is_exact_below_it() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// The particle swarm with early-stopping costs takes the same path as with exact costs: the
-/// same point, cost and number of evaluations (its bookkeeping of each particle's best matches
-/// argmin's, including argmin's sort of the initial swarm).
+/// The particle swarm and Levenberg-Marquardt with early-stopping costs take the same path as
+/// with exact costs: the same point, cost and number of evaluations (the swarm's bookkeeping of
+/// each particle's best matches argmin's, including argmin's sort of the initial swarm, and a
+/// trial step is taken only where its full cost is lower).
 #[test]
 fn early_stopping_costs_leave_the_search_unchanged() {
     let (data, space) = dss_problem();
