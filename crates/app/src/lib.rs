@@ -3,7 +3,7 @@
 //! The application layer of bwc, between the libraries and the front ends (the command-line
 //! tools of `bwc-cli`, the Python package): it parses scene files ([`scene`]) and
 //! identification configs ([`config`]) into validated settings with line-accurate errors, runs
-//! them ([`simulate`], [`sequence`], [`identify`]), and turns the results into summaries,
+//! them ([`simulate`], [`sequence`], [`chain`], [`identify`]), and turns the results into summaries,
 //! tables, plots ([`output`], [`plot`]) and output folders written atomically ([`outdir`]).
 //! Errors ([`AppError`]) name the file, line and key; the front ends report them once.
 //!
@@ -26,6 +26,7 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod chain;
 pub mod config;
 pub mod corner;
 mod error;

@@ -323,7 +323,9 @@ where
     for s in series {
         draw_series(chart, s, keep)?;
     }
-    if series.len() > 1 || series.first().is_some_and(|s| !s.label.is_empty()) {
+    // A legend only where some series has a label (one unlabelled series, or many lines
+    // drawn without labels, have none).
+    if series.iter().any(|s| !s.label.is_empty()) {
         legend(chart, corner)?;
     }
     Ok(())

@@ -46,7 +46,47 @@ pub enum ModelError {
         /// What the method covers, or why it gave up.
         reason: &'static str,
     },
+    /// A body, pair or wall of a chain is not admissible ([`crate::chain::Chain::new`]).
+    #[error("{part}: `{name}` = {value} is not admissible: {allowed}")]
+    InvalidChain {
+        /// Which body, pair or wall.
+        part: ChainPart,
+        /// The quantity (`"mass"`, `"gap"`, `"laws"`, ...).
+        name: &'static str,
+        /// The rejected value (a count for `"bodies"` and `"laws"`).
+        value: f64,
+        /// What is admissible.
+        allowed: &'static str,
+    },
     /// The integration failed.
     #[error("simulation failed: {0}")]
     Solver(#[from] bwc_events::Error),
+}
+
+/// The part of a chain an error is about ([`ModelError::InvalidChain`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ChainPart {
+    /// The chain as a whole.
+    Chain,
+    /// Moving body `i`, counted from the left (walls not counted).
+    Body(u32),
+    /// Pair `j`, counted from the left (a left wall's pair first).
+    Pair(u32),
+    /// The wall on the left.
+    LeftWall,
+    /// The wall on the right.
+    RightWall,
+}
+
+impl std::fmt::Display for ChainPart {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ChainPart::Chain => write!(f, "chain"),
+            ChainPart::Body(i) => write!(f, "chain body {i}"),
+            ChainPart::Pair(j) => write!(f, "chain pair {j}"),
+            ChainPart::LeftWall => write!(f, "chain left wall"),
+            ChainPart::RightWall => write!(f, "chain right wall"),
+        }
+    }
 }

@@ -14,6 +14,8 @@
 //!   Table 1 both ways ([`nondimensionalize`], [`Scales`]), base parameters `P*` and the map
 //!   `P(P*, u, v0)` ([`BaseParams`], [`base_params`], [`BaseMap`]);
 //! * inputs ([`input`]) and the two-body system of Section 3 ([`Bodies`]);
+//! * chains of bodies on a line with a law per neighbouring pair, walls at either end, any
+//!   number of contacts at once ([`chain`]);
 //! * one impact ([`impact`], [`simulate`]): separation `t_s = inf{t > 0 : F <= 0 <= v}`,
 //!   `e = v(t_s)/v0` (0 without separation) and `t_d = t_s`; by default CoR evaluations under
 //!   a constant input (of the SI models through their nondimensional form) by Taylor series of
@@ -46,6 +48,7 @@
 
 mod any_element;
 mod bodies;
+pub mod chain;
 mod clearance;
 mod cor;
 mod double_double;

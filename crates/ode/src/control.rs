@@ -37,10 +37,14 @@ pub(crate) struct Limits {
 
 impl Limits {
     pub(crate) fn of<const N: usize>(o: &Options<N>) -> Self {
+        Self::new(o.max_step, o.min_step, o.max_steps)
+    }
+
+    pub(crate) fn new(max_step: f64, min_step: f64, max_steps: u64) -> Self {
         Self {
-            max_step: o.max_step,
-            min_step: o.min_step,
-            max_steps: o.max_steps,
+            max_step,
+            min_step,
+            max_steps,
         }
     }
 
@@ -54,19 +58,19 @@ impl Limits {
     ///
     /// # Errors
     /// [`Error::TooManySteps`] or [`Error::StepSizeTooSmall`], with the state `y` at `t`.
-    pub(crate) fn trial<const N: usize>(
+    pub(crate) fn trial(
         &self,
         t: f64,
         t_end: f64,
         h: f64,
         stats: &Stats,
-        y: &State<N>,
+        y: &[f64],
     ) -> Result<(f64, bool), Error> {
         if stats.accepted + stats.rejected >= self.max_steps {
             return Err(Error::TooManySteps {
                 max_steps: self.max_steps,
                 t,
-                state: y.as_slice().to_vec(),
+                state: y.to_vec(),
             });
         }
         if t_end <= t || t_end.is_nan() {
@@ -87,7 +91,7 @@ impl Limits {
             return Err(Error::StepSizeTooSmall {
                 t,
                 h,
-                state: y.as_slice().to_vec(),
+                state: y.to_vec(),
             });
         }
         Ok((h, last))
@@ -123,4 +127,23 @@ pub(crate) fn in_tolerances<const N: usize>(
 ) -> f64 {
     let sk = atol + rtol.component_mul(&y.abs());
     dy.abs().component_div(&sk).max()
+}
+
+/// The end of Hairer's initial step (HINIT in dop853.f): from the trial `h` and `der12`, the
+/// larger of the scaled first and second derivatives' norms, the step
+/// `min(100 h, (0.01 / der12)^(1 / (error_order + 1)), max_step)` (1e-6 where that is not a
+/// positive number).
+pub(crate) fn initial_step_from(h: f64, der12: f64, error_order: u32, max_step: f64) -> f64 {
+    let iord = error_order as f64 + 1.0;
+    let h1 = if der12 <= 1e-15 {
+        (h * 1e-3).max(1e-6)
+    } else {
+        (0.01 / der12).powf(1.0 / iord)
+    };
+    let h = (100.0 * h).min(h1).min(max_step);
+    if h.is_finite() && h > 0.0 {
+        h
+    } else {
+        1e-6
+    }
 }

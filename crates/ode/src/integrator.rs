@@ -306,18 +306,7 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         let f1 = self.eval(self.t + h, &y1);
         let der2 = (f1 - self.f_now).component_div(&sk).norm() / h;
         let der12 = der2.abs().max(dnf.sqrt());
-        let iord = self.tab.error_order as f64 + 1.0;
-        let h1 = if der12 <= 1e-15 {
-            (h * 1e-3).max(1e-6)
-        } else {
-            (0.01 / der12).powf(1.0 / iord)
-        };
-        let h = (100.0 * h).min(h1).min(self.limits.max_step());
-        if h.is_finite() && h > 0.0 {
-            h
-        } else {
-            1e-6
-        }
+        crate::control::initial_step_from(h, der12, self.tab.error_order, self.limits.max_step())
     }
 
     /// Evaluates stages `1..stages` of a step of size `h` from the current point and returns the
@@ -483,9 +472,9 @@ impl<F: System<N>, const N: usize> Integrator<F, N> {
         mut aim: impl FnMut(&Trial<'_, N>) -> Option<f64>,
     ) -> Result<(), Error> {
         loop {
-            let (h, last) = self
-                .limits
-                .trial(self.t, t_end, self.h, &self.stats, &self.y)?;
+            let (h, last) =
+                self.limits
+                    .trial(self.t, t_end, self.h, &self.stats, self.y.as_slice())?;
             let end = self.stages(h);
             let y1 = end.0;
             let err = self.error_norm(h, &y1);

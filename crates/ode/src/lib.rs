@@ -24,6 +24,10 @@
 //! ([`Integrator::retake_to`]) and restart ([`Integrator::restart`]): the `bwc-events` crate
 //! builds event location on these.
 //!
+//! For systems whose size is known only when the integration starts (a chain of many bodies),
+//! [`FlatIntegrator`] is the same explicit engine on flat heap buffers allocated once, with the
+//! error in the maximum norm and the dense output per component.
+//!
 //! Beyond double precision, [`Extrapolation`] is Gragg-Bulirsch-Stoer extrapolation on
 //! double-double states ([`dd`]), for the rare integrations whose answer rounding errors of
 //! 1e-16 decide.
@@ -44,6 +48,7 @@ mod control;
 pub mod dd;
 mod error;
 mod extrapolation;
+mod flat;
 mod integrator;
 mod methods;
 mod options;
@@ -55,6 +60,7 @@ pub mod tableau;
 pub use control::Stats;
 pub use error::Error;
 pub use extrapolation::{DdSystem, DdTrial, Extrapolation};
+pub use flat::{FlatIntegrator, FlatOptions, FlatSystem};
 pub use integrator::{Dense, Integrator, Trial};
 pub use methods::{DOP853, DOPRI5, METHODS, VERN7, VERN9};
 pub use options::{Controller, Options};

@@ -352,9 +352,9 @@ impl<F: Jacobian<N>, const N: usize> Rosenbrock<F, N> {
             (f1 - self.f_now) / dt
         };
         loop {
-            let (h, last) = self
-                .limits
-                .trial(self.t, t_end, self.h, &self.stats, &self.y)?;
+            let (h, last) =
+                self.limits
+                    .trial(self.t, t_end, self.h, &self.stats, self.y.as_slice())?;
             let attempt = self.attempt(h, &jac, &ft);
             let err = attempt.as_ref().map_or(f64::INFINITY, |(y1, e, _)| {
                 let sk = self.atol + self.rtol.component_mul(&self.y.abs().sup(&y1.abs()));

@@ -24,6 +24,7 @@ mod contacts;
 mod dict_errors;
 
 use bw_models::Check;
+use bwc_app::chain::ChainScene;
 use bwc_app::config::Config;
 use bwc_app::runs::Outcome;
 use bwc_app::scene::Scene;
@@ -279,6 +280,84 @@ fn simulate_json<'py>(
     Ok((text, trajectories))
 }
 
+/// `bwc.simulate` of a `[chain]` scene: the summary as JSON text (with the provenance) and,
+/// where `[output].dt` is given, the samples as a dict of numpy arrays: `t` (s), `x`, `v`
+/// (samples x bodies; m, m/s), `gap`, `F` (samples x pairs; m, N), and the ledger's
+/// `kinetic`, `stored`, `dissipated`, `work` (J).
+#[pyfunction]
+#[pyo3(signature = (path=None, scene_json=None, threads=None))]
+fn simulate_chain_json<'py>(
+    py: Python<'py>,
+    path: Option<PathBuf>,
+    scene_json: Option<&str>,
+    threads: Option<usize>,
+) -> PyResult<(String, Option<Bound<'py, PyDict>>)> {
+    let scene = match (path, scene_json) {
+        (Some(p), _) => ChainScene::load(&p).map_err(error)?,
+        (None, Some(j)) => {
+            let text = toml_text(j, "scene")?;
+            ChainScene::parse(Path::new("<scene>"), &text).map_err(|e| {
+                BwcError::new_err(dict_errors::explain(&e, &text, Root::Dict("scene")))
+            })?
+        }
+        (None, None) => return Err(BwcError::new_err("a scene needs a path or a dict")),
+    };
+    let out = py
+        .allow_threads(|| bwc_app::with_threads(threads, || bwc_app::chain::run(&scene)))
+        .map_err(error)?;
+    let mut summary = bwc_app::chain::summary(&scene, &out);
+    for (k, v) in bwc_app::outdir::provenance("bwc.simulate")
+        .as_object()
+        .expect("provenance is an object")
+    {
+        summary[k] = v.clone();
+    }
+    let samples = scene.dt.map(|_| chain_samples(py, &out)).transpose()?;
+    Ok((summary.to_string(), samples))
+}
+
+/// A chain's samples as a dict of numpy arrays (see [`simulate_chain_json`]).
+fn chain_samples<'py>(
+    py: Python<'py>,
+    out: &bwc_app::chain::ChainOutcome,
+) -> PyResult<Bound<'py, PyDict>> {
+    use numpy::PyArray2;
+    let d = PyDict::new(py);
+    let s = &out.samples;
+    let rows = |f: &dyn Fn(&bwc_app::chain::ChainSample) -> &Vec<f64>| {
+        s.iter().map(|x| f(x).clone()).collect::<Vec<Vec<f64>>>()
+    };
+    let matrix = |m: Vec<Vec<f64>>, width: usize| -> PyResult<Bound<'py, PyArray2<f64>>> {
+        if m.is_empty() {
+            return Ok(numpy::PyArray2::zeros(py, [0, width], false));
+        }
+        PyArray2::from_vec2(py, &m).map_err(|e| BwcError::new_err(e.to_string()))
+    };
+    let (n, p) = (out.run.bodies.len(), s.first().map_or(0, |x| x.gaps.len()));
+    d.set_item(
+        "t",
+        s.iter().map(|x| x.t).collect::<Vec<_>>().into_pyarray(py),
+    )?;
+    d.set_item("x", matrix(rows(&|x| &x.positions), n)?)?;
+    d.set_item("v", matrix(rows(&|x| &x.velocities), n)?)?;
+    d.set_item("gap", matrix(rows(&|x| &x.gaps), p)?)?;
+    d.set_item("F", matrix(rows(&|x| &x.forces), p)?)?;
+    let ledger = |f: &dyn Fn(&bw_models::chain::Ledger) -> f64| {
+        s.iter().map(|x| f(&x.ledger)).collect::<Vec<f64>>()
+    };
+    d.set_item("kinetic", ledger(&|l| l.kinetic).into_pyarray(py))?;
+    d.set_item("stored", ledger(&|l| l.stored).into_pyarray(py))?;
+    d.set_item("dissipated", ledger(&|l| l.dissipated).into_pyarray(py))?;
+    d.set_item("work", ledger(&|l| l.work).into_pyarray(py))?;
+    Ok(d)
+}
+
+/// Whether the scene file at `path` is a `[chain]` scene.
+#[pyfunction]
+fn is_chain_file(path: PathBuf) -> bool {
+    bwc_app::chain::is_chain_file(&path)
+}
+
 /// A run's samples as a dict of numpy arrays.
 fn trajectory<'py>(py: Python<'py>, r: &bwc_app::runs::Run) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
@@ -528,6 +607,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("BwcWarning", m.py().get_type::<BwcWarning>())?;
     m.add_function(wrap_pyfunction!(cor, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_json, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate_chain_json, m)?)?;
+    m.add_function(wrap_pyfunction!(is_chain_file, m)?)?;
     m.add_function(wrap_pyfunction!(identify_json, m)?)?;
     m.add_function(wrap_pyfunction!(coverage_json, m)?)?;
     m.add_function(wrap_pyfunction!(posterior_json, m)?)?;

@@ -1,6 +1,7 @@
 //! `bwc-simulate`: simulate the impacts a TOML scene describes.
 
 use bw_models::{Check, ModelKind, LADDER};
+use bwc_app::chain::ChainScene;
 use bwc_app::outdir;
 use bwc_app::runs::Outcome;
 use bwc_app::{output, scene::Scene, simulate, tidy, AppError};
@@ -62,6 +63,9 @@ fn run(
     json: bool,
     threads: Option<usize>,
 ) -> Result<u8, AppError> {
+    if bwc_app::chain::is_chain_file(path) {
+        return run_chain(path, out, json, threads);
+    }
     let scene = Scene::load(path)?;
     for hint in &scene.hints {
         eprintln!("bwc-simulate: warning: {hint}");
@@ -338,4 +342,106 @@ fn bounce_table(runs: &[bwc_app::runs::Run]) {
             }
         );
     }
+}
+
+/// Runs a `[chain]` scene: the summary on stdout (a table, or one JSON object with `--json`),
+/// the files into `out`.
+fn run_chain(
+    path: &std::path::Path,
+    out: Option<&std::path::Path>,
+    json: bool,
+    threads: Option<usize>,
+) -> Result<u8, AppError> {
+    let scene = ChainScene::load(path)?;
+    if let Some(dir) = out {
+        outdir::prepare(dir)?;
+    }
+    let outcome = bwc_app::with_threads(threads, || bwc_app::chain::run(&scene))?;
+    let mut summary = bwc_app::chain::summary(&scene, &outcome);
+    for (k, v) in outdir::provenance("bwc-simulate")
+        .as_object()
+        .expect("provenance is an object")
+    {
+        summary[k] = v.clone();
+    }
+    if json {
+        bwc_app::out!("{summary}");
+    } else {
+        chain_table(&scene, &outcome);
+    }
+    if let Some(dir) = out {
+        let files = bwc_app::chain::render(&scene, &outcome, dir)?;
+        let written = outdir::write_all(dir, summary, files)?;
+        if !json {
+            for p in written {
+                eprintln!("wrote {}", p.display());
+            }
+        }
+    }
+    Ok(exit::OK)
+}
+
+/// `x` for a table: 12 significant digits, in scientific notation where it is very small or
+/// large.
+fn figure(x: f64) -> String {
+    if x != 0.0 && !(1e-4..1e6).contains(&x.abs()) {
+        format!("{x:.6e}")
+    } else {
+        tidy(x).to_string()
+    }
+}
+
+/// The human-readable account of a chain's run, with the unit of every column.
+fn chain_table(scene: &ChainScene, out: &bwc_app::chain::ChainOutcome) {
+    let r = &out.run;
+    let how = if r.settled {
+        "settled (no contact active, no gap closing)"
+    } else {
+        "ended at the horizon"
+    };
+    bwc_app::out!(
+        "chain: {how} at t = {} s, {} contacts",
+        figure(r.t_end),
+        r.contacts.len()
+    );
+    bwc_app::out!("{:>6} {:>16} {:>16}", "body", "x (m)", "v (m/s)");
+    for (i, b) in r.bodies.iter().enumerate() {
+        let n = scene.body_number(i);
+        bwc_app::out!(
+            "{n:>6} {:>16} {:>16}",
+            figure(b.position),
+            figure(b.velocity)
+        );
+    }
+    bwc_app::out!(
+        "{:>6} {:>14} {:>14} {:>10} {:>14}",
+        "pair",
+        "onset (s)",
+        "separation (s)",
+        "rebound",
+        "dissipated (J)"
+    );
+    for c in &r.contacts {
+        let shown = |v: Option<f64>| v.map_or("-".to_string(), |v| figure(v).to_string());
+        let (sep, e) = (shown(c.separation), shown(c.rebound()));
+        bwc_app::out!(
+            "{:>6} {:>14} {:>14} {:>10} {:>14}",
+            c.pair,
+            figure(c.onset),
+            sep,
+            e,
+            figure(c.dissipated)
+        );
+    }
+    let l = &r.ledger;
+    bwc_app::out!(
+        "energy (J): initial {}, kinetic {}, stored {}, dissipated {}, work of inputs {}; \
+         imbalance {:.1e}",
+        figure(l.initial),
+        figure(l.kinetic),
+        figure(l.stored),
+        figure(l.dissipated),
+        figure(l.work),
+        l.imbalance()
+    );
 }

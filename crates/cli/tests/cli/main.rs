@@ -1,7 +1,8 @@
 //! The binaries run on good and bad scenes: `bwc-simulate` ([`simulate`]), `bwc-identify`
 //! ([`identify`]), impact sequences and drop tests ([`sequence`]), sweeps served by interpolants
-//! ([`sweep`]).
+//! ([`sweep`]), chains of bodies ([`chain`]).
 
+mod chain;
 mod identify;
 mod sequence;
 mod simulate;

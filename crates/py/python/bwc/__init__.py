@@ -24,6 +24,7 @@ import warnings
 
 from ._native import BwcError, BwcWarning, __version__, cor as _cor, coverage_json as _coverage
 from ._native import identify_json as _identify, simulate_json as _simulate
+from ._native import is_chain_file as _is_chain_file, simulate_chain_json as _simulate_chain
 from ._native import posterior_json as _posterior
 from ._native import Contact, Contacts, Step
 from ._results import Cor, Coverage, Fit, Identification, Params, Posterior, Posteriors, Result, Run
@@ -227,6 +228,14 @@ def simulate(scene, *, threads=None):
         ``trajectory``: numpy arrays ``t, x, v, u, F`` and the model's states (``z``, or
         ``r, y, z``), in the units of ``units``.
 
+        A ``[chain]`` scene (bodies on a line, a law per pair) gives ``chain`` instead of
+        ``runs``: ``outcome``, ``t_end_s``, ``bodies`` (each ``body``, ``mass_kg``,
+        ``velocity_m_s``, ...), ``contacts`` (each ``pair``, ``onset_s``, ``separation_s``,
+        ``rebound``, ``dissipated_J``, ...), ``ledger`` and ``momentum_kg_m_s``; with
+        ``[output] dt`` also ``samples``: numpy arrays ``t``, ``x`` and ``v`` (samples by
+        bodies), ``gap`` and ``F`` (samples by pairs), ``kinetic``, ``stored``, ``dissipated``
+        and ``work``.
+
     Raises
     ------
     BwcError
@@ -246,7 +255,14 @@ def simulate(scene, *, threads=None):
     >>> [round(r.e, 4) for r in out.runs]
     [0.8461, 0.7964]
     """
-    text, trajectories = _simulate(threads=threads, **_source(scene, "scene"))
+    source = _source(scene, "scene")
+    if "chain" in scene if isinstance(scene, dict) else _is_chain_file(source["path"]):
+        text, samples = _simulate_chain(threads=threads, **source)
+        value = wrap(json.loads(text), Simulation)
+        if samples is not None:
+            value["samples"] = Result(samples)
+        return value
+    text, trajectories = _simulate(threads=threads, **source)
     value = wrap(json.loads(text), Simulation, {"runs": Run})
     for run, samples in zip(value["runs"], trajectories):
         if samples is not None:

@@ -1,0 +1,287 @@
+//! Chains of bodies against what is known about them: two bodies are the paper's two-body
+//! system (Section 3: the relative motion with the effective mass and the relative input), and
+//! without inputs or walls the total momentum and the energy ledger are conserved.
+
+use bw_models::chain::{Chain, ChainBody, ChainPart, ChainSettings, PairLaw, Stop, Walls};
+use bw_models::input::{Arctan, Constant, Input};
+use bw_models::sequence::Policy;
+use bw_models::{
+    impact, Bodies, Bwmcm, Bwshccm, ModelError, ModelKind, Physical, PhysicalParams, Settings,
+};
+
+/// The contact law of the paper's application example (Table 2; `c` in the units of the
+/// model).
+fn table2(kind: ModelKind) -> PhysicalParams {
+    let law = Physical {
+        k: 1.0e6,
+        c: 1.0e3,
+        n: 1.5,
+        p: 1.5,
+        alpha: 0.5,
+        beta: 1.0e4,
+        gamma: -5.0e3,
+        a: 1.0,
+    };
+    PhysicalParams::new(kind, law).unwrap()
+}
+
+/// An input of either kind the application example uses.
+#[derive(Debug, Clone, Copy)]
+enum Force {
+    Constant(Constant),
+    Arctan(Arctan),
+}
+
+impl Input for Force {
+    fn at(&self, t: f64) -> f64 {
+        match self {
+            Force::Constant(c) => c.at(t),
+            Force::Arctan(a) => a.at(t),
+        }
+    }
+    fn is_zero(&self) -> bool {
+        matches!(self, Force::Constant(c) if c.0 == 0.0)
+    }
+    fn is_constant(&self) -> bool {
+        matches!(self, Force::Constant(_))
+    }
+}
+
+fn tight() -> ChainSettings {
+    ChainSettings::default().with_tolerances(1e-12, 1e-17)
+}
+
+/// The application example (Section 6) as a chain of two touching balls, ball 2 on the left
+/// rising at 1.5 m/s under the arctan push, ball 1 on the right falling at 0.5 m/s under
+/// gravity: the rebound ratio and contact duration are the two-body model's `e` and `t_s`
+/// (impact at `t = 0`, effective mass, relative input) to 1e-9, for both laws.
+#[test]
+fn two_bodies_are_the_two_body_model() {
+    // Balls of radius 0.05 m and densities 3000 and 1000 kg/m³.
+    let ball = |rho: f64| 4.0 / 3.0 * std::f64::consts::PI * rho * 0.05f64.powi(3);
+    let (m1, m2) = (ball(3000.0), ball(1000.0));
+    let u1 = Force::Constant(Constant(-m1 * 9.81));
+    let u2 = Force::Arctan(Arctan {
+        m: m2,
+        d: 250.0,
+        omega: 1000.0,
+    });
+    let pair = Bodies::new(m1, m2, -0.5, 1.5, 0.05, 0.05, u1, u2).unwrap();
+    for kind in [ModelKind::Shccm, ModelKind::Mcm] {
+        let params = table2(kind);
+        let (m, v0) = (pair.effective_mass(), pair.impact_speed());
+        let settings = Settings::default();
+        let reference = match kind {
+            ModelKind::Shccm => {
+                let model = Bwshccm::new(&params, m, v0, pair.relative_input()).unwrap();
+                let out = impact(&model, &settings).unwrap();
+                (out.e, out.t_s.unwrap())
+            }
+            ModelKind::Mcm => {
+                let model = Bwmcm::new(&params, m, v0, pair.relative_input()).unwrap();
+                let out = impact(&model, &settings).unwrap();
+                (out.e, out.t_s.unwrap())
+            }
+        };
+        let bodies = vec![
+            ChainBody::new(m2, 0.0, 1.5, 0.1, u2),
+            ChainBody::new(m1, 0.1, -0.5, 0.1, u1),
+        ];
+        let law = PairLaw::new(&params).unwrap();
+        let chain = Chain::new(bodies, vec![law], Walls::default(), tight()).unwrap();
+        let run = chain
+            .run(Stop::at(2.0 * reference.1), None, |_| {})
+            .unwrap();
+        let contact = run.contacts[0];
+        assert_eq!(contact.onset, 0.0);
+        let e = contact.rebound().unwrap();
+        let t_s = contact.separation.unwrap();
+        assert!(
+            (e - reference.0).abs() <= 1e-9,
+            "{kind:?}: e {e} vs {}",
+            reference.0
+        );
+        assert!(
+            (t_s - reference.1).abs() <= 1e-9 * reference.1,
+            "{kind:?}: t_s {t_s} vs {}",
+            reference.1
+        );
+    }
+}
+
+/// Five bodies of different masses with gaps and velocities that make them collide many times,
+/// without inputs or walls: the total momentum stays what it was to 1e-12 (relative), and the
+/// ledger closes to 1e-9 of the initial kinetic energy, under both policies.
+#[test]
+fn momentum_and_energy_are_conserved() {
+    let masses = [0.3, 0.1, 0.25, 0.05, 0.4];
+    let velocities = [2.0, 0.0, -0.5, 1.0, -1.5];
+    let positions = [0.0, 0.1, 0.2005, 0.301, 0.402];
+    for (kind, policy) in [
+        (ModelKind::Mcm, Policy::Reset),
+        (ModelKind::Shccm, Policy::Carry),
+    ] {
+        let bodies: Vec<_> = (0..5)
+            .map(|i| ChainBody::new(masses[i], positions[i], velocities[i], 0.1, Constant(0.0)))
+            .collect();
+        let p0: f64 = (0..5).map(|i| masses[i] * velocities[i]).sum();
+        let law = PairLaw::new(&table2(kind)).unwrap();
+        let settings = tight().with_policy(policy);
+        let chain = Chain::new(bodies, vec![law], Walls::default(), settings).unwrap();
+        let mut worst: f64 = 0.0;
+        let run = chain
+            .run(Stop::settled(1.0), Some(1e-4), |s| {
+                worst = worst.max(s.ledger.imbalance().abs());
+            })
+            .unwrap();
+        assert!(run.settled, "{kind:?}");
+        assert!(run.contacts.len() >= 4, "{kind:?}: {:?}", run.contacts);
+        let p: f64 = (0..5).map(|i| masses[i] * run.bodies[i].velocity).sum();
+        let scale: f64 = (0..5).map(|i| (masses[i] * velocities[i]).abs()).sum();
+        assert!((p - p0).abs() <= 1e-12 * scale, "{kind:?}: {p} vs {p0}");
+        let l = run.ledger;
+        assert!(l.dissipated > 0.0 && l.stored >= 0.0);
+        assert!(l.imbalance().abs() <= 1e-9 * l.initial, "{kind:?}: {l:?}");
+        assert!(
+            worst <= 1e-9 * l.initial,
+            "{kind:?}: sampled imbalance {worst}"
+        );
+        // Settled: every gap opening, in order of the velocities.
+        for w in run.bodies.windows(2) {
+            assert!(w[1].velocity >= w[0].velocity, "{kind:?}: {:?}", run.bodies);
+        }
+        // A pair's rebound ratio may pass 1 where a third body pushes during the contact; its
+        // dissipation is positive all the same.
+        for c in &run.contacts {
+            assert!(c.separation.is_some() && c.dissipated > 0.0, "{c:?}");
+        }
+    }
+}
+
+/// A ball dropped on a wall under gravity bounces, each contact with the law of a
+/// `[sequence]` scene; the ledger closes with the work of gravity.
+#[test]
+fn a_ball_bounces_on_a_wall_under_gravity() {
+    let m = 0.05;
+    let g = 9.81;
+    let bodies = vec![ChainBody::new(m, 0.1 + 0.02, 0.0, 0.04, Constant(-m * g))];
+    let law = PairLaw::new(&table2(ModelKind::Shccm)).unwrap();
+    let walls = Walls::new(Some(0.0), None);
+    let chain = Chain::new(bodies, vec![law], walls, tight()).unwrap();
+    let run = chain.run(Stop::at(0.6), None, |_| {}).unwrap();
+    assert!(run.contacts.len() >= 2, "{:?}", run.contacts);
+    // Free fall from 0.1 m: the first contact at sqrt(2 h / g), at sqrt(2 g h).
+    let first = run.contacts[0];
+    assert!(
+        (first.onset - (0.2f64 / g).sqrt()).abs() < 1e-9,
+        "{first:?}"
+    );
+    assert!((first.onset_velocity + (2.0 * g * 0.1f64).sqrt()).abs() < 1e-9);
+    let l = run.ledger;
+    assert!(l.work > 0.0);
+    assert!(l.imbalance().abs() <= 1e-9 * (l.work + l.initial), "{l:?}");
+}
+
+/// Bad chains are errors naming the body or pair.
+#[test]
+fn bad_chains_name_the_body_or_pair() {
+    let law = PairLaw::new(&table2(ModelKind::Shccm)).unwrap();
+    let body = |m: f64, x: f64| ChainBody::new(m, x, 0.0, 0.1, Constant(0.0));
+    let build = |bodies, laws, walls| Chain::new(bodies, laws, walls, ChainSettings::default());
+    let part = |r: Result<Chain<Constant>, ModelError>| match r.unwrap_err() {
+        ModelError::InvalidChain { part, name, .. } => (part, name),
+        e => panic!("{e}"),
+    };
+    assert_eq!(
+        part(build(vec![body(1.0, 0.0)], vec![law], Walls::default())),
+        (ChainPart::Chain, "bodies")
+    );
+    assert_eq!(
+        part(build(
+            vec![body(1.0, 0.0), body(1.0, 0.2), body(1.0, 0.25)],
+            vec![law],
+            Walls::default()
+        )),
+        (ChainPart::Pair(1), "gap")
+    );
+    assert_eq!(
+        part(build(
+            vec![body(1.0, 0.0), body(0.0, 0.2)],
+            vec![law],
+            Walls::default()
+        )),
+        (ChainPart::Body(1), "mass")
+    );
+    assert_eq!(
+        part(build(
+            vec![body(1.0, 0.0), body(1.0, 0.2)],
+            vec![law, law],
+            Walls::default()
+        )),
+        (ChainPart::Chain, "laws")
+    );
+    // A wall overlapping its body.
+    assert_eq!(
+        part(build(
+            vec![body(1.0, 0.0), body(1.0, 0.2)],
+            vec![law],
+            Walls::new(Some(0.01), None)
+        )),
+        (ChainPart::Pair(0), "gap")
+    );
+    let one = build(vec![body(1.0, 0.1)], vec![law], Walls::new(Some(0.0), None));
+    assert!(one.is_ok());
+}
+
+/// A long chain of touching steel beads with the elastic Hertz law struck at one end (`c = 0`,
+/// `p = 3/2`, and `β = γ = 0`, `A = 1`: then `z = x`, and the law is `F = k |x|^(3/2)` for any
+/// `α`, the limit `α = 1` of the admissible `0 < α < 1`) carries a solitary wave whose speed grows as the sixth root of
+/// its force amplitude (Nesterenko, *Dynamics of Heterogeneous Materials*, 2001, ch. 1:
+/// `V_s ∝ F_m^(1/6)`). Two striker speeds a decade apart: the ratio of the wave speeds (from
+/// the times of peak force at pairs 20 and 40) equals the ratio of the mean peak forces there
+/// to the power 1/6. The Hertz chain is self-similar (velocities `λ v` give forces
+/// `λ^(6/5) F` on times `λ^(-1/5) t`), so the law holds to the integration's accuracy, not only
+/// asymptotically: 1e-6 here, against Nesterenko's 2 %.
+#[test]
+fn the_hertz_chain_carries_nesterenko_solitary_waves() {
+    let r = 0.005;
+    let m = 7850.0 * 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
+    // Two identical spheres: F = (2/3) E / (1 - ν²) √(R/2) δ^(3/2), E = 200 GPa, ν = 0.3.
+    let k = 2.0 / 3.0 * 200e9 / (1.0 - 0.09) * (r / 2.0f64).sqrt();
+    let law = Physical {
+        k,
+        c: 0.0,
+        n: 1.0,
+        p: 1.5,
+        alpha: 0.5,
+        beta: 0.0,
+        gamma: 0.0,
+        a: 1.0,
+    };
+    let law = PairLaw::new(&PhysicalParams::new(ModelKind::Shccm, law).unwrap()).unwrap();
+    let wave = |striker: f64| {
+        let bodies: Vec<_> = (0..60)
+            .map(|i| {
+                let v = if i == 0 { striker } else { 0.0 };
+                ChainBody::new(m, 2.0 * r * i as f64, v, 2.0 * r, Constant(0.0))
+            })
+            .collect();
+        let settings = ChainSettings::default().with_tolerances(1e-10, 1e-15);
+        let chain = Chain::new(bodies, vec![law], Walls::default(), settings).unwrap();
+        let run = chain.run(Stop::at(4e-3), None, |_| {}).unwrap();
+        // Each pair's first contact carries the wave.
+        let first = |j: usize| run.contacts.iter().find(|c| c.pair == j).copied().unwrap();
+        let (a, b) = (first(20), first(40));
+        let speed = 20.0 * 2.0 * r / (b.peak_at - a.peak_at);
+        let force = (20..=40).map(|j| first(j).peak_force).sum::<f64>() / 21.0;
+        (speed, force)
+    };
+    let (slow, weak) = wave(0.1);
+    let (fast, strong) = wave(1.0);
+    let predicted = (strong / weak).powf(1.0 / 6.0);
+    assert!(
+        ((fast / slow) / predicted - 1.0).abs() < 1e-6,
+        "speeds {slow} and {fast} m/s, forces {weak} and {strong} N: ratio {} against {predicted}",
+        fast / slow
+    );
+}

@@ -1,0 +1,171 @@
+//! `[chain]` scenes: bodies on a line with a law per pair.
+
+use super::*;
+
+/// The chain form of the paper's application example (`fixtures/two_balls_*.toml`): ball 2 on
+/// the left with its arctan push, ball 1 on the right under gravity, touching at `t = 0`.
+fn two_balls_chain(model: &str, physical: &str) -> String {
+    format!(
+        "model = \"{model}\"\n[chain]\nhorizon = 0.05\n\
+         [[chain.body]]\nmass = 0.5235987755982988\nvelocity = 1.5\nlength = 0.1\n\
+         [chain.body.input]\nkind = \"arctan\"\nD = 250.0\nomega = 1000.0\n\
+         [[chain.body]]\nmass = 1.5707963267948966\nvelocity = -0.5\nlength = 0.1\ngap = 0.0\n\
+         [chain.body.input]\nkind = \"gravity\"\ng = 9.81\n\
+         [solver]\nrtol = 1e-12\natol = 1e-17\n{physical}"
+    )
+}
+
+/// The `[physical]` table of a fixture.
+fn physical_of(fixture: &str) -> String {
+    let text = std::fs::read_to_string(fixtures().join(fixture)).unwrap();
+    let start = text.find("[physical]").unwrap();
+    let end = text[start..]
+        .find("\n[output]")
+        .map_or(text.len(), |e| start + e);
+    text[start..end].to_string()
+}
+
+/// Two bodies as a chain are the `[bodies]` scene: its contact's rebound ratio and duration are
+/// the scene's `e` and `t_s` to 1e-9, for both models.
+#[test]
+fn two_bodies_as_a_chain_are_the_bodies_scene() {
+    let dir = scratch("chain-two");
+    for (model, fixture) in [
+        ("shccm", "two_balls_shccm.toml"),
+        ("mcm", "two_balls_mcm.toml"),
+    ] {
+        let reference = json(&simulate(&[
+            "run",
+            fixtures().join(fixture).to_str().unwrap(),
+            "--json",
+        ]));
+        let run = &reference["runs"][0];
+        let (e, t_s) = (run["e"].as_f64().unwrap(), run["t_s"].as_f64().unwrap());
+        let scene = dir.join(format!("{model}.toml"));
+        std::fs::write(&scene, two_balls_chain(model, &physical_of(fixture))).unwrap();
+        let v = json(&simulate(&["run", scene.to_str().unwrap(), "--json"]));
+        let contact = &v["chain"]["contacts"][0];
+        let rebound = contact["rebound"].as_f64().unwrap();
+        let separation = contact["separation_s"].as_f64().unwrap();
+        assert_eq!(contact["onset_s"].as_f64(), Some(0.0), "{model}");
+        assert!((rebound - e).abs() <= 1e-9, "{model}: {rebound} vs {e}");
+        assert!(
+            (separation - t_s).abs() <= 1e-9 * t_s,
+            "{model}: {separation} vs {t_s}"
+        );
+    }
+}
+
+/// The fixtures run and write what they promise: the summary, `contacts.csv`, `chain.csv` with a
+/// row every `dt` and a column per body and pair, and both figures; the cradle conserves its
+/// momentum and its ledger closes.
+#[test]
+fn the_chain_fixtures_run_and_write_their_files() {
+    for (name, bodies, pairs) in [
+        ("newtons_cradle", 5, 4),
+        ("ball_stack", 3, 3),
+        ("granular_chain", 40, 39),
+    ] {
+        let dir = scratch(&format!("chain-{name}"));
+        let out_dir = dir.join("out");
+        let path = fixtures().join(format!("{name}.toml"));
+        let v = json(&simulate(&[
+            "run",
+            path.to_str().unwrap(),
+            "--json",
+            "--out",
+            out_dir.to_str().unwrap(),
+        ]));
+        let chain = &v["chain"];
+        assert_eq!(chain["bodies"].as_array().unwrap().len(), bodies, "{name}");
+        let ledger = &chain["ledger"];
+        let f = |k: &str| ledger[k].as_f64().unwrap();
+        let scale = f("initial_J") + f("work_J").abs();
+        assert!(f("imbalance_J").abs() <= 1e-8 * scale, "{name}: {ledger}");
+        let files: Vec<&str> = v["files"]
+            .as_array()
+            .map_or(vec![], |a| a.iter().filter_map(|f| f.as_str()).collect());
+        let written = std::fs::read_to_string(out_dir.join("summary.json")).unwrap();
+        let summary: serde_json::Value = serde_json::from_str(&written).unwrap();
+        assert!(files.is_empty() || files.contains(&"chain.csv"));
+        for file in [
+            "contacts.csv",
+            "chain.csv",
+            "chain_space_time.svg",
+            "chain_velocities.svg",
+            "chain_ledger.svg",
+        ] {
+            assert!(out_dir.join(file).exists(), "{name}: {file}");
+            assert!(
+                summary["files"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .any(|f| f == file),
+                "{name}: {file} not listed"
+            );
+        }
+        let csv = std::fs::read_to_string(out_dir.join("chain.csv")).unwrap();
+        let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+        assert_eq!(header.len(), 1 + 2 * bodies + 2 * pairs + 4, "{name}");
+        assert_eq!(header[0], "t_s");
+        assert!(header.contains(&"kinetic_J") && header.contains(&"F_0_N"));
+    }
+    // The cradle: no inputs, no walls; its momentum is the striker's.
+    let v = json(&simulate(&[
+        "run",
+        fixtures().join("newtons_cradle.toml").to_str().unwrap(),
+        "--json",
+    ]));
+    let p = v["chain"]["momentum_kg_m_s"].as_f64().unwrap();
+    assert!((p - 0.0642).abs() <= 1e-12 * 0.0642, "{p}");
+}
+
+/// Bad chains: an error naming the line, the key and the body or pair; nothing written.
+#[test]
+fn bad_chains_are_rejected_with_the_body_or_pair() {
+    let law = "[physical]\nk = 1e7\nc = 0.0\nn = 1.0\np = 1.5\nalpha = 0.5\nbeta = 0.0\ngamma = 0.0\nA = 1.0\n";
+    let scene = |chain: &str| format!("model = \"shccm\"\n[chain]\nhorizon = 0.01\n{chain}\n{law}");
+    rejects(
+        "chain-overlap",
+        &scene(
+            "mass = 0.1\nposition = [0.0, 0.015, 0.04]\nlength = 0.02\nvelocity = [1.0, 0.0, 0.0]",
+        ),
+        None,
+        &["pair 0", "overlap"],
+    );
+    rejects(
+        "chain-one",
+        &scene("mass = [0.1]\nposition = [0.0]\nvelocity = [1.0]"),
+        None,
+        &["one body"],
+    );
+    rejects(
+        "chain-wall-velocity",
+        &scene("mass = [\"inf\", 0.1]\nposition = [0.0, 0.1]\nvelocity = [0.5, -1.0]"),
+        None,
+        &["body 0", "velocity", "wall"],
+    );
+    rejects(
+        "chain-zero-mass",
+        &scene("mass = [0.1, 0.0]\nposition = [0.0, 0.1]\nvelocity = [1.0, 0.0]"),
+        None,
+        &["body 1", "mass"],
+    );
+    let pairs = "model = \"shccm\"\n[chain]\nhorizon = 0.01\nmass = 0.1\n\
+                 position = [0.0, 0.1, 0.2]\nvelocity = [1.0, 0.0, 0.0]\n\
+                 [[chain.pair]]\nk = 1e7\nc = 0.0\nn = 1.0\np = 1.5\nalpha = 0.5\nbeta = 0.0\n\
+                 gamma = 0.0\nA = 1.0\n";
+    rejects(
+        "chain-pairs",
+        pairs,
+        None,
+        &["[[chain.pair]]", "1 laws for 2 pairs"],
+    );
+    rejects(
+        "chain-list-length",
+        &scene("mass = [0.1, 0.1]\nposition = [0.0, 0.1, 0.2]\nvelocity = [1.0, 0.0]"),
+        Some(5),
+        &["[chain].position", "3 values for 2 bodies"],
+    );
+}
