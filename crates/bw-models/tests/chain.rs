@@ -285,3 +285,108 @@ fn the_hertz_chain_carries_nesterenko_solitary_waves() {
         fast / slow
     );
 }
+
+/// The hard-sphere limit: `masses` (left to right, a wall on the left at 0 when `wall`) with
+/// centres `x` and velocities `v`, each collision instantaneous and elastic, in the order the
+/// gaps (faces `length / 2` from the centres) close; the velocities once no gap closes.
+fn hard_spheres(masses: &[f64], x: &[f64], v: &[f64], length: f64, wall: bool) -> Vec<f64> {
+    let (mut x, mut v) = (x.to_vec(), v.to_vec());
+    for _ in 0..1000 {
+        // The next pair to touch: (time, left body or None for the wall, right body).
+        let mut next: Option<(f64, Option<usize>, usize)> = None;
+        let mut consider = |t: f64, l: Option<usize>, r: usize| {
+            if t >= 0.0 && next.is_none_or(|(best, _, _)| t < best) {
+                next = Some((t, l, r));
+            }
+        };
+        if wall && v[0] < 0.0 {
+            consider((x[0] - length / 2.0) / -v[0], None, 0);
+        }
+        for i in 0..masses.len() - 1 {
+            let closing = v[i] - v[i + 1];
+            if closing > 0.0 {
+                consider((x[i + 1] - x[i] - length) / closing, Some(i), i + 1);
+            }
+        }
+        let Some((t, l, r)) = next else { return v };
+        for (xi, vi) in x.iter_mut().zip(&v) {
+            *xi += vi * t;
+        }
+        match l {
+            None => v[r] = -v[r],
+            Some(l) => {
+                let (m1, m2, u1, u2) = (masses[l], masses[r], v[l], v[r]);
+                v[l] = ((m1 - m2) * u1 + 2.0 * m2 * u2) / (m1 + m2);
+                v[r] = ((m2 - m1) * u2 + 2.0 * m1 * u1) / (m1 + m2);
+            }
+        }
+    }
+    panic!("no end to the hard-sphere collisions");
+}
+
+/// The ideal-elastic limits: a stack of three balls arriving together at a wall, 10 mm apart,
+/// and Newton's cradle with 0.1 mm gaps, both with the elastic Hertz law and no gravity. As
+/// the law stiffens (k from 1e5 to 1e9 N/m^1.5) the contacts shorten and stop overlapping,
+/// and the final velocities approach those of instantaneous elastic collisions in sequence
+/// (computed above): the error falls with every step of k until it is the integration's own
+/// (below 1e-9 of the striking speed: once the contacts no longer overlap, an elastic contact
+/// gives the hard-sphere velocities exactly).
+#[test]
+fn stiff_elastic_chains_approach_the_hard_sphere_limit() {
+    let elastic = |k: f64| {
+        let law = Physical {
+            k,
+            c: 0.0,
+            n: 1.0,
+            p: 1.5,
+            alpha: 0.5,
+            beta: 0.0,
+            gamma: 0.0,
+            a: 1.0,
+        };
+        PairLaw::new(&PhysicalParams::new(ModelKind::Shccm, law).unwrap()).unwrap()
+    };
+    let cases: [(&[f64], f64, f64, bool); 2] = [
+        // The stack: heavy to light from the wall, all at -4.43 m/s, 10 mm apart.
+        (&[0.6, 0.145, 0.057], 0.05, 0.01, true),
+        // The cradle: five equal balls, the first at 1 m/s, 0.1 mm apart.
+        (&[0.0642; 5], 0.025, 1e-4, false),
+    ];
+    for (masses, length, gap, wall) in cases {
+        let n = masses.len();
+        let x: Vec<f64> = (0..n)
+            .map(|i| 0.1 + length / 2.0 + i as f64 * (length + gap))
+            .collect();
+        let v: Vec<f64> = if wall {
+            vec![-4.43; n]
+        } else {
+            (0..n).map(|i| if i == 0 { 1.0 } else { 0.0 }).collect()
+        };
+        let ideal = hard_spheres(masses, &x, &v, length, wall);
+        let speed = v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        let mut errors = Vec::new();
+        for k in [1e5, 1e6, 1e7, 1e8, 1e9] {
+            let bodies: Vec<_> = (0..n)
+                .map(|i| ChainBody::new(masses[i], x[i], v[i], length, Constant(0.0)))
+                .collect();
+            let walls = Walls::new(wall.then_some(0.0), None);
+            let chain = Chain::new(bodies, vec![elastic(k)], walls, tight()).unwrap();
+            // Settled, or at rest to the tolerance (balls left drifting at 1e-12 m/s).
+            let run = chain.run(Stop::settled(1.0), None, |_| {}).unwrap();
+            let error = run
+                .bodies
+                .iter()
+                .zip(&ideal)
+                .map(|(b, i)| (b.velocity - i).abs())
+                .fold(0.0f64, f64::max);
+            errors.push(error / speed);
+        }
+        let floor = 1e-9;
+        assert!(
+            errors.windows(2).all(|w| w[1] < w[0] || w[1] < floor)
+                && errors[0] > 1e3 * floor
+                && errors[errors.len() - 1] < floor,
+            "wall {wall}: errors {errors:?} against {ideal:?}"
+        );
+    }
+}

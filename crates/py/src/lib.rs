@@ -316,6 +316,56 @@ fn simulate_chain_json<'py>(
     Ok((summary.to_string(), samples))
 }
 
+/// `bwc.simulate_many`: many `[chain]` scenes, each a path or JSON text (`paths[i]` or
+/// `scene_jsons[i]`), run in parallel; per scene the summary as JSON text and its samples, as
+/// [`simulate_chain_json`] gives them.
+#[pyfunction]
+#[pyo3(signature = (paths, scene_jsons, threads=None))]
+#[allow(clippy::type_complexity)]
+fn simulate_chains_json<'py>(
+    py: Python<'py>,
+    paths: Vec<Option<PathBuf>>,
+    scene_jsons: Vec<Option<String>>,
+    threads: Option<usize>,
+) -> PyResult<Vec<(String, Option<Bound<'py, PyDict>>)>> {
+    let scenes = paths
+        .into_iter()
+        .zip(&scene_jsons)
+        .enumerate()
+        .map(|(i, (path, json))| match (path, json) {
+            (Some(p), _) => ChainScene::load(&p).map_err(error),
+            (None, Some(j)) => {
+                let text = toml_text(j, "scene")?;
+                ChainScene::parse(Path::new(&format!("<scenes[{i}]>")), &text).map_err(|e| {
+                    BwcError::new_err(dict_errors::explain(&e, &text, Root::Dict("scene")))
+                })
+            }
+            (None, None) => Err(BwcError::new_err(format!(
+                "scenes[{i}]: a scene needs a path or a dict"
+            ))),
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let outs = py
+        .allow_threads(|| bwc_app::with_threads(threads, || Ok(bwc_app::chain::run_many(&scenes))));
+    let outs = outs.map_err(error)?;
+    scenes
+        .iter()
+        .zip(outs)
+        .map(|(scene, out)| {
+            let out = out.map_err(error)?;
+            let mut summary = bwc_app::chain::summary(scene, &out);
+            for (k, v) in bwc_app::outdir::provenance("bwc.simulate_many")
+                .as_object()
+                .expect("provenance is an object")
+            {
+                summary[k] = v.clone();
+            }
+            let samples = scene.dt.map(|_| chain_samples(py, &out)).transpose()?;
+            Ok((summary.to_string(), samples))
+        })
+        .collect()
+}
+
 /// A chain's samples as a dict of numpy arrays (see [`simulate_chain_json`]).
 fn chain_samples<'py>(
     py: Python<'py>,
@@ -608,6 +658,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(cor, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_json, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_chain_json, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate_chains_json, m)?)?;
     m.add_function(wrap_pyfunction!(is_chain_file, m)?)?;
     m.add_function(wrap_pyfunction!(identify_json, m)?)?;
     m.add_function(wrap_pyfunction!(coverage_json, m)?)?;

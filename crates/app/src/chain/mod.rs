@@ -99,6 +99,14 @@ pub fn run(scene: &ChainScene) -> Result<ChainOutcome, AppError> {
     Ok(ChainOutcome { run, samples })
 }
 
+/// Runs many chain scenes (a parameter study) in parallel on the current rayon pool, each
+/// alone: the outcomes in the order of `scenes`, identical on any number of threads (a run has
+/// no randomness and does not depend on the others).
+pub fn run_many(scenes: &[ChainScene]) -> Vec<Result<ChainOutcome, AppError>> {
+    use rayon::prelude::*;
+    scenes.par_iter().map(run).collect()
+}
+
 fn ledger_json(l: &Ledger) -> Value {
     json!({
         "kinetic_J": l.kinetic,

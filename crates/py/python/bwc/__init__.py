@@ -25,6 +25,7 @@ import warnings
 from ._native import BwcError, BwcWarning, __version__, cor as _cor, coverage_json as _coverage
 from ._native import identify_json as _identify, simulate_json as _simulate
 from ._native import is_chain_file as _is_chain_file, simulate_chain_json as _simulate_chain
+from ._native import simulate_chains_json as _simulate_chains
 from ._native import posterior_json as _posterior
 from ._native import Contact, Contacts, Step
 from ._results import Cor, Coverage, Fit, Identification, Params, Posterior, Posteriors, Result, Run
@@ -52,6 +53,7 @@ __all__ = [
     "identify",
     "posterior",
     "simulate",
+    "simulate_many",
 ]
 
 # The outcome of each run, indexed by the codes the native sweep returns (a numpy string array
@@ -268,6 +270,45 @@ def simulate(scene, *, threads=None):
         if samples is not None:
             run["trajectory"] = Result(samples)
     return value
+
+
+def simulate_many(scenes, *, threads=None):
+    """Runs many ``[chain]`` scenes (a parameter study) in parallel, as :func:`simulate` runs
+    each: the list of results in the order of ``scenes``, identical on any number of threads.
+
+    Parameters
+    ----------
+    scenes : iterable of str, os.PathLike or dict
+        Chain scene files, or dicts shaped like them.
+    threads : int, optional
+        Worker threads (default: all cores).
+
+    Raises
+    ------
+    BwcError
+        A bad scene (naming its index in ``scenes`` and the key) or a failed run.
+
+    Examples
+    --------
+    >>> import bwc
+    >>> scene = {"model": "shccm", "physical": {"k": 1e7, "c": 0.0, "n": 1.0, "p": 1.5,
+    ...          "alpha": 0.5, "beta": 0.0, "gamma": 0.0, "A": 1.0},
+    ...          "chain": {"mass": [0.1, 0.2], "position": [0.0, 0.03], "length": 0.02,
+    ...                    "velocity": [1.0, 0.0], "horizon": 0.1}}
+    >>> study = bwc.simulate_many([scene, {**scene, "chain": {**scene["chain"], "mass": [0.2, 0.2]}}])
+    >>> [round(r.chain.bodies[1].velocity_m_s, 6) for r in study]
+    [0.666667, 1.0]
+    """
+    sources = [_source(scene, "scene") for scene in scenes]
+    paths = [s.get("path") for s in sources]
+    texts = [s.get("scene_json") for s in sources]
+    results = []
+    for text, samples in _simulate_chains(paths, texts, threads=threads):
+        value = wrap(json.loads(text), Simulation)
+        if samples is not None:
+            value["samples"] = Result(samples)
+        results.append(value)
+    return results
 
 
 # What a fit's warning is about, by a phrase the tools' messages carry: one ``BwcWarning`` per

@@ -1,5 +1,5 @@
 import os
-from typing import Any, Mapping, Optional, Sequence, Union
+from typing import Any, Iterable, Mapping, Optional, Sequence, Union
 import numpy as np
 import numpy.typing as npt
 
@@ -32,6 +32,7 @@ def cor(
     threads: Optional[int] = None,
 ) -> Cor: ...
 def simulate(scene: Union[str, os.PathLike, Mapping[str, Any]], *, threads: Optional[int] = None) -> Simulation: ...
+def simulate_many(scenes: Iterable[Union[str, os.PathLike, Mapping[str, Any]]], *, threads: Optional[int] = None) -> list[Simulation]: ...
 def identify(
     config: Union[str, os.PathLike, Mapping[str, Any]],
     *,

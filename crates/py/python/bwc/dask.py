@@ -23,6 +23,17 @@ def _cor_task(model, params, v0, input, solver, sweep):
     return out, [str(w.message) for w in caught if issubclass(w.category, bwc.BwcWarning)]
 
 
+def _chain_task(scene):
+    return bwc.simulate(scene, threads=1)
+
+
+def simulate_many(scenes, client):
+    """``bwc.simulate(scene)`` for every ``[chain]`` scene of ``scenes`` (a path readable by the
+    workers, or a dict), one task each on ``client``: the results in the order of ``scenes``,
+    equal to :func:`bwc.simulate_many`'s."""
+    return client.gather(client.map(_chain_task, list(scenes), pure=False))
+
+
 def _identify_task(config, seed):
     return bwc.identify(config, seed=seed, threads=1)
 
