@@ -61,8 +61,9 @@ def read_chain(name):
 class Reference:
     """The chain's equations: displacements, velocities and per pair the law's (x, z)."""
 
-    def __init__(self, s):
+    def __init__(self, s, rtol=1e-12):
         self.s = s
+        self.rtol = rtol
         n = len(s["m"])
         self.n = n
         self.pairs = []      # (left body or None, right body or None, initial gap)
@@ -134,12 +135,13 @@ class Reference:
         s, n = self.s, self.n
         y = np.concatenate([np.zeros(n), s["v"], np.zeros(2 * len(self.pairs))])
         t = 0.0
-        for j in range(len(self.pairs)):
-            if self.gap(j, y) <= 0 and self.u(j, y) < 0:
-                self.active[j] = True
         while t < s["horizon"]:
+            # A pair touching (at or below its onset gap) and not opening is in contact.
+            for j in range(len(self.pairs)):
+                if not self.active[j] and self.gap(j, y) - self.onset[j] <= 0 and self.u(j, y) <= 0:
+                    self.active[j] = True
             events = self.events()
-            sol = solve_ivp(self.rhs, (t, s["horizon"]), y, method="DOP853", rtol=1e-12,
+            sol = solve_ivp(self.rhs, (t, s["horizon"]), y, method="DOP853", rtol=self.rtol,
                             atol=1e-16, events=[f for _, _, f in events])
             assert sol.status >= 0, sol.message
             t, y = sol.t[-1], sol.y[:, -1].copy()
