@@ -6,7 +6,8 @@
 //! curve, pooled over the replicates (target 0.90-0.99), and the band's mean half-width.
 //!
 //! `cargo run --release -p bwc-benches --bin posterior-coverage -- [REPLICATES] [PARTICLES]`
-//! (default 20 replicates, 250 particles x 4 runs)
+//! (default 20 replicates, 250 particles x 4 runs); `BWC_ONLY="mcm sampled"` runs only the
+//! rows whose model and noise model it names.
 
 use bw_models::BaseParams;
 use bwc_app::config::Config;
@@ -44,8 +45,17 @@ fn main() {
         "| model | noise | replicates | particles | coverage | mean half-width | evaluations per replicate | wall s |"
     );
     bwc_app::out!("|---|---|---|---|---|---|---|---|");
+    let only = std::env::var("BWC_ONLY").ok();
     for given in [true, false] {
         for (f, (truth, noise)) in config.fits.iter().zip(truths) {
+            let row = format!(
+                "{} {}",
+                f.kind.name(),
+                if given { "given" } else { "sampled" }
+            );
+            if only.as_ref().is_some_and(|o| !row.contains(o.as_str())) {
+                continue;
+            }
             let task = PosteriorTask {
                 space: f.space.clone(),
                 truth,
