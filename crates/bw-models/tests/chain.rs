@@ -47,6 +47,22 @@ impl Input for Force {
     }
 }
 
+/// The elastic Hertz law `F = k |x|^(3/2)` (N, `k` in N/m^1.5): the BWSHCCL with `c = 0`,
+/// `β = γ = 0` and `A = 1`, so that `z = x` for any `α`.
+fn elastic_hertz(k: f64) -> PairLaw {
+    let law = Physical {
+        k,
+        c: 0.0,
+        n: 1.0,
+        p: 1.5,
+        alpha: 0.5,
+        beta: 0.0,
+        gamma: 0.0,
+        a: 1.0,
+    };
+    PairLaw::new(&PhysicalParams::new(ModelKind::Shccm, law).unwrap()).unwrap()
+}
+
 fn tight() -> ChainSettings {
     ChainSettings::default().with_tolerances(1e-12, 1e-17)
 }
@@ -248,17 +264,7 @@ fn the_hertz_chain_carries_nesterenko_solitary_waves() {
     let m = 7850.0 * 4.0 / 3.0 * std::f64::consts::PI * r * r * r;
     // Two identical spheres: F = (2/3) E / (1 - ν²) √(R/2) δ^(3/2), E = 200 GPa, ν = 0.3.
     let k = 2.0 / 3.0 * 200e9 / (1.0 - 0.09) * (r / 2.0f64).sqrt();
-    let law = Physical {
-        k,
-        c: 0.0,
-        n: 1.0,
-        p: 1.5,
-        alpha: 0.5,
-        beta: 0.0,
-        gamma: 0.0,
-        a: 1.0,
-    };
-    let law = PairLaw::new(&PhysicalParams::new(ModelKind::Shccm, law).unwrap()).unwrap();
+    let law = elastic_hertz(k);
     let wave = |striker: f64| {
         let bodies: Vec<_> = (0..60)
             .map(|i| {
@@ -333,19 +339,7 @@ fn hard_spheres(masses: &[f64], x: &[f64], v: &[f64], length: f64, wall: bool) -
 /// gives the hard-sphere velocities exactly).
 #[test]
 fn stiff_elastic_chains_approach_the_hard_sphere_limit() {
-    let elastic = |k: f64| {
-        let law = Physical {
-            k,
-            c: 0.0,
-            n: 1.0,
-            p: 1.5,
-            alpha: 0.5,
-            beta: 0.0,
-            gamma: 0.0,
-            a: 1.0,
-        };
-        PairLaw::new(&PhysicalParams::new(ModelKind::Shccm, law).unwrap()).unwrap()
-    };
+    let elastic = elastic_hertz;
     let cases: [(&[f64], f64, f64, bool); 2] = [
         // The stack: heavy to light from the wall, all at -4.43 m/s, 10 mm apart.
         (&[0.6, 0.145, 0.057], 0.05, 0.01, true),
