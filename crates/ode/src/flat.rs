@@ -488,6 +488,55 @@ impl<F: FlatSystem> FlatIntegrator<F> {
         self.dense_ready = false;
     }
 
+    /// Restarts the integration at `t` from `y` with absolute tolerances `atol`, on a state
+    /// whose size ([`FlatSystem::len`], after the system was changed through
+    /// [`FlatIntegrator::system_and_state_mut`]) may differ from before: a system that
+    /// integrates only part of a larger one (the bodies in contact). The buffers grow only past
+    /// the largest size so far; keeps the proposed step size.
+    ///
+    /// # Errors
+    /// [`Error::InvalidOption`] if `y` or `atol` does not have the system's length or a
+    /// tolerance is not positive and finite; as [`FlatIntegrator::restart`].
+    pub fn restart_with(&mut self, t: f64, y: &[f64], atol: &[f64]) -> Result<(), Error> {
+        let n = self.f.len();
+        let invalid = |name: &'static str, value: f64, allowed: &'static str| {
+            Err(Error::InvalidOption {
+                name,
+                value,
+                allowed,
+            })
+        };
+        if y.len() != n {
+            return invalid("y", y.len() as f64, "one value per component of the system");
+        }
+        if atol.len() != n {
+            let allowed = "one absolute tolerance per component of the system";
+            return invalid("atol", atol.len() as f64, allowed);
+        }
+        if let Some(a) = atol.iter().find(|a| !(**a > 0.0 && a.is_finite())) {
+            return invalid("atol", *a, "positive and finite");
+        }
+        self.n = n;
+        for v in [
+            &mut self.carry,
+            &mut self.f_now,
+            &mut self.y_prev,
+            &mut self.carry_prev,
+            &mut self.scratch,
+            &mut self.y1,
+            &mut self.carry1,
+        ] {
+            v.resize(n, 0.0);
+        }
+        self.k.resize(self.tab.total_stages() * n, 0.0);
+        self.rows.resize(MAX_ROWS * n, 0.0);
+        self.y.clear();
+        self.y.extend_from_slice(y);
+        self.atol.clear();
+        self.atol.extend_from_slice(atol);
+        self.restart(t)
+    }
+
     /// Restarts the integration at `t` from the current state (after an event changed the
     /// system or the state): one evaluation; keeps the proposed step size.
     ///

@@ -2,7 +2,7 @@
 //! located on the step's dense output down to adjacent floating-point numbers
 //! ([`bwc_events::find_crossing`]).
 
-use super::system::ChainSystem;
+use super::system::{ChainSystem, NONE};
 use crate::input::Input;
 use crate::separated;
 use bwc_events::{class, find_crossing};
@@ -29,55 +29,61 @@ pub(super) struct Event {
 
 type Chain<'a, I> = FlatIntegrator<ChainSystem<'a, I>>;
 
+/// Body `i`'s displacement (m) and velocity (m/s) at `t` inside the last step: on the dense
+/// output where it is integrated, in closed form where it flies free.
+fn body_at<I: Input>(it: &mut Chain<'_, I>, i: usize, t: f64) -> (f64, f64) {
+    let sys = it.system();
+    match sys.local(i) {
+        NONE => sys.motion[i].at(t),
+        k => {
+            let e = sys.integrated.len();
+            (it.dense_component(k, t), it.dense_component(e + k, t))
+        }
+    }
+}
+
 /// Pair `j`'s gap less its onset gap, at `t` inside the last step.
 fn gap_at<I: Input>(it: &mut Chain<'_, I>, j: usize, onset: f64, t: f64) -> f64 {
     let p = it.system().pairs[j];
-    let r = p.right.map_or(0.0, |r| it.dense_component(r, t));
-    let l = p.left.map_or(0.0, |l| it.dense_component(l, t));
+    let r = p.right.map_or(0.0, |r| body_at(it, r, t).0);
+    let l = p.left.map_or(0.0, |l| body_at(it, l, t).0);
     p.gap0 + r - l - onset
 }
 
 /// Pair `j`'s relative velocity (m/s) at `t` inside the last step.
 fn velocity_at<I: Input>(it: &mut Chain<'_, I>, j: usize, t: f64) -> f64 {
-    let n = it.system().bodies();
     let p = it.system().pairs[j];
-    p.right.map_or(0.0, |r| it.dense_component(n + r, t))
-        - p.left.map_or(0.0, |l| it.dense_component(n + l, t))
+    p.right.map_or(0.0, |r| body_at(it, r, t).1) - p.left.map_or(0.0, |l| body_at(it, l, t).1)
 }
 
-/// Pair `j`'s force (N) and relative velocity (m/s) at `t` inside the last step.
+/// Active pair `j`'s force (N) and relative velocity (m/s) at `t` inside the last step.
 fn contact_at<I: Input>(it: &mut Chain<'_, I>, j: usize, t: f64) -> (f64, f64) {
-    let n = it.system().bodies();
-    let p = it.system().pairs[j];
     let o = it.system().slot(j);
     let s = [0, 1, 2].map(|c| it.dense_component(o + c, t));
-    let u = p.right.map_or(0.0, |r| it.dense_component(n + r, t))
-        - p.left.map_or(0.0, |l| it.dense_component(n + l, t));
-    (p.law.force(&s, u), u)
+    let u = velocity_at(it, j, t);
+    (it.system().pairs[j].law.force(&s, u), u)
 }
 
-/// Pair `j`'s kink functions at `t` inside the last step.
+/// Active pair `j`'s kink functions at `t` inside the last step.
 fn kinks_at<I: Input>(it: &mut Chain<'_, I>, j: usize, t: f64) -> [f64; 2] {
-    let (_, u) = contact_at(it, j, t);
+    let u = velocity_at(it, j, t);
     let o = it.system().slot(j);
     let s = [0, 1, 2].map(|c| it.dense_component(o + c, t));
     it.system().pairs[j].law.kinks(&s, u)
 }
 
-/// The first event of the last accepted step `[t0, t1]` over all pairs, `onsets` the pairs'
-/// onset gaps; `None` if there is none. An event at `t0` itself (a gap that leaves zero
-/// downwards at the step's start) has `t == t0`.
+/// The first event of the last accepted step `[t0, t1]` over the watched pairs (those with
+/// an integrated body), `onsets` the pairs' onset gaps; `None` if there is none. An event at
+/// `t0` itself (a gap that leaves zero downwards at the step's start) has `t == t0`.
 pub(super) fn first<I: Input>(it: &mut Chain<'_, I>, onsets: &[f64]) -> Option<Event> {
     let mut best: Option<Event> = None;
-    let mut active = 0;
-    for (j, &onset) in onsets.iter().enumerate() {
+    for w in 0..it.system().watched.len() {
+        let j = it.system().watched[w];
         let horizon = best.map_or(it.t(), |e| e.t);
-        let is_active = it.system().active.get(active) == Some(&j);
-        let found = if is_active {
-            active += 1;
+        let found = if it.system().is_active(j) {
             contact_event(it, j, horizon)
         } else {
-            onset_event(it, j, onset, horizon)
+            onset_event(it, j, onsets[j], horizon)
         };
         if let Some(e) = found.filter(|e| best.is_none_or(|b| e.t < b.t)) {
             best = Some(e);
@@ -98,7 +104,10 @@ fn onset_event<I: Input>(
 ) -> Option<Event> {
     let (t0, t1) = (it.t_prev(), it.t());
     let sys = it.system();
-    let (g0, g1) = (sys.gap(j, it.y_prev()) - onset, sys.gap(j, it.y()) - onset);
+    let (g0, g1) = (
+        sys.gap(j, t0, it.y_prev()) - onset,
+        sys.gap(j, t1, it.y()) - onset,
+    );
     let event = |t| {
         Some(Event {
             t,
@@ -110,8 +119,8 @@ fn onset_event<I: Input>(
         return None;
     }
     let (r0, r1) = (
-        sys.relative_velocity(j, it.y_prev()),
-        sys.relative_velocity(j, it.y()),
+        sys.relative_velocity(j, t0, it.y_prev()),
+        sys.relative_velocity(j, t1, it.y()),
     );
     if g0 < 0.0 {
         // Below the onset gap and not in contact (it opened there): a contact begins where
@@ -185,8 +194,8 @@ fn contact_event<I: Input>(it: &mut Chain<'_, I>, j: usize, horizon: f64) -> Opt
     let o = sys.slot(j);
     let law = sys.pairs[j].law;
     let (u0, u1) = (
-        sys.relative_velocity(j, it.y_prev()),
-        sys.relative_velocity(j, it.y()),
+        sys.relative_velocity(j, t0, it.y_prev()),
+        sys.relative_velocity(j, t1, it.y()),
     );
     let (s0, s1) = (&it.y_prev()[o..o + 3], &it.y()[o..o + 3]);
     let (k0, k1) = (law.kinks(s0, u0), law.kinks(s1, u1));

@@ -14,11 +14,17 @@
 //! the pair last separated, as a `[sequence]` scene's next contact) and ends at
 //! `t_s = inf{t : F_j <= 0 <= u_j}` ([`crate::separated`]); its law starts at rest
 //! ([`Policy::Reset`]) or from the state it separated with ([`Policy::Carry`]). A pair may
-//! touch many times, and any number of contacts may be active at once. The whole system is one
+//! touch many times, and any number of contacts may be active at once. The system is one
 //! adaptive integration ([`bwc_ode::FlatIntegrator`], DOP853) that stops exactly at every onset,
 //! separation and kink of a law (its `z = 0` and the zero of the rate across its hysteretic
-//! element), so no step straddles a point where the right-hand side is not smooth. A step costs
-//! `O(N)` for the bodies plus `O(1)` per active contact and allocates nothing.
+//! element), so no step straddles a point where the right-hand side is not smooth.
+//!
+//! Under inputs constant in time the integration carries only the bodies in contact
+//! ([`Scheme::Contacts`]): a body in no contact flies on a parabola in closed form, and the
+//! onset of a pair of two such bodies (or of one and a wall) is predicted in closed form and
+//! waits in a queue, so a step costs `O(1)` per body in contact and per active contact,
+//! whatever the chain's length, and allocates nothing. Inputs that vary in time integrate every
+//! body ([`Scheme::Whole`], `O(N)` per step).
 //!
 //! The energy ledger is exact bookkeeping, not an estimate: kinetic `Σ m_i v_i² / 2`, stored
 //! in the laws ([`crate::ContactLaw::stored`]), dissipated (the integral of each law's closed
@@ -43,6 +49,7 @@
 //! ```
 
 mod events;
+mod free;
 mod run;
 mod system;
 
@@ -135,15 +142,33 @@ pub struct ChainSettings {
     pub atol: f64,
     /// What a law's state is at the onset of its pair's next contact.
     pub policy: Policy,
+    /// Which bodies are integrated.
+    pub scheme: Scheme,
+}
+
+/// Which bodies a chain's integration carries.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum Scheme {
+    /// Only the bodies in contact, under inputs constant in time: a body in no contact flies
+    /// on a parabola in closed form, and the onsets of pairs in free flight are predicted in
+    /// closed form, so a step costs `O(1)` per body in contact whatever the chain's length.
+    /// Inputs that vary in time fall back to [`Scheme::Whole`].
+    #[default]
+    Contacts,
+    /// Every body, at every step: `O(N)` per step (the reference the other scheme is checked
+    /// against).
+    Whole,
 }
 
 impl Default for ChainSettings {
-    /// `rtol` 1e-10, `atol` 1e-14 m, [`Policy::Reset`].
+    /// `rtol` 1e-10, `atol` 1e-14 m, [`Policy::Reset`], [`Scheme::Contacts`].
     fn default() -> Self {
         Self {
             rtol: 1e-10,
             atol: 1e-14,
             policy: Policy::Reset,
+            scheme: Scheme::Contacts,
         }
     }
 }
@@ -152,6 +177,11 @@ impl ChainSettings {
     /// The settings with `policy`.
     pub fn with_policy(self, policy: Policy) -> Self {
         Self { policy, ..self }
+    }
+
+    /// The settings with `scheme`.
+    pub fn with_scheme(self, scheme: Scheme) -> Self {
+        Self { scheme, ..self }
     }
 
     /// The settings with tolerances `rtol` and `atol` (m).
@@ -320,6 +350,11 @@ impl<I: Input> Chain<I> {
     /// The walls.
     pub fn walls(&self) -> Walls {
         self.walls
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> ChainSettings {
+        self.settings
     }
 
     /// Number of pairs (neighbouring bodies, and a wall with its body).

@@ -2,8 +2,9 @@
 //! ledger and the samples in time.
 
 use super::events::{self, Event, Kind};
-use super::system::{ChainSystem, Pair, DISSIPATED, SLOT};
-use super::{Chain, Stop};
+use super::free::{Flight, Onsets};
+use super::system::{ChainSystem, Pair, Tolerances, DISSIPATED, NONE, SLOT};
+use super::{Chain, Scheme, Stop};
 use crate::input::Input;
 use crate::sequence::Policy;
 use crate::ModelError;
@@ -116,7 +117,9 @@ pub struct ChainRun {
     pub stats: Stats,
 }
 
-/// Where a run stands beyond the integrator: each pair's onset gap and open contact.
+/// Where a run stands beyond the integrator: each pair's onset gap and open contact, the
+/// onsets predicted for pairs in free flight, and the switches of the active set at the
+/// current point.
 struct Book {
     onsets: Vec<f64>,
     open: Vec<Option<usize>>,
@@ -126,7 +129,27 @@ struct Book {
     initial: f64,
     masses: Vec<f64>,
     policy: Policy,
+    queue: Onsets,
+    /// Pairs beginning and ending contact at the current point.
+    began: Vec<usize>,
+    ended: Vec<usize>,
+    /// Scratch: the next active set, its integrated state and tolerances.
+    next: Vec<usize>,
+    y_next: Vec<f64>,
+    atol_next: Vec<f64>,
 }
+
+/// What a stretch of free flight (nothing integrated) ended at.
+enum Landing {
+    /// A predicted onset.
+    Event(Event),
+    /// The instant the chain settled.
+    Settled,
+    /// The horizon.
+    Horizon,
+}
+
+type It<'a, I> = FlatIntegrator<ChainSystem<'a, I>>;
 
 impl<I: Input> Chain<I> {
     /// Runs the chain until `stop`, calling `observer` at `t = 0, dt, 2 dt, ...` where `dt`
@@ -143,56 +166,37 @@ impl<I: Input> Chain<I> {
         mut observer: impl FnMut(&Sample<'_>),
     ) -> Result<ChainRun, ModelError> {
         check_stop(stop, dt)?;
-        let system = self.system();
-        let y0 = vec![0.0; bwc_ode::FlatSystem::len(&system)];
-        let mut y0 = y0;
-        let n = self.bodies.len();
-        for (i, b) in self.bodies.iter().enumerate() {
-            y0[n + i] = b.velocity;
-        }
-        let initial: f64 = self
-            .bodies
-            .iter()
-            .map(|b| 0.5 * b.mass * b.velocity * b.velocity)
-            .sum();
-        let options = self.options(&system, initial);
-        let mut it = FlatIntegrator::new(system, &DOP853, 0.0, &y0, options)
-            .map_err(|e| ModelError::Solver(e.into()))?;
-        let mut book = Book {
-            onsets: vec![0.0; self.pairs()],
-            open: vec![None; self.pairs()],
-            contacts: Vec::new(),
-            dissipated_at_onset: vec![0.0; self.pairs()],
-            initial,
-            masses: self.bodies.iter().map(|b| b.mass).collect(),
-            policy: self.settings.policy,
-        };
+        let solver = |e: bwc_ode::Error| ModelError::Solver(e.into());
+        let (mut it, mut book) = self.start()?;
         let mut sampler = dt.map(|dt| Sampler::new(dt, &it));
         take_up_touching(&mut it, &mut book)?;
         if let Some(s) = sampler.as_mut() {
-            s.emit_current(self, &it, &book, &mut observer);
+            s.emit(self, &mut it, &book, &mut observer);
         }
         let mut same_instant = 0;
         let settled = loop {
-            if stop.settled && is_settled(&it) {
+            if stop.settled && is_settled(&it, &mut book) {
                 break true;
             }
             if it.t() >= stop.horizon {
                 break false;
             }
-            it.step(stop.horizon)
-                .map_err(|e| ModelError::Solver(e.into()))?;
-            let event = events::first(&mut it, &book.onsets);
-            if let Some(e) = event.filter(|e| e.t < it.t()) {
-                if e.t > it.t_prev() {
-                    it.retake_to(e.t)
-                        .map_err(|e| ModelError::Solver(e.into()))?;
-                } else {
-                    it.undo();
+            let event = if it.system().integrated.is_empty() {
+                match fly(&mut it, &mut book, stop)? {
+                    Landing::Event(e) => Some(e),
+                    Landing::Settled => {
+                        if let Some(s) = sampler.as_mut() {
+                            s.emit(self, &mut it, &book, &mut observer);
+                        }
+                        break true;
+                    }
+                    Landing::Horizon => None,
                 }
-            }
+            } else {
+                step(&mut it, &mut book, stop.horizon).map_err(solver)?
+            };
             if let Some(s) = sampler.as_mut() {
-                s.emit_step(self, &mut it, &book, &mut observer);
+                s.emit(self, &mut it, &book, &mut observer);
             }
             record_peaks(&it, &mut book);
             if let Some(e) = event {
@@ -214,8 +218,61 @@ impl<I: Input> Chain<I> {
         Ok(self.finish(&it, book, settled))
     }
 
-    fn system(&self) -> ChainSystem<'_, I> {
-        let pairs = (0..self.pairs())
+    /// The integration and the book at `t = 0`, before any contact; in free flight, every
+    /// pair's onset predicted.
+    fn start(&self) -> Result<(It<'_, I>, Book), ModelError> {
+        let initial: f64 = self
+            .bodies
+            .iter()
+            .map(|b| 0.5 * b.mass * b.velocity * b.velocity)
+            .sum();
+        let whole = self.settings.scheme == Scheme::Whole
+            || !self.bodies.iter().all(|b| b.input.is_constant());
+        // Tolerances: `atol` (m) for positions and law displacements, `atol / (1 s)` for
+        // velocities, and for the energies the relative tolerance of the initial kinetic
+        // energy (1 J where that is zero), so that the ledger closes to the tolerance.
+        let tolerances = Tolerances {
+            length: self.settings.atol,
+            energy: self.settings.rtol * if initial > 0.0 { initial } else { 1.0 },
+        };
+        let masses: Vec<f64> = self.bodies.iter().map(|b| b.mass).collect();
+        let velocities: Vec<f64> = self.bodies.iter().map(|b| b.velocity).collect();
+        let inputs = self.bodies.iter().map(|b| &b.input).collect();
+        let (system, y0, atol) = ChainSystem::new(
+            (&masses, &velocities, inputs),
+            self.pairs_of(),
+            whole,
+            tolerances,
+        );
+        let options = FlatOptions::new(self.settings.rtol, atol);
+        let it = FlatIntegrator::new(system, &DOP853, 0.0, &y0, options)
+            .map_err(|e| ModelError::Solver(e.into()))?;
+        let pairs = self.pairs();
+        let mut book = Book {
+            onsets: vec![0.0; pairs],
+            open: vec![None; pairs],
+            contacts: Vec::new(),
+            dissipated_at_onset: vec![0.0; pairs],
+            initial,
+            masses,
+            policy: self.settings.policy,
+            queue: Onsets::new(pairs),
+            began: Vec::new(),
+            ended: Vec::new(),
+            next: Vec::new(),
+            y_next: Vec::new(),
+            atol_next: Vec::new(),
+        };
+        if !whole {
+            for j in 0..pairs {
+                predict(&it, &mut book, j);
+            }
+        }
+        Ok((it, book))
+    }
+
+    fn pairs_of(&self) -> Vec<Pair> {
+        (0..self.pairs())
             .map(|j| {
                 let (left, right) = self.pair_bodies(j);
                 Pair {
@@ -225,62 +282,129 @@ impl<I: Input> Chain<I> {
                     gap0: self.initial_gap(j),
                 }
             })
-            .collect();
-        ChainSystem {
-            inverse_mass: self.bodies.iter().map(|b| 1.0 / b.mass).collect(),
-            inputs: self.bodies.iter().map(|b| &b.input).collect(),
-            forced: self.bodies.iter().any(|b| !b.input.is_zero()),
-            pairs,
-            active: Vec::with_capacity(self.pairs()),
-        }
+            .collect()
     }
 
-    /// Tolerances: `atol` (m) for positions and law displacements, `atol / (1 s)` for
-    /// velocities, and for the energies the relative tolerance of the initial kinetic energy
-    /// (1 J where that is zero), so that the ledger closes to the integration's tolerance.
-    fn options(&self, system: &ChainSystem<'_, I>, initial: f64) -> FlatOptions {
-        let len = bwc_ode::FlatSystem::len(system);
-        let mut atol = vec![self.settings.atol; len];
-        let energy = self.settings.rtol * if initial > 0.0 { initial } else { 1.0 };
-        for j in 0..self.pairs() {
-            atol[system.slot(j) + DISSIPATED] = energy;
-        }
-        atol[system.work()] = energy;
-        FlatOptions::new(self.settings.rtol, atol)
-    }
-
-    fn finish(
-        &self,
-        it: &FlatIntegrator<ChainSystem<'_, I>>,
-        book: Book,
-        settled: bool,
-    ) -> ChainRun {
-        let n = self.bodies.len();
-        let y = it.y();
+    fn finish(&self, it: &It<'_, I>, book: Book, settled: bool) -> ChainRun {
+        let (sys, t, y) = (it.system(), it.t(), it.y());
         let bodies = self
             .bodies
             .iter()
             .enumerate()
-            .map(|(i, b)| FinalBody {
-                position: b.position + y[i],
-                velocity: y[n + i],
+            .map(|(i, b)| {
+                let (d, v) = sys.body(i, t, y);
+                FinalBody {
+                    position: b.position + d,
+                    velocity: v,
+                }
             })
             .collect();
         let mut contacts = book.contacts.clone();
         for (j, open) in book.open.iter().enumerate() {
             if let Some(k) = open {
                 contacts[*k].dissipated =
-                    y[it.system().slot(j) + DISSIPATED] - book.dissipated_at_onset[j];
+                    sys.law_slot(j, y)[DISSIPATED] - book.dissipated_at_onset[j];
             }
         }
         ChainRun {
-            t_end: it.t(),
+            t_end: t,
             settled,
             bodies,
             contacts,
-            ledger: ledger(it.system(), y, &book),
+            ledger: ledger(sys, t, y, &book),
             stats: it.stats(),
         }
+    }
+}
+
+/// One step of the integrated bodies, back to its first event if it has one: an event of a
+/// watched pair on the dense output, or a predicted onset of a pair in free flight.
+fn step<I: Input>(
+    it: &mut It<'_, I>,
+    book: &mut Book,
+    horizon: f64,
+) -> Result<Option<Event>, bwc_ode::Error> {
+    it.step(horizon)?;
+    let mut event = events::first(it, &book.onsets);
+    if let Some((t, pair)) = book.queue.first() {
+        if t <= it.t() && event.is_none_or(|e| t < e.t) {
+            event = Some(Event {
+                t,
+                pair,
+                kind: Kind::Onset,
+            });
+        }
+    }
+    if let Some(e) = event.filter(|e| e.t < it.t()) {
+        if e.t > it.t_prev() {
+            it.retake_to(e.t)?;
+        } else {
+            it.undo();
+        }
+    }
+    Ok(event)
+}
+
+/// Free flight with nothing integrated: on to the next predicted onset, the horizon, or (when
+/// the run stops once settled and no onset is ahead) the instant every gap stops closing.
+fn fly<I: Input>(it: &mut It<'_, I>, book: &mut Book, stop: Stop) -> Result<Landing, ModelError> {
+    let next = book.queue.first();
+    let settle = match next {
+        None if stop.settled => settling_time(it),
+        _ => f64::INFINITY,
+    };
+    let (to, landing) = match next {
+        Some((t, pair)) if t <= stop.horizon => (
+            t,
+            Landing::Event(Event {
+                t,
+                pair,
+                kind: Kind::Onset,
+            }),
+        ),
+        _ if settle <= stop.horizon => (settle, Landing::Settled),
+        _ => (stop.horizon, Landing::Horizon),
+    };
+    it.restart(to).map_err(|e| ModelError::Solver(e.into()))?;
+    Ok(landing)
+}
+
+/// With every body in free flight and no onset ahead: when the last closing gap stops closing
+/// (each pair's relative velocity and acceleration then `>= 0`), `∞` if one never does.
+fn settling_time<I: Input>(it: &It<'_, I>) -> f64 {
+    let (sys, t, y) = (it.system(), it.t(), it.y());
+    let mut at = t;
+    for j in 0..sys.pairs.len() {
+        let (u, a) = (
+            sys.relative_velocity(j, t, y),
+            sys.relative_acceleration(j, it.derivative()),
+        );
+        if a < 0.0 || u < 0.0 && a == 0.0 {
+            return f64::INFINITY;
+        }
+        if u < 0.0 {
+            at = at.max(t - u / a);
+        }
+    }
+    at
+}
+
+/// Predicts pair `j`'s onset if both its sides fly free (a wall counts as free).
+fn predict<I: Input>(it: &It<'_, I>, book: &mut Book, j: usize) {
+    let (sys, t, y) = (it.system(), it.t(), it.y());
+    let p = &sys.pairs[j];
+    let free = |b: Option<usize>| b.is_none_or(|i| sys.local(i) == NONE);
+    if sys.is_active(j) || !free(p.left) || !free(p.right) {
+        return;
+    }
+    let flight = Flight {
+        t,
+        h0: sys.gap(j, t, y) - book.onsets[j],
+        u: sys.relative_velocity(j, t, y),
+        a: sys.relative_acceleration(j, it.derivative()),
+    };
+    if let Some(at) = flight.onset() {
+        book.queue.push(j, at);
     }
 }
 
@@ -302,48 +426,57 @@ fn check_stop(stop: Stop, dt: Option<f64>) -> Result<(), ModelError> {
     Ok(())
 }
 
-/// The ledger of state `y`.
-fn ledger<I: Input>(system: &ChainSystem<'_, I>, y: &[f64], book: &Book) -> Ledger {
-    let n = system.bodies();
-    let kinetic = (0..n)
-        .map(|i| 0.5 * book.masses[i] * y[n + i] * y[n + i])
-        .sum();
+/// The ledger at `t`, `y` the integrated state there. The work of constant inputs is
+/// `Σ u_i d_i` exactly; that of inputs varying in time is integrated (every body is then).
+fn ledger<I: Input>(system: &ChainSystem<'_, I>, t: f64, y: &[f64], book: &Book) -> Ledger {
+    let (mut kinetic, mut work) = (0.0, 0.0);
+    for (i, m) in book.masses.iter().enumerate() {
+        let (d, v) = system.body(i, t, y);
+        kinetic += 0.5 * m * v * v;
+        if !system.whole {
+            work += system.inputs[i].at(t) * d;
+        }
+    }
+    if system.whole {
+        work = y[system.work()];
+    }
     let (mut stored, mut dissipated) = (0.0, 0.0);
     for (j, p) in system.pairs.iter().enumerate() {
-        let o = system.slot(j);
-        stored += p.law.stored(&y[o..o + 3]);
-        dissipated += y[o + DISSIPATED];
+        let s = system.law_slot(j, y);
+        stored += p.law.stored(s);
+        dissipated += s[DISSIPATED];
     }
     Ledger {
         kinetic,
         stored,
         dissipated,
-        work: y[system.work()],
+        work,
         initial: book.initial,
     }
 }
 
 /// Whether no contact is active and no gap is closing: every relative velocity `>= 0`, and
-/// under constant inputs every relative acceleration too.
-fn is_settled<I: Input>(it: &FlatIntegrator<ChainSystem<'_, I>>) -> bool {
-    let sys = it.system();
-    if !sys.active.is_empty() {
+/// under constant inputs every relative acceleration too. In free flight a predicted onset
+/// means a gap is closing.
+fn is_settled<I: Input>(it: &It<'_, I>, book: &mut Book) -> bool {
+    let (sys, t, y) = (it.system(), it.t(), it.y());
+    if !sys.active.is_empty() || !sys.whole && book.queue.first().is_some() {
         return false;
     }
     let constant = sys.inputs.iter().all(|i| i.is_constant());
     (0..sys.pairs.len()).all(|j| {
-        sys.relative_velocity(j, it.y()) >= 0.0
+        sys.relative_velocity(j, t, y) >= 0.0
             && constant
             && sys.relative_acceleration(j, it.derivative()) >= 0.0
     })
 }
 
 /// Raises the open contacts' peak forces to their forces at the current point.
-fn record_peaks<I: Input>(it: &FlatIntegrator<ChainSystem<'_, I>>, book: &mut Book) {
+fn record_peaks<I: Input>(it: &It<'_, I>, book: &mut Book) {
     let sys = it.system();
     for &j in &sys.active {
         let Some(k) = book.open[j] else { continue };
-        let f = sys.force(j, it.y());
+        let f = sys.force(j, it.t(), it.y());
         let c = &mut book.contacts[k];
         if f > c.peak_force {
             c.peak_force = f;
@@ -354,39 +487,37 @@ fn record_peaks<I: Input>(it: &FlatIntegrator<ChainSystem<'_, I>>, book: &mut Bo
 
 /// Takes up the contacts of pairs whose gap is closed (at or below the onset gap) and closing
 /// at the current point: a contact that begins exactly at a restart (bodies placed touching,
-/// or pushed together by another contact's event).
-fn take_up_touching<I: Input>(
-    it: &mut FlatIntegrator<ChainSystem<'_, I>>,
-    book: &mut Book,
-) -> Result<(), ModelError> {
-    let mut began = false;
-    for j in 0..book.onsets.len() {
+/// or pushed together by another contact's event). Watched pairs are tested here; pairs in
+/// free flight have their onset predicted at this instant.
+fn take_up_touching<I: Input>(it: &mut It<'_, I>, book: &mut Book) -> Result<(), ModelError> {
+    let t = it.t();
+    for w in 0..it.system().watched.len() {
         let sys = it.system();
-        let closing = book.open[j].is_none()
-            && sys.gap(j, it.y()) <= book.onsets[j]
-            && sys.relative_velocity(j, it.y()) < 0.0;
+        let j = sys.watched[w];
+        let closing = !sys.is_active(j)
+            && sys.gap(j, t, it.y()) <= book.onsets[j]
+            && sys.relative_velocity(j, t, it.y()) < 0.0;
         if closing {
-            // Beginning a contact changes no state, so the next pairs' tests stand.
             begin(it, book, j);
-            began = true;
         }
     }
-    if !began {
+    // Onsets are predicted no earlier than the instant they are predicted at, and a step ends
+    // at the first of them: those due now are the only ones not after now.
+    while let Some((_, j)) = book.queue.first().filter(|(at, _)| *at <= t) {
+        book.queue.pop();
+        begin(it, book, j);
+    }
+    if book.began.is_empty() {
         return Ok(());
     }
-    let t = it.t();
-    it.restart(t).map_err(|e| ModelError::Solver(e.into()))
+    switch(it, book)
 }
 
-/// Begins pair `j`'s contact at the current point (the integrator restarts after).
-fn begin<I: Input>(it: &mut FlatIntegrator<ChainSystem<'_, I>>, book: &mut Book, j: usize) {
-    let t = it.t();
-    let (sys, y) = it.system_and_state_mut();
-    let u = sys.relative_velocity(j, y);
-    if let Err(k) = sys.active.binary_search(&j) {
-        sys.active.insert(k, j);
-    }
-    book.dissipated_at_onset[j] = y[sys.slot(j) + DISSIPATED];
+/// Begins pair `j`'s contact at the current point ([`switch`] follows).
+fn begin<I: Input>(it: &It<'_, I>, book: &mut Book, j: usize) {
+    let (sys, t) = (it.system(), it.t());
+    let u = sys.relative_velocity(j, t, it.y());
+    book.dissipated_at_onset[j] = sys.parked[j][DISSIPATED];
     book.open[j] = Some(book.contacts.len());
     book.contacts.push(ContactRecord {
         pair: j,
@@ -398,49 +529,81 @@ fn begin<I: Input>(it: &mut FlatIntegrator<ChainSystem<'_, I>>, book: &mut Book,
         peak_force: 0.0,
         peak_at: t,
     });
+    book.began.push(j);
 }
 
 /// Ends pair `j`'s contact at the current point: records it, moves its onset gap to where it
 /// separated and, under [`Policy::Reset`], puts its law at rest (what it stored counted as
-/// dissipated).
-fn end<I: Input>(it: &mut FlatIntegrator<ChainSystem<'_, I>>, book: &mut Book, j: usize) {
+/// dissipated); [`switch`] follows.
+fn end<I: Input>(it: &mut It<'_, I>, book: &mut Book, j: usize) {
     let t = it.t();
     let (sys, y) = it.system_and_state_mut();
-    let u = sys.relative_velocity(j, y);
-    if let Ok(k) = sys.active.binary_search(&j) {
-        sys.active.remove(k);
-    }
+    let u = sys.relative_velocity(j, t, y);
     let o = sys.slot(j);
     if book.policy == Policy::Reset {
         y[o + DISSIPATED] += sys.pairs[j].law.stored(&y[o..o + 3]);
         y[o..o + SLOT - 1].fill(0.0);
     }
-    book.onsets[j] = sys.gap(j, y);
+    book.onsets[j] = sys.gap(j, t, y);
     if let Some(k) = book.open[j].take() {
         let c = &mut book.contacts[k];
         c.separation = Some(t);
         c.separation_velocity = Some(u.max(0.0));
         c.dissipated = y[o + DISSIPATED] - book.dissipated_at_onset[j];
     }
+    book.ended.push(j);
+}
+
+/// Applies the contacts begun and ended at the current point: the new active set, the bodies
+/// it integrates, and the onsets of the pairs whose bodies changed between integrated and
+/// free; the integration restarts there.
+fn switch<I: Input>(it: &mut It<'_, I>, book: &mut Book) -> Result<(), ModelError> {
+    let t = it.t();
+    book.next.clear();
+    let (ended, began) = (&book.ended, &book.began);
+    book.next.extend(
+        it.system()
+            .active
+            .iter()
+            .filter(|j| !ended.contains(j))
+            .chain(began.iter()),
+    );
+    book.next.sort_unstable();
+    let (sys, y) = it.system_and_state_mut();
+    sys.relayout(t, y, &book.next, (&mut book.y_next, &mut book.atol_next));
+    it.restart_with(t, &book.y_next, &book.atol_next)
+        .map_err(|e| ModelError::Solver(e.into()))?;
+    book.began.clear();
+    book.ended.clear();
+    if !it.system().whole {
+        for c in 0..it.system().changed.len() {
+            let i = it.system().changed[c];
+            for j in it.system().body_pairs[i].into_iter().flatten() {
+                book.queue.void(j);
+                predict(it, book, j);
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Applies `event` at the current point and restarts the integration there.
-fn apply<I: Input>(
-    it: &mut FlatIntegrator<ChainSystem<'_, I>>,
-    book: &mut Book,
-    event: Event,
-) -> Result<(), ModelError> {
+fn apply<I: Input>(it: &mut It<'_, I>, book: &mut Book, event: Event) -> Result<(), ModelError> {
     it.record_event();
     match event.kind {
         Kind::Onset => begin(it, book, event.pair),
         Kind::Separation => end(it, book, event.pair),
         Kind::Kink => {}
     }
+    if !book.began.is_empty() || !book.ended.is_empty() {
+        return switch(it, book);
+    }
     let t = it.t();
     it.restart(t).map_err(|e| ModelError::Solver(e.into()))
 }
 
-/// Samples at `t = k dt` from the dense output of each step.
+/// Samples at `t = k dt`: integrated bodies and laws from the last step's dense output, bodies
+/// in free flight in closed form.
 struct Sampler {
     dt: f64,
     next: u64,
@@ -452,7 +615,7 @@ struct Sampler {
 }
 
 impl Sampler {
-    fn new<I: Input>(dt: f64, it: &FlatIntegrator<ChainSystem<'_, I>>) -> Self {
+    fn new<I: Input>(dt: f64, it: &It<'_, I>) -> Self {
         let sys = it.system();
         let (n, p) = (sys.bodies(), sys.pairs.len());
         Self {
@@ -466,45 +629,34 @@ impl Sampler {
         }
     }
 
-    /// The sample at the current point if it is due (`t = 0`).
-    fn emit_current<I: Input>(
+    /// The samples due up to the current point (inside the last step, or the last stretch of
+    /// free flight).
+    fn emit<I: Input>(
         &mut self,
         chain: &Chain<I>,
-        it: &FlatIntegrator<ChainSystem<'_, I>>,
-        book: &Book,
-        observer: &mut impl FnMut(&Sample<'_>),
-    ) {
-        self.y.copy_from_slice(it.y());
-        self.emit(chain, it.system(), it.t(), book, observer);
-        self.next = 1;
-    }
-
-    /// The samples due inside the last step `(t_prev, t]`.
-    fn emit_step<I: Input>(
-        &mut self,
-        chain: &Chain<I>,
-        it: &mut FlatIntegrator<ChainSystem<'_, I>>,
+        it: &mut It<'_, I>,
         book: &Book,
         observer: &mut impl FnMut(&Sample<'_>),
     ) {
         loop {
             let t = self.next as f64 * self.dt;
-            if t > it.t() || it.t() <= it.t_prev() {
+            if t > it.t() {
                 return;
             }
-            if t == it.t() {
+            self.y.resize(it.y().len(), 0.0);
+            if t == it.t() || it.t() <= it.t_prev() {
                 self.y.copy_from_slice(it.y());
             } else {
                 for c in 0..self.y.len() {
                     self.y[c] = it.dense_component(c, t);
                 }
             }
-            self.emit(chain, it.system(), t, book, observer);
+            self.sample(chain, it.system(), t, book, observer);
             self.next += 1;
         }
     }
 
-    fn emit<I: Input>(
+    fn sample<I: Input>(
         &mut self,
         chain: &Chain<I>,
         sys: &ChainSystem<'_, I>,
@@ -512,14 +664,14 @@ impl Sampler {
         book: &Book,
         observer: &mut impl FnMut(&Sample<'_>),
     ) {
-        let n = sys.bodies();
         for (i, b) in chain.bodies.iter().enumerate() {
-            self.positions[i] = b.position + self.y[i];
-            self.velocities[i] = self.y[n + i];
+            let (d, v) = sys.body(i, t, &self.y);
+            self.positions[i] = b.position + d;
+            self.velocities[i] = v;
         }
         for j in 0..sys.pairs.len() {
-            self.gaps[j] = sys.gap(j, &self.y);
-            self.forces[j] = sys.force(j, &self.y);
+            self.gaps[j] = sys.gap(j, t, &self.y);
+            self.forces[j] = sys.force(j, t, &self.y);
         }
         observer(&Sample {
             t,
@@ -527,7 +679,7 @@ impl Sampler {
             velocities: &self.velocities,
             gaps: &self.gaps,
             forces: &self.forces,
-            ledger: ledger(sys, &self.y, book),
+            ledger: ledger(sys, t, &self.y, book),
         });
     }
 }
