@@ -31,6 +31,7 @@
 //! ```
 
 mod figures;
+mod laws;
 mod scene;
 
 pub use scene::{is_chain, is_chain_file, ChainScene};

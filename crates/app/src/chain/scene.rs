@@ -2,10 +2,11 @@
 //! law for every pair (`[physical]`) or one per pair (`[[chain.pair]]`), walls as end bodies of
 //! infinite mass.
 
-use crate::scene::raw::{Mass, RawPhysical};
+use super::laws::{laws, LawTables, RawChainPair};
+use crate::scene::raw::{Mass, RawBase, RawPhysical};
 use crate::signal::Signal;
-use crate::tables::{contact_law, model_kind, read_text, signal, span, syntax_error, Ctx, Num};
 use crate::tables::{every_error, RawInput};
+use crate::tables::{model_kind, read_text, signal, span, syntax_error, Ctx, Num};
 use crate::AppError;
 use bw_models::chain::{ChainBody, ChainSettings, PairLaw, Stop, Walls};
 use bw_models::input::Input;
@@ -93,6 +94,7 @@ struct RawChainScene {
     model: Option<Spanned<String>>,
     chain: Spanned<RawChain>,
     physical: Option<Spanned<RawPhysical>>,
+    base: Option<Spanned<RawBase>>,
     solver: Option<Spanned<RawChainSolver>>,
     output: Option<Spanned<RawChainOutput>>,
 }
@@ -123,21 +125,6 @@ struct RawChainBody {
     velocity: Option<Num>,
     length: Option<Num>,
     input: Option<Spanned<RawInput>>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawChainPair {
-    model: Option<Spanned<String>>,
-    k: Option<Num>,
-    c: Option<Num>,
-    n: Option<Num>,
-    p: Option<Num>,
-    alpha: Option<Num>,
-    beta: Option<Num>,
-    gamma: Option<Num>,
-    #[serde(rename = "A")]
-    a: Option<Num>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -235,7 +222,13 @@ impl ChainScene {
         let pairs = bodies.len() - 1
             + usize::from(walls.left.is_some())
             + usize::from(walls.right.is_some());
-        let (laws, models) = laws(&ctx, &raw, model, pairs)?;
+        let tables = LawTables {
+            physical: &raw.physical,
+            base: &raw.base,
+            pairs: &c.pair,
+            chain: t.clone(),
+        };
+        let (laws, models) = laws(&ctx, &tables, model, &pair_masses(&bodies, walls, pairs))?;
         let settings = settings(&ctx, &raw, c)?;
         let stop = stop(&ctx, c, &t)?;
         let (dt, plots) = output(&ctx, &raw)?;
@@ -553,61 +546,21 @@ fn positions(ctx: &Ctx, given: &[Given]) -> Result<Vec<f64>, AppError> {
     Ok(out)
 }
 
-/// One law for every pair from `[physical]`, or one per pair from `[[chain.pair]]`.
-fn laws(
-    ctx: &Ctx,
-    raw: &RawChainScene,
-    model: Option<ModelKind>,
-    pairs: usize,
-) -> Result<(Vec<PairLaw>, Vec<ModelKind>), AppError> {
-    let c = raw.chain.get_ref();
-    let need_model = |s: &Range<usize>, key: &str| {
-        model.ok_or_else(|| {
-            ctx.invalid(
-                s,
-                key,
-                "missing: the model of the law, \"shccm\" or \"mcm\" (or the scene's model)",
-            )
+/// Each pair's effective mass (kg): `m_l m_r / (m_l + m_r)`, or the body's mass against a
+/// wall.
+fn pair_masses(bodies: &[ChainBody<Signal>], walls: Walls, pairs: usize) -> Vec<f64> {
+    let shift = usize::from(walls.left.is_some());
+    (0..pairs)
+        .map(|j| {
+            let left = (j >= shift).then(|| bodies[j - shift].mass);
+            let right = bodies.get(j + 1 - shift).map(|b| b.mass);
+            match (left, right) {
+                (Some(a), Some(b)) => a * b / (a + b),
+                (Some(m), None) | (None, Some(m)) => m,
+                (None, None) => f64::NAN,
+            }
         })
-    };
-    match (&raw.physical, &c.pair) {
-        (Some(p), None) => {
-            let t = p.span();
-            let r = p.get_ref();
-            if let Some(m) = &r.m {
-                return Err(ctx.invalid(&m.span(), "[physical].m", "not used in a chain: each pair's bodies give its masses"));
-            }
-            let kind = need_model(&t, "model")?;
-            let fields = [&r.k, &r.c, &r.n, &r.p, &r.alpha, &r.beta, &r.gamma, &r.a];
-            let (_, params) = contact_law(ctx, "[physical]", &t, fields, kind)?;
-            let law = PairLaw::new(&params).map_err(|e| ctx.invalid(&t, "[physical]", e.to_string()))?;
-            Ok((vec![law; pairs], vec![kind; pairs]))
-        }
-        (None, Some(list)) => {
-            if list.len() != pairs {
-                let s = list.first().map_or(raw.chain.span(), |p| p.span());
-                return Err(ctx.invalid(&s, "[[chain.pair]]", format!("{} laws for {pairs} pairs (neighbouring bodies, walls included): give one per pair, or one law for all in [physical]", list.len())));
-            }
-            let mut laws = Vec::with_capacity(pairs);
-            let mut kinds = Vec::with_capacity(pairs);
-            for (j, p) in list.iter().enumerate() {
-                let t = p.span();
-                let r = p.get_ref();
-                let table = format!("[[chain.pair]] {j}");
-                let kind = match &r.model {
-                    Some(m) => model_kind(ctx, m, &format!("{table}: model"))?,
-                    None => need_model(&t, &format!("{table}: model"))?,
-                };
-                let fields = [&r.k, &r.c, &r.n, &r.p, &r.alpha, &r.beta, &r.gamma, &r.a];
-                let (_, params) = contact_law(ctx, &table, &t, fields, kind)?;
-                laws.push(PairLaw::new(&params).map_err(|e| ctx.invalid(&t, table.clone(), e.to_string()))?);
-                kinds.push(kind);
-            }
-            Ok((laws, kinds))
-        }
-        (Some(p), Some(_)) => Err(ctx.invalid(&p.span(), "[physical]", "both [physical] and [[chain.pair]]: give one law for all pairs, or one per pair")),
-        (None, None) => Err(ctx.invalid(&raw.chain.span(), "[physical]", "missing: the contact law, one for all pairs in [physical] or one per pair in [[chain.pair]]")),
-    }
+        .collect()
 }
 
 /// Tolerances from `[solver]` and the policy from `[chain]`.

@@ -56,6 +56,49 @@ fn two_bodies_as_a_chain_are_the_bodies_scene() {
     }
 }
 
+/// A law in base parameters is the one under which its pair, alone, has the CoR and duration
+/// of `P*`: two bodies (0.3 and 0.2 kg, closing at 1.5 m/s) with `[base]` rebound as the
+/// `[base]` scene at `v0 = 1.5` with `U_b = T_b / m` (m the pair's effective mass), to 1e-9,
+/// for both models, from `[base]` and from `[[chain.pair]]` alike.
+#[test]
+fn a_law_in_base_parameters_has_its_cor_in_the_chain() {
+    let dir = scratch("chain-base");
+    let p_star = "B_b = 0.5\nGamma_b = -0.2\nkappa = 0.5\nsigma_b = 0.1\nn = 1.5\np = 1.5\n";
+    let (t_b, m) = (0.002, 0.3 * 0.2 / (0.3 + 0.2));
+    for model in ["shccm", "mcm"] {
+        let reference = dir.join(format!("{model}-reference.toml"));
+        std::fs::write(
+            &reference,
+            format!(
+                "model = \"{model}\"\nv0 = [1.5]\n[base]\n{p_star}U_b = {}\nT_b = {t_b}\n",
+                t_b / m
+            ),
+        )
+        .unwrap();
+        let v = json(&simulate(&["run", reference.to_str().unwrap(), "--json"]));
+        let run = &v["runs"][0];
+        let (e, t_s) = (run["e"].as_f64().unwrap(), run["t_s"].as_f64().unwrap());
+        let bodies = "[chain]\nmass = [0.3, 0.2]\nvelocity = [1.0, -0.5]\nlength = 0.1\n\
+                      gap = [0.0]\nhorizon = 1.0\n[solver]\nrtol = 1e-12\natol = 1e-17\n";
+        for law in [
+            format!("[base]\n{p_star}T_b = {t_b}\n"),
+            format!("[[chain.pair]]\nmodel = \"{model}\"\n{p_star}T_b = {t_b}\n"),
+        ] {
+            let scene = dir.join(format!("{model}.toml"));
+            std::fs::write(&scene, format!("model = \"{model}\"\n{bodies}{law}")).unwrap();
+            let v = json(&simulate(&["run", scene.to_str().unwrap(), "--json"]));
+            let contact = &v["chain"]["contacts"][0];
+            let rebound = contact["rebound"].as_f64().unwrap();
+            let duration = contact["separation_s"].as_f64().unwrap();
+            assert!((rebound - e).abs() <= 1e-9, "{model}: {rebound} vs {e}");
+            assert!(
+                (duration - t_s).abs() <= 1e-9 * t_s,
+                "{model}: {duration} vs {t_s}"
+            );
+        }
+    }
+}
+
 /// The fixtures run and write what they promise: the summary, `contacts.csv`, `chain.csv` with a
 /// row every `dt` and a column per body and pair, and both figures; the cradle conserves its
 /// momentum and its ledger closes.
@@ -167,5 +210,29 @@ fn bad_chains_are_rejected_with_the_body_or_pair() {
         &scene("mass = [0.1, 0.1]\nposition = [0.0, 0.1, 0.2]\nvelocity = [1.0, 0.0]"),
         Some(5),
         &["[chain].position", "3 values for 2 bodies"],
+    );
+    let two = "model = \"shccm\"\n[chain]\nhorizon = 0.01\nmass = 0.1\n\
+               position = [0.0, 0.1]\nvelocity = [1.0, 0.0]\n";
+    let p_star = "B_b = 0.5\nGamma_b = 0.0\nkappa = 0.5\nsigma_b = 0.1\nn = 1.0\np = 1.5\n";
+    rejects(
+        "chain-base-u",
+        &format!("{two}[base]\n{p_star}U_b = 2.0\n"),
+        Some(14),
+        &["[base].U_b", "effective mass"],
+    );
+    rejects(
+        "chain-pair-both-forms",
+        &format!("{two}[[chain.pair]]\n{p_star}k = 1e7\n"),
+        Some(7),
+        &["[[chain.pair]] 0", "give one form"],
+    );
+    rejects(
+        "chain-base-kappa",
+        &format!(
+            "{two}[base]\n{}",
+            p_star.replace("kappa = 0.5", "kappa = 1.5")
+        ),
+        Some(10),
+        &["[base].kappa", "0 < kappa < 1"],
     );
 }
