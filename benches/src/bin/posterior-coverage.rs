@@ -46,6 +46,8 @@ fn main() {
     );
     bwc_app::out!("|---|---|---|---|---|---|---|---|");
     let only = std::env::var("BWC_ONLY").ok();
+    // BWC_TRUTH=prior: each replicate's truth drawn from the prior (PosteriorTask::from_prior).
+    let from_prior = std::env::var("BWC_TRUTH").is_ok_and(|v| v == "prior");
     for given in [true, false] {
         for (f, (truth, noise)) in config.fits.iter().zip(truths) {
             let row = format!(
@@ -62,6 +64,7 @@ fn main() {
                 speeds: f.data.points.iter().map(|p| p.v0).collect(),
                 noise,
                 given_noise: given,
+                from_prior,
                 smc: SmcSettings::new(particles, 4),
                 budget: f.budget,
                 draws: 400,

@@ -51,6 +51,7 @@ fn task(given_noise: bool) -> PosteriorTask {
         speeds: vec![0.2, 0.5, 1.0, 2.0, 4.0],
         noise: 0.01,
         given_noise,
+        from_prior: false,
         smc: SmcSettings::new(150, 4),
         budget: Budget {
             particles: 10,
