@@ -23,6 +23,7 @@ use crate::objective::TermOrder;
 use crate::problem::CubeProblem;
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
+use rayon::prelude::*;
 
 /// Forward-difference step on the unit cube.
 const H: f64 = 1e-5;
@@ -39,17 +40,19 @@ fn cost(r: &[f64]) -> f64 {
     r.iter().map(|x| x * x).sum()
 }
 
-/// The Jacobian of the residuals at `x` (`r` the residuals there), steps pointing into the cube.
+/// The Jacobian of the residuals at `x` (`r` the residuals there), steps pointing into the cube;
+/// its columns in parallel (each is the same on any number of threads).
 fn jacobian<P: CubeProblem>(problem: &P, x: &[f64], r: &[f64]) -> Option<Vec<Vec<f64>>> {
-    let mut columns = Vec::with_capacity(x.len());
-    for j in 0..x.len() {
-        let h = if x[j] + H > 1.0 { -H } else { H };
-        let mut y = x.to_vec();
-        y[j] += h;
-        let ry = problem.residuals_at(&y)?;
-        columns.push(ry.iter().zip(r).map(|(a, b)| (a - b) / h).collect());
-    }
-    Some(columns)
+    (0..x.len())
+        .into_par_iter()
+        .map(|j| {
+            let h = if x[j] + H > 1.0 { -H } else { H };
+            let mut y = x.to_vec();
+            y[j] += h;
+            let ry = problem.residuals_at(&y)?;
+            Some(ry.iter().zip(r).map(|(a, b)| (a - b) / h).collect())
+        })
+        .collect()
 }
 
 /// Solves `(JᵀJ + λ D) δ = -Jᵀr` over the coordinates in `free` (D the diagonal of JᵀJ,
