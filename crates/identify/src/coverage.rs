@@ -173,7 +173,7 @@ pub fn posterior_replicate(task: &PosteriorTask, seed: u64) -> Result<Replicate,
         prior_draw(task, seed)?
     } else {
         let e = synthetic(task, &task.truth, task.noise, &mut rng)?;
-        (task.truth, task.noise, e)
+        (task.truth, task.noise, csv_of(task, &e, task.noise))
     };
     let map = task.space.map(&truth)?;
     let truth_at = |v0: f64| map.impact(Zero, v0, &Settings::default()).map(|o| o.e);
@@ -214,8 +214,8 @@ pub fn posterior_replicate(task: &PosteriorTask, seed: u64) -> Result<Replicate,
     })
 }
 
-/// Synthetic data of `task` from `truth` with Gaussian noise of standard deviation `noise`: a
-/// CSV with an `e_std` column.
+/// Synthetic CoRs of `task` at its speeds from `truth`, with Gaussian noise of standard
+/// deviation `noise`.
 ///
 /// # Errors
 /// [`IdentifyError::Model`] if the truth cannot be simulated at a speed.
@@ -224,17 +224,24 @@ fn synthetic(
     truth: &BaseParams,
     noise: f64,
     rng: &mut rand::rngs::StdRng,
-) -> Result<String, IdentifyError> {
+) -> Result<Vec<f64>, IdentifyError> {
     let map = task.space.map(truth)?;
     let normal = Normal::new(0.0, noise).map_err(|e| IdentifyError::Objectives {
         reason: format!("noise {noise}: {e}"),
     })?;
+    task.speeds
+        .iter()
+        .map(|&v0| Ok(map.impact(Zero, v0, &Settings::default())?.e + normal.sample(rng)))
+        .collect()
+}
+
+/// The data of `task` as a CSV with an `e_std` column: CoRs `e` of standard deviation `noise`.
+fn csv_of(task: &PosteriorTask, e: &[f64], noise: f64) -> String {
     let mut csv = String::from("v_0,e,e_std\n");
-    for &v0 in &task.speeds {
-        let e = map.impact(Zero, v0, &Settings::default())?.e + normal.sample(rng);
+    for (v0, e) in task.speeds.iter().zip(e) {
         csv += &format!("{v0},{e},{noise}\n");
     }
-    Ok(csv)
+    csv
 }
 
 /// The truth, noise and data of replicate `seed` drawn from the prior (see
@@ -265,13 +272,9 @@ fn prior_draw(task: &PosteriorTask, seed: u64) -> Result<(BaseParams, f64, Strin
         if !separates {
             continue;
         }
-        let csv = synthetic(task, &truth, noise, &mut rng)?;
-        let negative = csv
-            .lines()
-            .skip(1)
-            .any(|l| l.split(',').nth(1).is_some_and(|e| e.starts_with('-')));
-        if !negative {
-            return Ok((truth, noise, csv));
+        let e = synthetic(task, &truth, noise, &mut rng)?;
+        if e.iter().all(|e| *e >= 0.0) {
+            return Ok((truth, noise, csv_of(task, &e, noise)));
         }
     }
     Err(IdentifyError::Posterior {

@@ -305,15 +305,7 @@ fn simulate_chain_json<'py>(
     let out = py
         .allow_threads(|| bwc_app::with_threads(threads, || bwc_app::chain::run(&scene)))
         .map_err(error)?;
-    let mut summary = bwc_app::chain::summary(&scene, &out);
-    for (k, v) in bwc_app::outdir::provenance("bwc.simulate")
-        .as_object()
-        .expect("provenance is an object")
-    {
-        summary[k] = v.clone();
-    }
-    let samples = scene.dt.map(|_| chain_samples(py, &out)).transpose()?;
-    Ok((summary.to_string(), samples))
+    chain_result(py, &scene, &out, "bwc.simulate")
 }
 
 /// `bwc.simulate_many`: many `[chain]` scenes, each a path or JSON text (`paths[i]` or
@@ -351,19 +343,27 @@ fn simulate_chains_json<'py>(
     scenes
         .iter()
         .zip(outs)
-        .map(|(scene, out)| {
-            let out = out.map_err(error)?;
-            let mut summary = bwc_app::chain::summary(scene, &out);
-            for (k, v) in bwc_app::outdir::provenance("bwc.simulate_many")
-                .as_object()
-                .expect("provenance is an object")
-            {
-                summary[k] = v.clone();
-            }
-            let samples = scene.dt.map(|_| chain_samples(py, &out)).transpose()?;
-            Ok((summary.to_string(), samples))
-        })
+        .map(|(scene, out)| chain_result(py, scene, &out.map_err(error)?, "bwc.simulate_many"))
         .collect()
+}
+
+/// A chain's summary as JSON text, with the provenance of the `origin` call, and its samples
+/// where the scene asks for them.
+fn chain_result<'py>(
+    py: Python<'py>,
+    scene: &ChainScene,
+    out: &bwc_app::chain::ChainOutcome,
+    origin: &str,
+) -> PyResult<(String, Option<Bound<'py, PyDict>>)> {
+    let mut summary = bwc_app::chain::summary(scene, out);
+    for (k, v) in bwc_app::outdir::provenance(origin)
+        .as_object()
+        .expect("provenance is an object")
+    {
+        summary[k] = v.clone();
+    }
+    let samples = scene.dt.map(|_| chain_samples(py, out)).transpose()?;
+    Ok((summary.to_string(), samples))
 }
 
 /// A chain's samples as a dict of numpy arrays (see [`simulate_chain_json`]).
