@@ -4,14 +4,32 @@
 //! search for seeds 1-5; prints each default J against the best J any run found.
 //!
 //! `cargo run --release -p bwc-benches --bin identify-convergence -- fixtures/*.toml`
-//! (loop fits are skipped).
+//! (loop fits are skipped); `BWC_SEEDS=6-10` runs other seeds.
 
 use bwc_app::config::Config;
 use bwc_identify::{fit, Budget, Objective};
 use std::time::Instant;
 
+/// The seeds of the default searches: `BWC_SEEDS` as `first-last`, else 1-5.
+fn seeds() -> std::ops::RangeInclusive<u64> {
+    let Ok(range) = std::env::var("BWC_SEEDS") else {
+        return 1..=5;
+    };
+    let parsed = range
+        .split_once('-')
+        .and_then(|(a, b)| Some((a.trim().parse().ok()?, b.trim().parse().ok()?)));
+    match parsed {
+        Some((first, last)) if first <= last => first..=last,
+        _ => {
+            eprintln!("BWC_SEEDS = {range:?}: expected first-last, such as 6-10");
+            std::process::exit(2);
+        }
+    }
+}
+
 fn main() {
     let paths: Vec<String> = std::env::args().skip(1).collect();
+    let seeds = seeds();
     bwc_app::out!(
         "| fit | reference J (evals) | seed | J | J / best | starts agreeing | evals | wall s |"
     );
@@ -36,7 +54,8 @@ fn main() {
                 ..f.budget
             };
             let r = fit(&objective, &reference, 0xC0FFEE ^ f.seed, None).expect("reference fit");
-            let runs: Vec<_> = (1..=5u64)
+            let runs: Vec<_> = seeds
+                .clone()
                 .map(|seed| {
                     let clock = Instant::now();
                     let o = Objective::new(&f.space, &f.data, &f.input, f.settings, f.weights)

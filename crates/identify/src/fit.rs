@@ -276,6 +276,8 @@ struct End {
     origin: Vec<f64>,
     point: Vec<f64>,
     cost: f64,
+    /// Whether its polish stopped where it crept ([`crate::lm::Creep`]).
+    crept: bool,
 }
 
 /// Minimises a cube problem: independent starts (a Latin-hypercube point or a seeded particle
@@ -302,12 +304,13 @@ pub fn minimize<P: CubeProblem>(
     }
     let given = start
         .map(|s| {
-            let (point, cost) =
+            let (point, cost, _) =
                 refine(problem, s.to_vec(), budget.polish_iterations, Polish::Full)?;
             Ok::<_, IdentifyError>(End {
                 origin: s.to_vec(),
                 point,
                 cost,
+                crept: false,
             })
         })
         .transpose()?;
@@ -400,7 +403,8 @@ fn nothing_free<P: CubeProblem>(problem: &P, before: u64) -> Minimum {
     }
 }
 
-/// Verifies the best start's end ([`Polish::Verify`]) unless it was verified already.
+/// Verifies the best start's end ([`Polish::Verify`], or [`Polish::Full`] where its polish
+/// stopped creeping) unless it was verified already.
 fn verify_best<P: CubeProblem>(
     problem: &P,
     budget: &Budget,
@@ -413,10 +417,16 @@ fn verify_best<P: CubeProblem>(
     }
     *verified = Some(best);
     let x = runs[best].point.clone();
-    let (y, c) = refine(problem, x, budget.polish_iterations, Polish::Verify)?;
+    let kind = if runs[best].crept {
+        Polish::Full
+    } else {
+        Polish::Verify
+    };
+    let (y, c, _) = refine(problem, x, budget.polish_iterations, kind)?;
     if c < runs[best].cost {
         (runs[best].point, runs[best].cost) = (y, c);
     }
+    runs[best].crept = false;
     Ok(())
 }
 
@@ -471,11 +481,12 @@ fn one_start<P: CubeProblem>(
         Some(origin) => origin,
         None => swarm_best(problem, budget, seed)?,
     };
-    let (point, cost) = refine(problem, origin.clone(), budget.polish_iterations, polish)?;
+    let (point, cost, crept) = refine(problem, origin.clone(), budget.polish_iterations, polish)?;
     Ok(End {
         origin,
         point,
         cost,
+        crept,
     })
 }
 
@@ -507,8 +518,9 @@ fn swarm_best<P: CubeProblem>(
 /// How [`refine`] polishes a point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Polish {
-    /// A start's end: Nelder-Mead only where Levenberg-Marquardt did not converge (or the
-    /// problem has no residuals). Over the fixtures' starts, a Nelder-Mead round after a
+    /// A start's end: Levenberg-Marquardt stopped where it creeps ([`crate::lm::START_CREEP`]),
+    /// then Nelder-Mead only where it neither converged nor crept (or the problem has no
+    /// residuals). Over the fixtures' starts, a Nelder-Mead round after a
     /// converged Levenberg-Marquardt polish never lowered the cost (BENCHMARKS.md, "Identification: convergence");
     /// the agreement of independent starts and the verification of the best check them instead.
     Start,
@@ -523,27 +535,30 @@ enum Polish {
 /// Nelder-Mead round of `iterations` from a fresh simplex (which also escapes where the
 /// Levenberg-Marquardt steps stall), repeated while that round still gains more than 1e-9
 /// relative; `kind` skips the parts of the first round that [`Polish`] says are not needed.
+/// The point, its cost and whether the polish stopped where it crept.
 fn refine<P: CubeProblem>(
     problem: &P,
     x: Vec<f64>,
     iterations: u64,
     kind: Polish,
-) -> Result<(Vec<f64>, f64), IdentifyError> {
+) -> Result<(Vec<f64>, f64, bool), IdentifyError> {
     let (mut x, mut cost) = (x.clone(), problem.cost_at(&x));
+    let creep = (kind == Polish::Start).then_some(crate::lm::START_CREEP);
     for round in 0..POLISH_ROUNDS {
-        let mut converged = false;
+        let (mut converged, mut crept) = (false, false);
         let least_squares = round > 0 || kind != Polish::Verify;
         if let Some(end) = least_squares
-            .then(|| crate::lm::polish(problem, &x, cost))
+            .then(|| crate::lm::polish(problem, &x, cost, creep))
             .flatten()
         {
             if end.cost < cost {
                 (x, cost) = (end.x, end.cost);
             }
-            converged = end.converged;
+            (converged, crept) = (end.converged, end.crept);
         }
-        if converged && kind == Polish::Start {
-            break;
+        if (converged || crept) && kind == Polish::Start {
+            let x = x.iter().map(|v| v.clamp(0.0, 1.0)).collect();
+            return Ok((x, cost, crept));
         }
         let (y, c) = polish(problem, x.clone(), iterations)?;
         let gain = cost - c;
@@ -555,7 +570,7 @@ fn refine<P: CubeProblem>(
             break;
         }
     }
-    Ok((x.iter().map(|v| v.clamp(0.0, 1.0)).collect(), cost))
+    Ok((x.iter().map(|v| v.clamp(0.0, 1.0)).collect(), cost, false))
 }
 
 /// Moves coordinates within 1e-3 of a face of the cube onto it where the cost does not rise:
@@ -667,6 +682,7 @@ mod tests {
             origin: origin.to_vec(),
             point: vec![0.5, 0.5],
             cost,
+            crept: false,
         }
     }
 

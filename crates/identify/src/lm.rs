@@ -181,7 +181,33 @@ pub(crate) struct Polished {
     /// held on a face by its gradient, or the cost is zero. Otherwise no damping lowered the
     /// cost (a kink, noise) or the Jacobians ran out.
     pub(crate) converged: bool,
+    /// Whether the face phase was stopped where it crept ([`Creep`]): near a minimum, not at it.
+    pub(crate) crept: bool,
 }
+
+/// When a polish may stop where it creeps: when the last `jacobians` Jacobians of its face phase
+/// together lowered the cost by at most `gain` (relative). The face phase creeps along the
+/// valleys of parameters the data do not pin down, tens of Jacobians at gains of 1e-5 each. A
+/// search's starts need their ends only to the agreement's tolerance (1e-2), and the best of them
+/// is polished in full afterwards. A start stopped this way ends above its full polish's end
+/// (on the measured fixtures by 0.01-0.2 %, and by 2 % where the valley led on to another
+/// basin): it counts as agreeing less often, and a basin whose starts all stop creeping can lose
+/// to another a few per cent above its minimum. On the measured fixtures every default fit still
+/// ends within 1 % of the best cost known, with a quarter fewer evaluations (BENCHMARKS.md,
+/// "Identification: the global optimum on measured data").
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Creep {
+    /// Jacobians looked back over.
+    pub(crate) jacobians: usize,
+    /// The gain over them (relative) at or below which the polish stops.
+    pub(crate) gain: f64,
+}
+
+/// The creep rule of a search's starts.
+pub(crate) const START_CREEP: Creep = Creep {
+    jacobians: 5,
+    gain: 3e-4,
+};
 
 /// Where a polish stands: the point, its residuals and their cost.
 struct Point {
@@ -202,9 +228,10 @@ impl Point {
     }
 
     /// The end of a polish here (a zero cost cannot be lowered: converged).
-    fn polished(self, converged: bool) -> Polished {
+    fn polished(self, converged: bool, crept: bool) -> Polished {
         Polished {
             converged: converged || self.cost == 0.0,
+            crept,
             x: self.x,
             cost: self.cost,
         }
@@ -259,16 +286,22 @@ fn descend<P: CubeProblem>(
 }
 
 /// Polishes `x` (cost `c`) by Levenberg-Marquardt, the [`interior`] phase and then the
-/// [`faces`] phase; `None` if the problem has no residuals.
-pub(crate) fn polish<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<Polished> {
+/// [`faces`] phase (stopped where it creeps if `creep` says when); `None` if the problem has
+/// no residuals.
+pub(crate) fn polish<P: CubeProblem>(
+    problem: &P,
+    x: &[f64],
+    c: f64,
+    creep: Option<Creep>,
+) -> Option<Polished> {
     match interior(problem, x, c) {
         Some(inner) if inner.cost <= c || c.is_nan() => {
-            let end = faces(problem, &inner.x, inner.cost)?;
+            let end = faces(problem, &inner.x, inner.cost, creep)?;
             // Where the face phase finds nothing to gain, the interior phase's end stands.
             let converged = end.converged || (inner.converged && end.cost == inner.cost);
             Some(Polished { converged, ..end })
         }
-        _ => faces(problem, x, c),
+        _ => faces(problem, x, c, creep),
     }
 }
 
@@ -340,7 +373,7 @@ pub(crate) fn interior<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option
             Descent::Stuck => break,
         }
     }
-    Some(at.polished(converged))
+    Some(at.polished(converged, false))
 }
 
 /// `Jᵀr`.
@@ -387,8 +420,14 @@ fn inside(x: &[f64], step: &[f64], theta: f64) -> Vec<f64> {
 }
 
 /// The face phase: Levenberg-Marquardt with geodesic acceleration from `x` (cost `c`), a
-/// coordinate that a step carries out of the cube held on that face.
-pub(crate) fn faces<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<Polished> {
+/// coordinate that a step carries out of the cube held on that face; stopped where it creeps if
+/// `creep` says when.
+pub(crate) fn faces<P: CubeProblem>(
+    problem: &P,
+    x: &[f64],
+    c: f64,
+    creep: Option<Creep>,
+) -> Option<Polished> {
     let mut at = Point::at(problem, x.iter().map(|v| v.clamp(0.0, 1.0)).collect())?;
     if c.is_finite() && (at.cost.is_nan() || at.cost > c) {
         // The clamped start is worse than the caller's point: nothing to polish from.
@@ -397,7 +436,16 @@ pub(crate) fn faces<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<Po
     let mut order = TermOrder::default();
     let mut lambda = 1e-3;
     let mut converged = false;
+    // The cost before each Jacobian.
+    let mut costs = Vec::new();
     for _ in 0..MAX_JACOBIANS {
+        if let Some(creep) = creep {
+            let back = costs.len().checked_sub(creep.jacobians).map(|k| costs[k]);
+            if back.is_some_and(|b: f64| b - at.cost <= creep.gain * at.cost) {
+                return Some(at.polished(false, true));
+            }
+            costs.push(at.cost);
+        }
         let columns = jacobian(problem, &at.x, &at.r)?;
         let gradient = gradient(&columns, &at.r);
         // Coordinates on a face whose gradient points out of the cube stay there.
@@ -422,7 +470,7 @@ pub(crate) fn faces<P: CubeProblem>(problem: &P, x: &[f64], c: f64) -> Option<Po
             Descent::Stuck => break,
         }
     }
-    Some(at.polished(converged))
+    Some(at.polished(converged, false))
 }
 
 #[cfg(test)]
@@ -515,7 +563,7 @@ mod tests {
     /// The polish of the valley with its minimum at `s0 = at`, from `start`.
     fn polished(at: f64, start: [f64; 2]) -> (Vec<f64>, f64) {
         let problem = Squares::new(valley(at));
-        let end = polish(&problem, &start, problem.cost_at(&start)).unwrap();
+        let end = polish(&problem, &start, problem.cost_at(&start), None).unwrap();
         (end.x, end.cost)
     }
 
@@ -546,10 +594,39 @@ mod tests {
         for (i, (residuals, converges)) in cases.into_iter().enumerate() {
             let problem = Squares::new(residuals);
             let start = [0.6, 0.2];
-            let end = polish(&problem, &start, problem.cost_at(&start)).unwrap();
+            let end = polish(&problem, &start, problem.cost_at(&start), None).unwrap();
             assert_eq!(end.converged, converges, "case {i}: {:?}", end.x);
             assert!(end.cost < 0.0101, "case {i}: cost {}", end.cost);
         }
+    }
+
+    /// A curved valley whose floor falls by 1e-4 of the cost from end to end: the polish of a
+    /// search's start stops creeping along it within a few Jacobians of the floor, above the
+    /// minimum by less than the floor's whole fall; the full polish goes on to the minimum.
+    #[test]
+    fn a_start_stops_where_its_polish_creeps() {
+        let floor = |s: &[f64]| vec![10.0 * (s[1] - s[0] * s[0]), 0.01 * (s[0] - 0.9), 1.0];
+        let start = [0.1, 0.9];
+        let (creeping, full) = (Squares::new(floor), Squares::new(floor));
+        let stopped = faces(
+            &creeping,
+            &start,
+            creeping.cost_at(&start),
+            Some(START_CREEP),
+        )
+        .unwrap();
+        let end = faces(&full, &start, full.cost_at(&start), None).unwrap();
+        assert!(stopped.crept && !stopped.converged);
+        assert!(end.converged && !end.crept);
+        assert_near(&end.x, [0.9, 0.81], 1e-4);
+        assert!(
+            stopped.cost - end.cost < 1e-4 * end.cost,
+            "{} against {}",
+            stopped.cost,
+            end.cost
+        );
+        let (a, b) = (creeping.evaluations(), full.evaluations());
+        assert!(a < b, "{a} against {b} evaluations");
     }
 
     #[test]
@@ -625,8 +702,8 @@ mod tests {
                 })
                 .count()
         };
-        let face_only = reached(&|s, c| faces(&objective, s, c));
-        let both = reached(&|s, c| polish(&objective, s, c));
+        let face_only = reached(&|s, c| faces(&objective, s, c, None));
+        let both = reached(&|s, c| polish(&objective, s, c, None));
         assert!(face_only <= 1 && both >= 4, "{face_only} and {both} of 16");
     }
 
