@@ -4,9 +4,11 @@
 //! (`BWC_REPLICATES=40`); the test runs its first 20 and asks for 0.85-0.99: the five speeds of
 //! a replicate share one posterior, so 100 points weigh like a few dozen.
 
+use bw_models::input::Zero;
 use bw_models::{BaseParams, ModelKind, Settings};
 use bwc_identify::{
-    coverage, posterior_replicate, Budget, Param, PosteriorTask, SmcSettings, Space,
+    coverage, posterior_replicate, run_spread, sample, Budget, Dataset, Param, PosteriorProblem,
+    PosteriorSpec, PosteriorTask, SmcReference, SmcSettings, Space, Weights, RUN_SPREAD,
 };
 use rayon::prelude::*;
 
@@ -88,5 +90,39 @@ fn the_credible_band_covers_the_true_curve_at_its_level() {
             (0.85..=0.99).contains(&c),
             "noise given {given}: coverage {c}"
         );
+    }
+}
+
+/// A posterior with one region (κ and σ_b of the synthetic design, the CoRs of the truth to four
+/// digits, noise 0.01 given): four runs of 500 particles from the uniform reference agree on
+/// its marginals' medians to a small part of their 95 % intervals, far inside the threshold of
+/// the warning that runs disagree.
+#[test]
+fn runs_of_a_posterior_with_one_region_agree_on_its_marginals() {
+    let task = task(true);
+    let map = task.space.map(&task.truth).unwrap();
+    let mut csv = String::from("v_0,e,e_std\n");
+    for v0 in &task.speeds {
+        let e = map.impact(Zero, *v0, &Settings::default()).unwrap().e;
+        csv.push_str(&format!("{v0},{e:.4},0.01\n"));
+    }
+    let data = Dataset::parse(std::path::Path::new("one-region.csv"), &csv).unwrap();
+    let spec = PosteriorSpec::new(&data, Weights { j1: 1.0, j2: 0.0 });
+    let problem = PosteriorProblem::new(&task.space, &data, &Zero, task.settings, &spec).unwrap();
+    let post = sample(
+        &problem,
+        &SmcSettings::new(500, 4),
+        &SmcReference::uniform(),
+        7,
+    )
+    .unwrap();
+    let spread = run_spread(&problem, &post);
+    assert_eq!(spread.len(), 2);
+    for r in &spread {
+        eprintln!(
+            "{}: run medians {:?}, error {:.3} of the interval",
+            r.name, r.medians, r.error
+        );
+        assert!(r.error < RUN_SPREAD / 2.0, "{r:?}");
     }
 }
