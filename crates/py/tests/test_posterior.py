@@ -2,6 +2,7 @@
 as numpy arrays, identical on any thread or worker count, and its errors."""
 
 import math
+import warnings
 import pathlib
 
 import numpy as np
@@ -122,3 +123,15 @@ def test_runs_spread_over_dask_workers_equal_the_local_posterior(tmp_path):
     assert np.array_equal(a.samples.kappa, b.samples.kappa)
     assert np.array_equal(a.samples.weight, b.samples.weight)
     assert a.log_evidence == b.log_evidence and a.band == b.band
+
+
+def test_runs_that_weigh_regions_differently_are_a_warning(tmp_path):
+    """The tennis drops' NDBWSHCCM posterior (B_b in three regions) warns that its runs disagree;
+    the one-region posterior of kappa does not."""
+    with pytest.warns(bwc.BwcWarning, match="runs disagree on B_b"):
+        bwc.posterior(str(FIXTURES / "tennis.toml"), fit="Tennis NDBWSHCCM")
+    path, _ = _data(tmp_path)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        bwc.posterior(_config(path))
+    assert not [w for w in caught if "runs disagree" in str(w.message)]

@@ -319,12 +319,13 @@ _WARNING_KINDS = (
     ("intervals", ("no intervals",)),
     ("reference", ("the reference (",)),
     ("units", ("unit slip", "looks like")),
+    ("sampler", ("runs disagree on", "effective size is")),
 )
 
 
 def _warn_fits(fits):
     """Each fit's warnings as ``BwcWarning``s, one per kind (bounds, search, intervals,
-    reference, units, data) and fit, attributed to the caller of the package's function."""
+    reference, units, sampler, data) and fit, attributed to the caller of the package's function."""
     for fit in fits:
         grouped = {}
         for text in fit.get("warnings", []):
