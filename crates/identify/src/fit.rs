@@ -426,7 +426,6 @@ fn verify_best<P: CubeProblem>(
     if c < runs[best].cost {
         (runs[best].point, runs[best].cost) = (y, c);
     }
-    runs[best].crept = false;
     Ok(())
 }
 
@@ -544,8 +543,9 @@ fn refine<P: CubeProblem>(
 ) -> Result<(Vec<f64>, f64, bool), IdentifyError> {
     let (mut x, mut cost) = (x.clone(), problem.cost_at(&x));
     let creep = (kind == Polish::Start).then_some(crate::lm::START_CREEP);
+    let mut crept = false;
     for round in 0..POLISH_ROUNDS {
-        let (mut converged, mut crept) = (false, false);
+        let mut converged = false;
         let least_squares = round > 0 || kind != Polish::Verify;
         if let Some(end) = least_squares
             .then(|| crate::lm::polish(problem, &x, cost, creep))
@@ -557,8 +557,7 @@ fn refine<P: CubeProblem>(
             (converged, crept) = (end.converged, end.crept);
         }
         if (converged || crept) && kind == Polish::Start {
-            let x = x.iter().map(|v| v.clamp(0.0, 1.0)).collect();
-            return Ok((x, cost, crept));
+            break;
         }
         let (y, c) = polish(problem, x.clone(), iterations)?;
         let gain = cost - c;
@@ -570,7 +569,7 @@ fn refine<P: CubeProblem>(
             break;
         }
     }
-    Ok((x.iter().map(|v| v.clamp(0.0, 1.0)).collect(), cost, false))
+    Ok((x.iter().map(|v| v.clamp(0.0, 1.0)).collect(), cost, crept))
 }
 
 /// Moves coordinates within 1e-3 of a face of the cube onto it where the cost does not rise:

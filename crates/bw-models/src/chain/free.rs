@@ -116,24 +116,18 @@ impl Onsets {
     }
 }
 
-/// A pair in free flight at `t`: its gap less its onset gap `h0` (m), relative velocity `u`
-/// (m/s) and relative acceleration `a` (m/s²), so that `h(t + τ) = h0 + u τ + a τ² / 2`.
+/// A pair in free flight: the [`Motion`] of its gap less its onset gap, `h` (m), from `t0`
+/// with relative velocity `v0` (m/s) and relative acceleration `a` (m/s²).
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Flight {
-    pub(super) t: f64,
-    pub(super) h0: f64,
-    pub(super) u: f64,
-    pub(super) a: f64,
-}
+pub(super) struct Flight(pub(super) Motion);
 
 impl Flight {
     fn h(&self, t: f64) -> f64 {
-        let tau = t - self.t;
-        self.h0 + tau * (self.u + 0.5 * self.a * tau)
+        self.0.at(t).0
     }
 
     fn velocity(&self, t: f64) -> f64 {
-        self.u + self.a * (t - self.t)
+        self.0.at(t).1
     }
 
     /// When the pair's contact begins, by the rules of a step's onset test: at once where the
@@ -142,7 +136,12 @@ impl Flight {
     /// `h` first falls below zero. Each instant is located on the closed form down to adjacent
     /// floating-point numbers ([`find_crossing`]'s `hi`). `None` if it never begins.
     pub(super) fn onset(&self) -> Option<f64> {
-        let Flight { t, h0, u, a } = *self;
+        let Motion {
+            t0: t,
+            d0: h0,
+            v0: u,
+            a,
+        } = self.0;
         let closing_now = u < 0.0 || u == 0.0 && a < 0.0;
         if h0 <= 0.0 && closing_now {
             return Some(t);
@@ -164,7 +163,12 @@ impl Flight {
     /// A bracket `[lo, hi]` with `h(lo) > 0 > h(hi)` around the first fall of `h` through
     /// zero, where there is one.
     fn bracket(&self) -> Option<(f64, f64)> {
-        let Flight { t, h0, u, a } = *self;
+        let Motion {
+            t0: t,
+            d0: h0,
+            v0: u,
+            a,
+        } = self.0;
         if a == 0.0 {
             return (u < 0.0 && h0 > 0.0).then(|| (t, t + 2.0 * h0 / -u));
         }
@@ -220,64 +224,64 @@ mod tests {
     #[test]
     fn a_closing_pair_begins_at_the_root_of_its_parabola() {
         // h = 1 - 2 τ from t = 1: begins at 1.5.
-        let f = Flight {
-            t: 1.0,
-            h0: 1.0,
-            u: -2.0,
+        let f = Flight(Motion {
+            t0: 1.0,
+            d0: 1.0,
+            v0: -2.0,
             a: 0.0,
-        };
+        });
         assert!((f.onset().unwrap() - 1.5).abs() <= 1e-15);
         // Under gravity from rest 0.05 m above: h = 0.05 - 9.81 τ² / 2.
-        let f = Flight {
-            t: 0.0,
-            h0: 0.05,
-            u: 0.0,
+        let f = Flight(Motion {
+            t0: 0.0,
+            d0: 0.05,
+            v0: 0.0,
             a: -9.81,
-        };
+        });
         let expected = (2.0f64 * 0.05 / 9.81).sqrt();
         assert!((f.onset().unwrap() - expected).abs() <= 4.0 * f64::EPSILON * expected);
         // Thrown up from the onset gap: back at it after 2 u / g.
-        let f = Flight {
-            t: 0.0,
-            h0: 0.0,
-            u: 1.0,
+        let f = Flight(Motion {
+            t0: 0.0,
+            d0: 0.0,
+            v0: 1.0,
             a: -9.81,
-        };
+        });
         assert!((f.onset().unwrap() - 2.0 / 9.81).abs() <= 1e-15);
         // Closing but braked before it closes: never.
-        let f = Flight {
-            t: 0.0,
-            h0: 1.0,
-            u: -1.0,
+        let f = Flight(Motion {
+            t0: 0.0,
+            d0: 1.0,
+            v0: -1.0,
             a: 1.0,
-        };
+        });
         assert_eq!(f.onset(), None);
         // Closing and braked, but not enough: at the first root, 1 - sqrt(1 - 2 * 0.3).
-        let f = Flight {
-            t: 0.0,
-            h0: 0.3,
-            u: -1.0,
+        let f = Flight(Motion {
+            t0: 0.0,
+            d0: 0.3,
+            v0: -1.0,
             a: 1.0,
-        };
+        });
         let expected = 1.0 - (1.0f64 - 0.6).sqrt();
         assert!((f.onset().unwrap() - expected).abs() <= 1e-15);
         // Touching and closing: at once; opening with nothing to turn it: never.
-        let f = Flight {
-            t: 3.0,
-            h0: 0.0,
-            u: -1.0,
+        let f = Flight(Motion {
+            t0: 3.0,
+            d0: 0.0,
+            v0: -1.0,
             a: 0.0,
-        };
+        });
         assert_eq!(f.onset(), Some(3.0));
-        let f = Flight { u: 1.0, ..f };
+        let f = Flight(Motion { v0: 1.0, ..f.0 });
         assert_eq!(f.onset(), None);
         // Below the onset gap and opening, pulled back: where it turns.
-        let f = Flight {
-            t: 0.0,
-            h0: -1e-6,
-            u: 0.5,
+        let f = Flight(Motion {
+            t0: 0.0,
+            d0: -1e-6,
+            v0: 0.5,
             a: -2.0,
-        };
+        });
         assert!((f.onset().unwrap() - 0.25).abs() <= 1e-15);
     }
 }

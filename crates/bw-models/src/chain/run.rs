@@ -2,7 +2,7 @@
 //! ledger and the samples in time.
 
 use super::events::{self, Event, Kind};
-use super::free::{Flight, Onsets};
+use super::free::{Flight, Motion, Onsets};
 use super::system::{ChainSystem, Pair, Tolerances, DISSIPATED, NONE, SLOT};
 use super::{Chain, Scheme, Stop};
 use crate::input::Input;
@@ -397,12 +397,12 @@ fn predict<I: Input>(it: &It<'_, I>, book: &mut Book, j: usize) {
     if sys.is_active(j) || !free(p.left) || !free(p.right) {
         return;
     }
-    let flight = Flight {
-        t,
-        h0: sys.gap(j, t, y) - book.onsets[j],
-        u: sys.relative_velocity(j, t, y),
+    let flight = Flight(Motion {
+        t0: t,
+        d0: sys.gap(j, t, y) - book.onsets[j],
+        v0: sys.relative_velocity(j, t, y),
         a: sys.relative_acceleration(j, it.derivative()),
-    };
+    });
     if let Some(at) = flight.onset() {
         book.queue.push(j, at);
     }
