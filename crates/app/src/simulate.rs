@@ -79,6 +79,46 @@ pub fn sweep_served(scene: &Scene) -> Vec<bool> {
         .collect()
 }
 
+/// Fewest samples of a contact a sampled trajectory is expected to have before it is called
+/// too coarse.
+pub const FEW_SAMPLES: usize = 20;
+
+/// Notes for runs whose `[output].dt` samples the contact fewer than [`FEW_SAMPLES`] times
+/// (`dt` is in the run's time unit: s in SI and `[base]` scenes, natural time in
+/// `[nondimensional]` ones), with the `dt` that would give 100 samples.
+pub fn sampling_notes(scene: &Scene, runs: &[Run]) -> Vec<String> {
+    let Some(dt) = scene.output.dt else {
+        return Vec::new();
+    };
+    if !(scene.output.trajectory || scene.output.loops) || scene.sequence.is_some() {
+        return Vec::new();
+    }
+    runs.iter()
+        .filter_map(|r| {
+            let t_s = r.t_s?;
+            let inside = r.trajectory.iter().filter(|s| s.t <= t_s).count();
+            (inside < FEW_SAMPLES).then(|| {
+                let label = match r.label().as_str() {
+                    "run" => "the run".to_string(),
+                    l => format!("run {l}"),
+                };
+                format!(
+                    "{label}: [output].dt = {dt:e} {unit} samples the contact ({t_s:.3e} {unit}) \
+                     {inside} times: dt is in {unit_name}; dt = {better:.1e} gives about 100 \
+                     samples",
+                    unit = r.time_unit,
+                    unit_name = if r.time_unit == "s" {
+                        "seconds in an SI or [base] scene"
+                    } else {
+                        "natural time in a [nondimensional] scene"
+                    },
+                    better = t_s / 100.0,
+                )
+            })
+        })
+        .collect()
+}
+
 /// For each system whose sweep went through the plan but found no interpolant (every speed
 /// simulated, on top of the plan's trials), a note naming the system, why the plan gave up
 /// and the setting that would let it interpolate (`bwc-simulate` prints these on stderr,

@@ -79,6 +79,10 @@ impl Dataset {
         if points.is_empty() {
             return Err(csv.error(csv.header_line, "the dataset has no data rows".into()));
         }
+        if let Some(message) = percent(&points) {
+            let line = points.iter().find(|p| p.e.is_some()).map_or(0, |p| p.line);
+            return Err(csv.error(line, message));
+        }
         warnings.extend(speeds_warning(path, &points));
         warnings.extend(unit_slips(path, &points));
         let reconstructed = text
@@ -125,6 +129,49 @@ impl Dataset {
     }
 }
 
+/// What a dataset's header must name.
+const NEEDED: &str = "a dataset's header names `v_0` (impact speed, m/s) and `e` (CoR) or `t_d` \
+                      (contact duration, s), optionally `e_std`, `e_spread`, `e_sem`";
+
+/// The renames a header seems to need: `v0`, `V_0`, `v_in` for `v_0`; `cor`, `CoR`, `COR`, `CR`,
+/// `restitution` for `e`; `td`, `duration` for `t_d` (", rename ..." or empty).
+fn renames(names: &[&str]) -> String {
+    let key = |h: &str| h.to_lowercase().replace(['_', ' ', '-'], "");
+    let wanted = [
+        (
+            "v_0",
+            &["v0", "vin", "v", "speed", "velocity", "impactspeed"][..],
+        ),
+        (
+            "e",
+            &[
+                "cor",
+                "cr",
+                "restitution",
+                "coefficientofrestitution",
+                "epsilon",
+            ][..],
+        ),
+        (
+            "t_d",
+            &["td", "duration", "contactduration", "tc", "contacttime"][..],
+        ),
+    ];
+    let found: Vec<String> = wanted
+        .iter()
+        .filter(|(name, _)| !names.contains(name))
+        .filter_map(|(name, like)| {
+            let h = names.iter().find(|h| like.contains(&key(h).as_str()))?;
+            Some(format!("`{h}` to `{name}`"))
+        })
+        .collect();
+    if found.is_empty() {
+        String::new()
+    } else {
+        format!(" (rename {})", found.join(", "))
+    }
+}
+
 /// The columns of a dataset's header.
 struct Columns {
     v0: usize,
@@ -140,15 +187,22 @@ impl Columns {
     /// The columns of `headers`; a message for a missing `v_0`, or neither `e` nor `t_d`.
     fn of(headers: &csv::StringRecord) -> Result<Self, String> {
         let col = |name: &str| headers.iter().position(|h| h == name);
+        let names: Vec<&str> = headers.iter().collect();
+        if names.iter().all(|h| h.is_empty()) {
+            return Err(format!("no header: {NEEDED}"));
+        }
         let v0 = col("v_0").ok_or_else(|| {
             format!(
-                "no column `v_0` in header {:?}",
-                headers.iter().collect::<Vec<_>>()
+                "no column `v_0` in header {names:?}{}: {NEEDED}",
+                renames(&names)
             )
         })?;
         let (e, t_d) = (col("e"), col("t_d"));
         if e.is_none() && t_d.is_none() {
-            return Err("no column `e` or `t_d`: nothing to fit".into());
+            return Err(format!(
+                "no column `e` or `t_d` in header {names:?}{}: nothing to fit; {NEEDED}",
+                renames(&names)
+            ));
         }
         let spread = match (col("e_std"), col("e_spread")) {
             (Some(c), _) => Some((c, 1.0)),
@@ -236,27 +290,18 @@ pub const PLAUSIBLE_SPEED: f64 = 100.0;
 /// balls last microseconds to some ten milliseconds.
 pub const PLAUSIBLE_DURATION: f64 = 0.5;
 
-/// Hints at unit slips in the columns: speeds in mm/s (above [`PLAUSIBLE_SPEED`]), CoRs in
-/// percent (every `e` above 1 and none above 100), durations in ms (above
-/// [`PLAUSIBLE_DURATION`]). Each names the slip and the fix; the data are used as they are.
+/// Hints at unit slips in the columns: speeds in mm/s (above [`PLAUSIBLE_SPEED`]), durations in
+/// ms (above [`PLAUSIBLE_DURATION`]). Each names the slip and the fix; the data are used as they
+/// are.
 fn unit_slips(path: &Path, points: &[Point]) -> Vec<String> {
     let file = path.display();
     let most = |f: &dyn Fn(&Point) -> Option<f64>| points.iter().filter_map(f).reduce(f64::max);
-    let least = |f: &dyn Fn(&Point) -> Option<f64>| points.iter().filter_map(f).reduce(f64::min);
     let mut hints = Vec::new();
     if let Some(v) = most(&|p| Some(p.v0)).filter(|&v| v > PLAUSIBLE_SPEED) {
         hints.push(format!(
             "{file}: v_0 reaches {v}, above the {PLAUSIBLE_SPEED} m/s of any contact experiment: \
              the column looks like a unit slip (mm/s for m/s); divide it by 1000"
         ));
-    }
-    if let (Some(lo), Some(hi)) = (least(&|p| p.e), most(&|p| p.e)) {
-        if lo > 1.0 && hi <= 100.0 {
-            hints.push(format!(
-                "{file}: every e is in ({lo}, {hi}], above 1: the column looks like percent, a \
-                 unit slip; divide it by 100"
-            ));
-        }
     }
     if let Some(t) = most(&|p| p.t_d).filter(|&t| t > PLAUSIBLE_DURATION) {
         hints.push(format!(
@@ -265,6 +310,21 @@ fn unit_slips(path: &Path, points: &[Point]) -> Vec<String> {
         ));
     }
     hints
+}
+
+/// The message for a CoR column in percent: every `e` above 1 and none above 100, which no
+/// collision without input reaches (a single CoR above 1 among fractions stays a warning).
+fn percent(points: &[Point]) -> Option<String> {
+    let es = || points.iter().filter_map(|p| p.e);
+    let lo = es().reduce(f64::min)?;
+    let hi = es().reduce(f64::max)?;
+    (lo > 1.0 && hi <= 100.0).then(|| {
+        format!(
+            "column `e`: all {} CoRs are in ({lo}, {hi}], above 1: these look like percent; \
+             divide the column by 100",
+            es().count()
+        )
+    })
 }
 
 fn speeds_warning(path: &Path, points: &[Point]) -> Option<String> {
@@ -292,11 +352,14 @@ mod tests {
     #[test]
     fn columns_in_other_units_get_a_hint() {
         let hints = |text: &str| Dataset::parse(Path::new("d.csv"), text).unwrap().warnings;
-        // Percent: every e above 1 (one warning per row too, and one hint for the column).
-        let w = hints("v_0,e\n0.5,91\n1.0,85\n");
-        assert!(w
-            .iter()
-            .any(|w| w.contains("looks like percent") && w.contains("divide it by 100")));
+        // Percent: every e above 1 is an error, said once at the first CoR's line.
+        let e = Dataset::parse(Path::new("d.csv"), "# c\nv_0,e\n0.5,91\n1.0,85\n").unwrap_err();
+        let text = e.to_string();
+        assert!(text.starts_with("d.csv:3:"), "{text}");
+        assert!(
+            text.contains("all 2 CoRs are in (85, 91]")
+                && text.contains("divide the column by 100")
+        );
         // mm/s.
         let w = hints("v_0,e\n2150,0.6\n3030,0.55\n");
         assert!(w.iter().any(|w| w.contains("mm/s for m/s")), "{w:?}");
@@ -307,6 +370,34 @@ mod tests {
         assert!(hints("v_0,e,t_d\n0.5,1.02,0.001\n1.0,0.85,0.001\n")
             .iter()
             .all(|w| !w.contains("unit slip")));
+    }
+
+    #[test]
+    fn a_header_without_the_columns_names_them_and_the_likely_renames() {
+        let err = |text: &str| {
+            Dataset::parse(Path::new("d.csv"), text)
+                .unwrap_err()
+                .to_string()
+        };
+        let e = err("v0,cor\n1,0.5\n");
+        assert!(e.starts_with("d.csv:1: no column `v_0`"), "{e}");
+        assert!(e.contains("rename `v0` to `v_0`, `cor` to `e`"), "{e}");
+        assert!(
+            e.contains("names `v_0` (impact speed, m/s) and `e` (CoR) or `t_d`"),
+            "{e}"
+        );
+        let e = err("v_0,CoR\n1,0.5\n");
+        assert!(
+            e.contains("no column `e` or `t_d`") && e.contains("`CoR` to `e`"),
+            "{e}"
+        );
+        let e = err("");
+        assert!(
+            e.starts_with("d.csv:1: no header: a dataset's header names"),
+            "{e}"
+        );
+        let e = err("# only a comment\n");
+        assert!(e.contains("no header"), "{e}");
     }
 
     #[test]

@@ -241,8 +241,9 @@ impl<'a, I: Input + Sync> Objective<'a, I> {
         r
     }
 
-    /// `sqrt(w1 / M1)` and `sqrt(w2 / M2)`, each `None` where its weight is zero.
-    fn residual_scales(&self) -> (Option<f64>, Option<f64>) {
+    /// `sqrt(w1 / M1)` and `sqrt(w2 / M2)`, the factors of the weighted residuals, each `None`
+    /// where its weight is zero.
+    pub(crate) fn residual_scales(&self) -> (Option<f64>, Option<f64>) {
         let w = self.weights;
         let count = |has: fn(&Point) -> bool| {
             self.data.points.iter().filter(|p| has(p)).count().max(1) as f64

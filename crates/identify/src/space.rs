@@ -372,6 +372,23 @@ impl Space {
         self.free.iter().map(|&i| self.name(i)).collect()
     }
 
+    /// Where `bound`, a bound of quantity `i` (index into [`NAMES`]) of a Bouc-Wen space, is the
+    /// model's own closed limit (`B_b = 0`, `g = ±1`, `sigma_b = 0` for the NDBWSHCCM, `n = 1`,
+    /// `p = 1`): the admissible set it closes, since a bound there cannot be widened.
+    pub fn model_limit(&self, i: usize, bound: f64) -> Option<&'static str> {
+        if self.family.is_some() {
+            return None;
+        }
+        let at = match i {
+            0 => bound == 0.0,
+            1 => bound.abs() == 1.0,
+            3 => self.kind == ModelKind::Shccm && bound == 0.0,
+            4 | 5 => bound == 1.0,
+            _ => false,
+        };
+        at.then(|| admissible(self.kind, i, f64::NAN).unwrap_err())
+    }
+
     /// The bounds `(lo, hi)` of quantity `i` (index into [`NAMES`]) if it is searched.
     pub fn bounds(&self, i: usize) -> Option<(f64, f64)> {
         match self.params.get(i)? {
@@ -511,6 +528,36 @@ mod tests {
 
     fn free(lo: f64, hi: f64) -> Param {
         Param::Free { lo, hi, log: false }
+    }
+
+    #[test]
+    fn a_bound_at_the_models_own_limit_is_named_as_such() {
+        let params = [
+            free(0.0, 4.0),
+            free(-1.0, 1.0),
+            free(0.1, 0.9),
+            free(0.0, 0.1),
+            free(1.0, 2.0),
+            free(1.2, 3.0),
+            Param::Fixed(1.0),
+            Param::Fixed(1.0),
+        ];
+        let shccm = Space::new(ModelKind::Shccm, params, None).unwrap();
+        assert_eq!(shccm.model_limit(4, 1.0), Some("n >= 1"));
+        assert_eq!(shccm.model_limit(4, 2.0), None);
+        assert_eq!(shccm.model_limit(5, 1.2), None);
+        assert_eq!(shccm.model_limit(0, 0.0), Some("B_b >= 0"));
+        assert_eq!(
+            shccm.model_limit(1, -1.0),
+            Some("-1 <= g = Gamma_b / B_b <= 1")
+        );
+        assert_eq!(shccm.model_limit(3, 0.0), Some("sigma_b >= 0"));
+        // kappa's limits are open: a bound at 0.1 or 0.9 can be widened.
+        assert_eq!(shccm.model_limit(2, 0.9), None);
+        let mut params = params;
+        params[3] = free(1e-3, 0.1);
+        let mcm = Space::new(ModelKind::Mcm, params, None).unwrap();
+        assert_eq!(mcm.model_limit(3, 0.0), None);
     }
 
     #[test]

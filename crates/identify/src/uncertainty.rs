@@ -45,9 +45,17 @@ pub struct Uncertainty {
     pub method: &'static str,
     /// Confidence level.
     pub level: f64,
-    /// Residual standard deviation `σ̂` (in the units of the weighted residuals; the CoR's
-    /// units for a CoR-only fit with weight 1).
+    /// Standard deviation `σ̂` of the weighted residuals `sqrt(w1 / M1) (e_i - ê_i)` and
+    /// `sqrt(w2 / M2) (t_i - t̂_i)` (dimensionless scale of the cost, not of the data): the
+    /// noise level the intervals are built on. [`Uncertainty::sigma_e`] and
+    /// [`Uncertainty::sigma_t_d`] give it in the data's units.
     pub sigma: f64,
+    /// The noise standard deviation of the CoR this implies, `σ̂ sqrt(M1 / w1)` (units of `e`;
+    /// `sqrt(Σ (e_i - ê_i)² / (M - r))` on a CoR-only fit), where `J1` is weighted.
+    pub sigma_e: Option<f64>,
+    /// The noise standard deviation of the duration, `σ̂ sqrt(M2 / w2)` (s), where `J2` is
+    /// weighted.
+    pub sigma_t_d: Option<f64>,
     /// Residual degrees of freedom `M - r`.
     pub dof: usize,
     /// Parameter combinations the data determine (`r`).
@@ -146,6 +154,7 @@ pub fn uncertainty<I: Input + Sync>(
     let rss: f64 = r.iter().map(|x| x * x).sum();
     let sigma = (rss / dof as f64).sqrt();
     let covariance = covariance(&Svd { values, vectors }, &free, s.len(), sigma);
+    let (scale_e, scale_t_d) = objective.residual_scales();
     let quantile = StudentsT::new(0.0, 1.0, dof as f64)
         .map_err(|e| IdentifyError::Objectives {
             reason: format!("Student-t with {dof} degrees of freedom: {e}"),
@@ -156,6 +165,8 @@ pub fn uncertainty<I: Input + Sync>(
             "linearised (delta method), Student-t; undetermined directions spread over their bounds",
         level: LEVEL,
         sigma,
+        sigma_e: scale_e.map(|w| sigma / w),
+        sigma_t_d: scale_t_d.map(|w| sigma / w),
         dof,
         rank,
         params: Vec::new(),

@@ -104,7 +104,7 @@ pub(super) fn parse_fit(
         objectives(ctx, r)?
     };
     if !drop {
-        columns_for(ctx, r, &data_path, weights)?;
+        columns_for(ctx, (r, &t), &data_path, weights)?;
     }
     let known = known(ctx, r)?;
     let input = match &r.input {
@@ -186,7 +186,7 @@ fn parse_family_fit(
         ));
     }
     let weights = objectives(ctx, r)?;
-    columns_for(ctx, r, &data_path, weights)?;
+    columns_for(ctx, (r, t), &data_path, weights)?;
     let space = super::family::family_space(ctx, r, t, family, weights.j2 > 0.0)?;
     let (budget, seed, settings, pareto) = search(ctx, r, index)?;
     let posterior =
@@ -349,14 +349,31 @@ fn objectives(ctx: &Ctx, r: &RawFit) -> Result<Weights, AppError> {
 
 /// A weight on a quantity the data file has no column for, reported before everything that
 /// depends on the weights (a `J2` weight makes `U_b` and `T_b` matter): the header is read now,
-/// the data after the whole config has parsed.
-fn columns_for(ctx: &Ctx, r: &RawFit, data: &Path, w: Weights) -> Result<(), AppError> {
+/// the data after the whole config has parsed. A header without `v_0`, or with neither `e` nor
+/// `t_d`, is the data file's own error (it names the columns a dataset needs), as is an empty
+/// file.
+fn columns_for(
+    ctx: &Ctx,
+    (r, t): (&RawFit, &Range<usize>),
+    data: &Path,
+    w: Weights,
+) -> Result<(), AppError> {
     let Some(columns) = header_of(data) else {
         // Unreadable: the data file's own error comes with the data.
         return Ok(());
     };
-    let span = r.objectives.as_ref().map_or(0..0, |o| o.span());
     let has = |c: &str| columns.iter().any(|h| h == c);
+    if !has("v_0") || !(has("e") || has("t_d")) {
+        return Ok(());
+    }
+    let (span, given) = match &r.objectives {
+        Some(o) => (o.span(), ""),
+        None => (
+            t.clone(),
+            " (the default objectives = { J1 = 1 }: set objectives = { J2 = 1 } to fit the \
+             durations alone)",
+        ),
+    };
     for (weight, name, column, what) in [
         (w.j1, "J1", "e", "CoRs"),
         (w.j2, "J2", "t_d", "contact durations (s)"),
@@ -367,7 +384,7 @@ fn columns_for(ctx: &Ctx, r: &RawFit, data: &Path, w: Weights) -> Result<(), App
                 format!("objectives.{name}"),
                 format!(
                     "{name} = {weight} weighs {what}, but {} has no `{column}` column (it has \
-                     {}): set {name} = 0 or add the column",
+                     {}){given}: set {name} = 0 or add the column",
                     data.display(),
                     columns.join(", ")
                 ),
@@ -516,6 +533,8 @@ fn space(
     let log = log_flags(ctx, r)?;
     let mut params = [Param::Fixed(1.0); 8];
     let bounds_span = r.bounds.as_ref().map_or(t.clone(), |b| b.span());
+    // Every given bound is checked before the missing ones are reported, all at once.
+    let mut missing = Vec::new();
     for i in 0..8 {
         let key = NAMES[i];
         params[i] = match param_of(ctx, "fit", key, bounds[i], fixed[i], log[i])? {
@@ -524,15 +543,18 @@ fn space(
             // U_b and T_b only matter with an input, a duration objective or a known mass.
             None if i >= 6 && !uses_input_scales => Param::Fixed(1.0),
             None => {
-                return Err(ctx.invalid(
-                    &bounds_span,
-                    format!("[fit.bounds].{key}"),
-                    format!(
-                        "missing: give bounds for {key} in [fit.bounds] or a value in [fit.fixed]"
-                    ),
-                ))
+                missing.push(key);
+                Param::Fixed(1.0)
             }
         };
+    }
+    if !missing.is_empty() {
+        let keys = missing.join(", ");
+        return Err(ctx.invalid(
+            &bounds_span,
+            format!("[fit.bounds].{}", missing[0]),
+            format!("missing {keys}: give each bounds in [fit.bounds] or a value in [fit.fixed]"),
+        ));
     }
     Space::new(kind, params, known).map_err(|e| match e {
         IdentifyError::Bounds {

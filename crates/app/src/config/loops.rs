@@ -213,18 +213,25 @@ fn law_space(
     }
     let bounds_span = r.bounds.as_ref().map_or(t.clone(), |b| b.span());
     let mut params = [Param::Fixed(1.0); 8];
+    // Every given bound is checked before the missing ones are reported, all at once.
+    let mut missing = Vec::new();
     for (i, param) in params.iter_mut().enumerate() {
         let key = LAW_NAMES[i];
-        *param = param_of(ctx, "loop_fit", key, bounds[i], fixed[i], log[i])?.ok_or_else(|| {
-            ctx.invalid(
-                &bounds_span,
-                format!("[loop_fit.bounds].{key}"),
-                format!(
-                    "missing: give bounds for {key} in [loop_fit.bounds] or a value in \
-                     [loop_fit.fixed]"
-                ),
-            )
-        })?;
+        match param_of(ctx, "loop_fit", key, bounds[i], fixed[i], log[i])? {
+            Some(p) => *param = p,
+            None => missing.push(key),
+        }
+    }
+    if let Some(first) = missing.first() {
+        return Err(ctx.invalid(
+            &bounds_span,
+            format!("[loop_fit.bounds].{first}"),
+            format!(
+                "missing {}: give each bounds in [loop_fit.bounds] or a value in \
+                 [loop_fit.fixed]",
+                missing.join(", ")
+            ),
+        ));
     }
     LawSpace::new(kind, params).map_err(|e| match e {
         IdentifyError::Bounds {

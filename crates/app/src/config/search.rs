@@ -155,6 +155,13 @@ pub(super) fn param_of(
             }
             let lo = ctx.num(&pair.get_ref()[0], &name)?;
             let hi = ctx.num(&pair.get_ref()[1], &name)?;
+            if lo > hi {
+                return Err(ctx.invalid(
+                    &pair.span(),
+                    name,
+                    format!("[{lo}, {hi}] is reversed: give [lower, upper] with lower bound <= upper bound"),
+                ));
+            }
             Ok(Some(Param::Free { lo, hi, log }))
         }
         (None, Some(x)) => Ok(Some(Param::Fixed(

@@ -103,7 +103,8 @@ fn intervals_json(u: &Uncertainty) -> Value {
         .collect();
     json!({
         "method": u.method, "level": u.level, "params": params, "clipped": u.clipped,
-        "sigma": u.sigma, "dof": u.dof, "rank": u.rank,
+        "sigma": u.sigma_e.or(u.sigma_t_d), "sigma_e": u.sigma_e, "sigma_t_d": u.sigma_t_d,
+        "dof": u.dof, "rank": u.rank,
     })
 }
 
@@ -534,6 +535,8 @@ pub fn units() -> serde_json::Value {
     serde_json::json!({
         "params": params,
         "J1": "1", "J2": "s^2", "J_drop": "s^2 (intervals) or m^2 (rebound heights)", "wall_s": "s",
+        "intervals": {"sigma": "1 (e) or s (t_d, duration-only fits)", "sigma_e": "1",
+            "sigma_t_d": "s", "dof": "count", "rank": "count", "level": "1"},
         "drops": {"h0": "m", "bounce_n": "count", "measured": "s or m", "model": "s or m"},
         "<fit>_drops.csv": {"h0": "m", "bounce_n": "count", "measured": "s (interval) or m (h1)",
             "model": "s (interval) or m (h1)"},

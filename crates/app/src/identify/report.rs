@@ -128,11 +128,19 @@ pub(crate) fn search_warnings(
             continue;
         }
         let (side, bound) = if upper { ("upper", hi) } else { ("lower", lo) };
-        w.push(format!(
-            "\"{}\": {name} = {value} is on its {side} bound {bound}: widen [fit.bounds].{name} \
-             if the model allows",
-            f.name
-        ));
+        match f.space.model_limit(i, bound) {
+            Some(allowed) => w.push(format!(
+                "\"{}\": {name} = {value} is on its {side} bound {bound}, the model's own limit \
+                 ({allowed}): the data want {name} at or beyond it, where the law cannot go; the \
+                 fit is the best the model allows there",
+                f.name
+            )),
+            None => w.push(format!(
+                "\"{}\": {name} = {value} is on its {side} bound {bound}: widen \
+                 [fit.bounds].{name} if the model allows",
+                f.name
+            )),
+        }
     }
     w
 }

@@ -136,6 +136,9 @@ fn report(scene: &Scene, runs: &[bwc_app::runs::Run]) {
     for note in simulate::no_interpolant_notes(scene, runs) {
         eprintln!("bwc-simulate: {note}");
     }
+    for note in simulate::sampling_notes(scene, runs) {
+        eprintln!("bwc-simulate: warning: {note}");
+    }
     let t_max = scene.settings.t_max;
     for r in runs {
         let label = match r.label().as_str() {

@@ -298,6 +298,57 @@ fn bad_identification_data_are_clear_errors() {
         &["d.csv:2", "not finite"],
     );
     identify_rejects("empty-data", &good, Some("v_0,e\n"), &["no data rows"]);
+    // An empty file is the data's error, not the objectives'.
+    identify_rejects(
+        "empty-file",
+        &good,
+        Some(""),
+        &["d.csv:1: no header", "`v_0`"],
+    );
+    // Columns under other names: the names a dataset needs, and the renames.
+    identify_rejects(
+        "other-names",
+        &good,
+        Some("v0,cor\n0.5,0.9\n1.0,0.8\n"),
+        &["d.csv:1", "rename `v0` to `v_0`, `cor` to `e`"],
+    );
+    // CoRs in percent: one error, not a fit.
+    let percent: String = (1..=24)
+        .map(|i| format!("{},{}\n", 0.1 * i as f64, 90 - i))
+        .collect();
+    let dir_err = {
+        let dir = scratch("bad-identify-percent");
+        std::fs::write(dir.join("d.csv"), format!("v_0,e\n{percent}")).unwrap();
+        let path = dir.join("c.toml");
+        std::fs::write(&path, &good).unwrap();
+        let out = identify(&["run", path.to_str().unwrap()]);
+        assert_eq!(out.status.code(), Some(1));
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    assert!(
+        dir_err.contains("d.csv:2") && dir_err.contains("look like percent"),
+        "{dir_err}"
+    );
+    assert_eq!(dir_err.matches("above 1").count(), 1, "{dir_err}");
+}
+
+/// Missing bounds are named together, and a reversed bound is not hidden behind them.
+#[test]
+fn missing_and_reversed_bounds_are_reported_together() {
+    let config = format!("{HEAD}[fit.bounds]\nkappa = [0.1, 0.9]\nsigma_b = [0.0, 0.1]\n");
+    identify_rejects(
+        "missing-bounds",
+        &config,
+        Some(GOOD_DATA),
+        &["missing B_b, g, n, p: give each bounds"],
+    );
+    let config = format!("{HEAD}[fit.bounds]\nkappa = [0.9, 0.1]\nsigma_b = [0.0, 0.1]\n");
+    identify_rejects(
+        "reversed-bound",
+        &config,
+        Some(GOOD_DATA),
+        &["c.toml:6", "[fit.bounds].kappa", "[0.9, 0.1] is reversed"],
+    );
 }
 
 #[test]
@@ -717,4 +768,76 @@ fn family_fits_recover_their_damping_and_name_wrong_keys() {
     let e_r = v["fits"][0]["params"]["e_r"].as_f64().unwrap();
     assert!((e_r - 0.7).abs() < 1e-6, "e_r {e_r}");
     assert_eq!(v["fits"][0]["model"], "hertz-flores");
+}
+
+/// A fit's reported noise level is the residual standard deviation of its own CSV:
+/// `sqrt(Σ (e - e_model)² / dof)`, computed here from `<fit>.csv` and the JSON's `dof`, and near
+/// the noise the data were drawn with.
+#[test]
+fn a_fits_sigma_is_the_residual_standard_deviation_of_its_csv() {
+    use bw_models::{impact_at, input::Zero, BaseMap, BaseParams, ModelKind, Settings};
+    let dir = scratch("identify-sigma");
+    let truth = BaseParams {
+        b_b: 1.0,
+        gamma_b: -1.0,
+        kappa: 0.6,
+        sigma_b: 0.03,
+        n: 1.5,
+        p: 1.5,
+        u_b: 1.0,
+        t_b: 1.0,
+    };
+    let map = BaseMap::new(ModelKind::Shccm, truth).unwrap();
+    // 24 speeds with fixed pseudo-random noise of standard deviation near 6e-3.
+    let noise = [
+        0.9, -1.2, 0.3, 1.5, -0.4, -0.8, 1.1, -1.6, 0.2, 0.7, -1.0, 1.3, -0.2, 0.5, -1.4, 0.8,
+        -0.6, 1.0, -0.9, 0.1, 1.2, -1.1, 0.6, -0.3,
+    ];
+    let mut csv = String::from("v_0,e\n");
+    for (i, z) in noise.iter().enumerate() {
+        let v0 = 0.2 * 1.15f64.powi(i as i32);
+        let e = impact_at(&map, Zero, v0, &Settings::default()).unwrap().e;
+        csv += &format!("{v0},{}\n", e + 6e-3 * z);
+    }
+    std::fs::write(dir.join("noisy.csv"), csv).unwrap();
+    let config = dir.join("fit.toml");
+    std::fs::write(
+        &config,
+        "[[fit]]\nname = \"noisy\"\nmodel = \"shccm\"\ndata = \"noisy.csv\"\n[fit.bounds]\nkappa = [0.1, 0.9]\nsigma_b = [0.0, 0.1]\n\
+         [fit.fixed]\nB_b = 1.0\ng = -1.0\nn = 1.5\np = 1.5\n[fit.optimizer]\nparticles = 8\niterations = 10\npolish = 300\nstarts = 2\n",
+    )
+    .unwrap();
+    let out_dir = dir.join("out");
+    let v = json(&identify(&[
+        "run",
+        config.to_str().unwrap(),
+        "--json",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]));
+    let iv = &v["fits"][0]["intervals"];
+    let dof = iv["dof"].as_u64().unwrap() as f64;
+    assert_eq!(dof, 22.0, "{iv}");
+    let text = std::fs::read_to_string(out_dir.join("noisy.csv")).unwrap();
+    let rss: f64 = text
+        .lines()
+        .skip(1)
+        .map(|row| {
+            let v: Vec<f64> = row
+                .split(',')
+                .map(|x| x.parse().unwrap_or(f64::NAN))
+                .collect();
+            (v[1] - v[2]).powi(2)
+        })
+        .sum();
+    let expected = (rss / dof).sqrt();
+    let sigma_e = iv["sigma_e"].as_f64().unwrap();
+    assert!(
+        (sigma_e / expected - 1.0).abs() < 1e-4,
+        "{sigma_e} against {expected}"
+    );
+    assert_eq!(iv["sigma"], iv["sigma_e"]);
+    assert!(iv["sigma_t_d"].is_null());
+    // The noise drawn: 6e-3 times the pattern's root mean square (0.92).
+    assert!(sigma_e > 4e-3 && sigma_e < 8e-3, "{sigma_e}");
 }

@@ -744,3 +744,39 @@ fn unit_slips_get_a_hint_and_the_run_still_runs() {
     let out = simulate(&["run", scene.to_str().unwrap()]);
     assert!(!String::from_utf8_lossy(&out.stderr).contains("warning"));
 }
+
+/// `[output].dt` is in seconds in an SI scene: one that samples a 1.3 ms contact 3 times says
+/// so, with the unit and a `dt` that samples it well; a fine `dt` draws no warning.
+#[test]
+fn a_dt_that_undersamples_the_contact_says_so() {
+    let dir = scratch("coarse-dt");
+    let scene = |dt: &str| {
+        let path = dir.join(format!("dt-{dt}.toml"));
+        std::fs::write(
+            &path,
+            format!(
+                "model = \"shccm\"\nv0 = [2.15]\n[physical]\nm = 0.145\nk = 117080063.0\n\
+                 c = 5854003.0\nn = 1.1\np = 1.7\nalpha = 0.1\nbeta = 981.05\ngamma = -961.4\n\
+                 A = 0.925\n[output]\ntrajectory = true\ndt = {dt}\n"
+            ),
+        )
+        .unwrap();
+        let out = simulate(&[
+            "run",
+            path.to_str().unwrap(),
+            "--out",
+            dir.join(dt).to_str().unwrap(),
+        ]);
+        assert!(out.status.success());
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let err = scene("0.001");
+    assert!(
+        err.contains("[output].dt = 1e-3 s samples the contact")
+            && err.contains("dt is in seconds in an SI or [base] scene"),
+        "{err}"
+    );
+    let csv = std::fs::read_to_string(dir.join("0.001").join("trajectory.csv")).unwrap();
+    assert!(csv.starts_with("t,x,v,u,F,z\n"), "{csv}");
+    assert!(!scene("1e-5").contains("samples the contact"));
+}
