@@ -519,3 +519,69 @@ fn integrating_only_the_bodies_in_contact_changes_nothing() {
         );
     }
 }
+
+/// The largest force of a damped contact lies inside a step, before the maximal compression:
+/// two bodies under the Hunt-Crossley law `F = k |x|^1.5 (1 + (c/k) (-ẋ))` (the BWSHCCL with
+/// `β = γ = 0`, `A = 1`) reach the peak force of an independent fixed-step RK4 integration of
+/// the relative motion `m_e ẍ = F` (step 1e-6 of the contact, the peak refined by a parabola
+/// through the largest sample and its neighbours) to 1e-9 relative.
+#[test]
+fn a_damped_contacts_peak_force_is_found_inside_a_step() {
+    let (m1, m2, k, c, v0) = (0.1, 0.3, 1.0e7, 3.0e6, 1.0);
+    let law = Physical {
+        k,
+        c,
+        n: 1.0,
+        p: 1.5,
+        alpha: 0.5,
+        beta: 0.0,
+        gamma: 0.0,
+        a: 1.0,
+    };
+    let pair = PairLaw::new(&PhysicalParams::new(ModelKind::Shccm, law).unwrap()).unwrap();
+    let bodies = vec![
+        ChainBody::new(m1, 0.0, v0, 0.1, Constant(0.0)),
+        ChainBody::new(m2, 0.1, 0.0, 0.1, Constant(0.0)),
+    ];
+    let chain = Chain::new(bodies, vec![pair], Walls::default(), tight()).unwrap();
+    let run = chain.run(Stop::at(1e-2), None, |_| {}).unwrap();
+    let contact = run.contacts[0];
+    // The reference: x < 0 in compression, u = ẋ the relative velocity.
+    let m_e = m1 * m2 / (m1 + m2);
+    let force = |x: f64, u: f64| {
+        let xp = x.abs().powf(1.5);
+        if x < 0.0 {
+            k * xp - c * xp * u
+        } else {
+            0.0
+        }
+    };
+    let rhs = |x: f64, u: f64| (u, force(x, u) / m_e);
+    let t_d = contact.separation.unwrap() - contact.onset;
+    let h = 1e-6 * t_d;
+    let (mut x, mut u) = (0.0f64, -v0);
+    let mut samples = vec![0.0];
+    while x <= 0.0 {
+        let k1 = rhs(x, u);
+        let k2 = rhs(x + 0.5 * h * k1.0, u + 0.5 * h * k1.1);
+        let k3 = rhs(x + 0.5 * h * k2.0, u + 0.5 * h * k2.1);
+        let k4 = rhs(x + h * k3.0, u + h * k3.1);
+        x += h / 6.0 * (k1.0 + 2.0 * k2.0 + 2.0 * k3.0 + k4.0);
+        u += h / 6.0 * (k1.1 + 2.0 * k2.1 + 2.0 * k3.1 + k4.1);
+        samples.push(force(x, u));
+    }
+    let i = (1..samples.len() - 1)
+        .max_by(|&a, &b| samples[a].total_cmp(&samples[b]))
+        .unwrap();
+    let (a, b, d) = (samples[i - 1], samples[i], samples[i + 1]);
+    let peak = b + (d - a).powi(2) / (8.0 * (2.0 * b - a - d));
+    let relative = (contact.peak_force - peak).abs() / peak;
+    assert!(
+        relative < 1e-9,
+        "peak {} against {peak}: {relative:e}",
+        contact.peak_force
+    );
+    // Before the maximal compression, where the damping still adds to the spring force.
+    let t_peak = i as f64 * h;
+    assert!((contact.peak_at - contact.onset - t_peak).abs() < 2.0 * h);
+}

@@ -32,7 +32,8 @@ typedef enum BwcStatus {
   BWC_STATUS_NULL_POINTER = 1,
   // An argument or parameter is outside its admissible set; nothing changed.
   BWC_STATUS_INVALID_ARGUMENT = 2,
-  // A handle is not live: freed, or never returned by a `_new` function.
+  // A handle is not live (freed, or never returned by a `_new` function), or of the wrong
+  // kind (a law's where a contact's is expected, or the reverse).
   BWC_STATUS_INVALID_HANDLE = 3,
   // The computation failed (its integration did not converge); nothing changed.
   BWC_STATUS_FAILED = 4,
@@ -50,10 +51,11 @@ typedef struct BwcElementSettings {
   uint32_t policy;
 } BwcElementSettings;
 
-// A law's handle: 0 is never one.
+// A law's handle: 0 is never one, and no contact handle has the same value (one given where
+// the other is expected is `BWC_STATUS_INVALID_HANDLE`, naming both kinds).
 typedef uint64_t BwcLaw;
 
-// A contact element's handle: 0 is never one.
+// A contact element's handle: 0 is never one, and no law handle has the same value.
 typedef uint64_t BwcContact;
 
 // What one host step gave.

@@ -1,13 +1,13 @@
 //! Contact elements behind handles: create, advance, read, reset, free.
 
-use crate::law::{dead, law};
-use crate::registry::Registry;
+use crate::law::law;
+use crate::registry::{dead, Kind, Registry};
 use crate::status::{guard, invalid, out, BwcStatus, Failure};
 use bw_models::sequence::Policy;
 use bw_models::{AnyContactElement, ElementSettings, ElementStep, Penetration};
 use std::sync::{Mutex, RwLock};
 
-/// A contact element's handle: 0 is never one.
+/// A contact element's handle: 0 is never one, and no law handle has the same value.
 pub type BwcContact = u64;
 
 /// `policy`: each new contact starts from the law at rest.
@@ -62,14 +62,15 @@ pub struct BwcContactInfo {
     pub in_contact: i32,
 }
 
-static CONTACTS: RwLock<Registry<Mutex<AnyContactElement>>> = RwLock::new(Registry::new());
+static CONTACTS: RwLock<Registry<Mutex<AnyContactElement>>> =
+    RwLock::new(Registry::new(Kind::Contact));
 
 /// Runs `f` on the element of a live handle, holding only that element's lock.
 fn with<T>(handle: BwcContact, f: impl FnOnce(&mut AnyContactElement) -> T) -> Result<T, Failure> {
     let contacts = CONTACTS.read().unwrap_or_else(|e| e.into_inner());
     let cell = contacts
         .get(handle)
-        .ok_or_else(|| dead("contact", handle))?;
+        .ok_or_else(|| dead("contact", handle, Kind::Contact))?;
     let mut element = cell.lock().unwrap_or_else(|e| e.into_inner());
     Ok(f(&mut element))
 }
@@ -148,7 +149,7 @@ pub extern "C" fn bwc_contact_free(contact: BwcContact) -> BwcStatus {
         contacts
             .remove(contact)
             .map(drop)
-            .ok_or_else(|| dead("contact", contact))
+            .ok_or_else(|| dead("contact", contact, Kind::Contact))
     })
 }
 
@@ -333,7 +334,7 @@ pub unsafe extern "C" fn bwc_contact_clone(from: BwcContact, out: *mut BwcContac
     guard("bwc_contact_clone", || {
         // SAFETY: the caller's contract; NULL is checked.
         let out = unsafe { self::out(out, "out")? };
-        let element = with(from, |e| e.clone()).map_err(|_| dead("from", from))?;
+        let element = with(from, |e| e.clone()).map_err(|_| dead("from", from, Kind::Contact))?;
         *out = keep(element)?;
         Ok(())
     })
@@ -344,7 +345,7 @@ pub unsafe extern "C" fn bwc_contact_clone(from: BwcContact, out: *mut BwcContac
 #[no_mangle]
 pub extern "C" fn bwc_contact_copy(from: BwcContact, to: BwcContact) -> BwcStatus {
     guard("bwc_contact_copy", || {
-        let element = with(from, |e| e.clone()).map_err(|_| dead("from", from))?;
-        with(to, |e| *e = element).map_err(|_| dead("to", to))
+        let element = with(from, |e| e.clone()).map_err(|_| dead("from", from, Kind::Contact))?;
+        with(to, |e| *e = element).map_err(|_| dead("to", to, Kind::Contact))
     })
 }

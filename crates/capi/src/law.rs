@@ -1,6 +1,6 @@
 //! Laws from parameters (SI or base), and the one-shot impact.
 
-use crate::registry::Registry;
+use crate::registry::{dead, Kind, Registry};
 use crate::status::{arg, guard, invalid, out, BwcStatus, Failure};
 use bw_models::input::Constant;
 use bw_models::{
@@ -8,7 +8,8 @@ use bw_models::{
 };
 use std::sync::RwLock;
 
-/// A law's handle: 0 is never one.
+/// A law's handle: 0 is never one, and no contact handle has the same value (one given where
+/// the other is expected is `BWC_STATUS_INVALID_HANDLE`, naming both kinds).
 pub type BwcLaw = u64;
 
 /// `model` of the Bouc-Wen-Simon-Hunt-Crossley law (states x, z).
@@ -76,7 +77,7 @@ pub struct BwcImpact {
     pub separated: i32,
 }
 
-static LAWS: RwLock<Registry<PhysicalParams>> = RwLock::new(Registry::new());
+static LAWS: RwLock<Registry<PhysicalParams>> = RwLock::new(Registry::new(Kind::Law));
 
 pub(crate) fn kind(model: u32) -> Result<ModelKind, Failure> {
     match model {
@@ -93,17 +94,9 @@ pub(crate) fn kind(model: u32) -> Result<ModelKind, Failure> {
 /// The parameters of a live law handle.
 pub(crate) fn law(handle: BwcLaw) -> Result<PhysicalParams, Failure> {
     let laws = LAWS.read().unwrap_or_else(|e| e.into_inner());
-    laws.get(handle).copied().ok_or_else(|| dead("law", handle))
-}
-
-pub(crate) fn dead(name: &str, handle: u64) -> Failure {
-    Failure::new(
-        BwcStatus::InvalidHandle,
-        format!(
-            "argument `{name}` = {handle:#x} is not a live handle: it was freed, or did not come \
-             from a bwc_*_new function"
-        ),
-    )
+    laws.get(handle)
+        .copied()
+        .ok_or_else(|| dead("law", handle, Kind::Law))
 }
 
 fn keep(params: PhysicalParams, out: &mut BwcLaw) -> Result<(), Failure> {
@@ -179,7 +172,9 @@ pub extern "C" fn bwc_law_free(law: BwcLaw) -> BwcStatus {
             return Ok(());
         }
         let mut laws = LAWS.write().unwrap_or_else(|e| e.into_inner());
-        laws.remove(law).map(drop).ok_or_else(|| dead("law", law))
+        laws.remove(law)
+            .map(drop)
+            .ok_or_else(|| dead("law", law, Kind::Law))
     })
 }
 

@@ -15,7 +15,8 @@ pub enum BwcStatus {
     NullPointer = 1,
     /// An argument or parameter is outside its admissible set; nothing changed.
     InvalidArgument = 2,
-    /// A handle is not live: freed, or never returned by a `_new` function.
+    /// A handle is not live (freed, or never returned by a `_new` function), or of the wrong
+    /// kind (a law's where a contact's is expected, or the reverse).
     InvalidHandle = 3,
     /// The computation failed (its integration did not converge); nothing changed.
     Failed = 4,

@@ -252,3 +252,47 @@ fn bad_steps_leave_the_contact_unchanged() {
         );
     }
 }
+
+/// A law's handle where a contact's is expected (and the reverse) is an error naming both
+/// kinds, even where the two hold the same slot: nothing is advanced or freed.
+#[test]
+fn a_handle_of_the_wrong_kind_is_an_error() {
+    let mut law = 0;
+    let mut contact = 0;
+    let mut step = BwcStep {
+        force: 0.0,
+        impulse: 0.0,
+        work: 0.0,
+        separated_at: 0.0,
+        began_at: 0.0,
+    };
+    // SAFETY: every pointer is to a live local.
+    unsafe {
+        assert_eq!(bwc_law_new(&shccm(), &mut law), BwcStatus::Ok);
+        assert_eq!(bwc_contact_new(law, null(), &mut contact), BwcStatus::Ok);
+        expect(
+            bwc_contact_advance(law, 1e-5, -2.0, -2.0, &mut step),
+            BwcStatus::InvalidHandle,
+            &["`contact`", "is a law handle, not a contact handle"],
+        );
+        assert_eq!(info(contact), [0.0; 5]);
+        let mut other = 0;
+        expect(
+            bwc_contact_new(contact, null(), &mut other),
+            BwcStatus::InvalidHandle,
+            &["`law`", "is a contact handle, not a law handle"],
+        );
+        expect(
+            bwc_law_free(contact),
+            BwcStatus::InvalidHandle,
+            &["a contact handle"],
+        );
+        expect(
+            bwc_contact_free(law),
+            BwcStatus::InvalidHandle,
+            &["a law handle"],
+        );
+        assert_eq!(bwc_contact_free(contact), BwcStatus::Ok);
+        assert_eq!(bwc_law_free(law), BwcStatus::Ok);
+    }
+}

@@ -150,6 +150,8 @@ pub fn summary(scene: &ChainScene, out: &ChainOutcome) -> Value {
                 "onset_velocity_m_s": c.onset_velocity,
                 "separation_velocity_m_s": c.separation_velocity,
                 "rebound": c.rebound(),
+                "rebound_note": rebound_note(c),
+                "began_at_rest": c.began_at_rest,
                 "dissipated_J": c.dissipated,
                 "peak_force_N": c.peak_force,
                 "peak_at_s": c.peak_at,
@@ -177,7 +179,74 @@ pub fn summary(scene: &ChainScene, out: &ChainOutcome) -> Value {
             "steps": r.stats.accepted,
             "rhs_evaluations": r.stats.rhs_evals,
             "events": r.stats.events,
-        }
+        },
+        "units": units(),
+        "scene": describe(scene),
+    })
+}
+
+/// Why a contact has no rebound ratio (`None` where it has one).
+fn rebound_note(c: &bw_models::chain::ContactRecord) -> Option<&'static str> {
+    if c.rebound().is_some() {
+        None
+    } else if c.separation.is_none() {
+        Some("the run ended during the contact")
+    } else if c.began_at_rest {
+        Some("the contact began at rest (touching, no approach speed): no rebound ratio")
+    } else {
+        Some("no approach speed at the onset")
+    }
+}
+
+/// What a chain was run with: the bodies and walls, each pair's model, the tolerances, the
+/// policy and scheme, when the run ends, gravity and the sampling.
+fn describe(scene: &ChainScene) -> Value {
+    json!({
+        "path": scene.path.display().to_string(),
+        "bodies": scene.bodies.len(),
+        "pairs": scene.laws.len(),
+        "walls": { "left_m": scene.walls.left, "right_m": scene.walls.right },
+        "models": scene.models.iter().map(|m| m.name()).collect::<Vec<_>>(),
+        "solver": {
+            "method": "dop853",
+            "rtol": scene.settings.rtol,
+            "atol_m": scene.settings.atol,
+        },
+        "policy": format!("{:?}", scene.settings.policy).to_lowercase(),
+        "scheme": format!("{:?}", scene.settings.scheme).to_lowercase(),
+        "horizon_s": scene.stop.horizon,
+        "until": if scene.stop.settled { "settled" } else { "horizon" },
+        "g_m_s2": scene.g,
+        "dt_s": scene.dt,
+        "plots": scene.plots,
+    })
+}
+
+/// The unit of every key of a chain's summary and every column of its CSV files (the keys
+/// carry their units in their names too; `"1"`: dimensionless).
+pub fn units() -> Value {
+    json!({
+        "chain": {
+            "t_end_s": "s", "horizon_s": "s", "momentum_kg_m_s": "kg m/s",
+            "walls": {"left_m": "m", "right_m": "m"},
+            "bodies": {"body": "index", "mass_kg": "kg", "velocity_0_m_s": "m/s",
+                "velocity_m_s": "m/s", "position_0_m": "m", "position_m": "m"},
+            "contacts": {"pair": "index", "onset_s": "s", "separation_s": "s",
+                "onset_velocity_m_s": "m/s", "separation_velocity_m_s": "m/s", "rebound": "1",
+                "rebound_note": "text", "began_at_rest": "true or false",
+                "dissipated_J": "J", "peak_force_N": "N", "peak_at_s": "s"},
+            "ledger": {"kinetic_J": "J", "stored_J": "J", "dissipated_J": "J", "work_J": "J",
+                "initial_J": "J", "imbalance_J": "J"},
+            "steps": "count", "rhs_evaluations": "count", "events": "count",
+        },
+        "scene": {"solver": {"rtol": "1", "atol_m": "m"}, "horizon_s": "s", "g_m_s2": "m/s^2",
+            "dt_s": "s", "walls": {"left_m": "m", "right_m": "m"}},
+        "contacts.csv": {"pair": "index", "onset_s": "s", "separation_s": "s",
+            "onset_velocity_m_s": "m/s", "separation_velocity_m_s": "m/s", "rebound": "1",
+            "dissipated_J": "J", "peak_force_N": "N", "peak_at_s": "s",
+            "began_at_rest": "true or false"},
+        "chain.csv": {"t_s": "s", "x_<i>_m": "m", "v_<i>_m_s": "m/s", "gap_<j>_m": "m",
+            "F_<j>_N": "N", "kinetic_J": "J", "stored_J": "J", "dissipated_J": "J", "work_J": "J"},
     })
 }
 
@@ -232,6 +301,7 @@ fn contacts_csv(run: &ChainRun) -> Result<Vec<u8>, csv::Error> {
         "dissipated_J",
         "peak_force_N",
         "peak_at_s",
+        "began_at_rest",
     ])?;
     let opt = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:e}"));
     for c in &run.contacts {
@@ -245,6 +315,7 @@ fn contacts_csv(run: &ChainRun) -> Result<Vec<u8>, csv::Error> {
             format!("{:e}", c.dissipated),
             format!("{:e}", c.peak_force),
             format!("{:e}", c.peak_at),
+            c.began_at_rest.to_string(),
         ])?;
     }
     Ok(w.into_inner().expect("in-memory writer"))

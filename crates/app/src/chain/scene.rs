@@ -176,8 +176,15 @@ impl ChainScene {
 
 /// Whether the text of a scene describes a chain (has a `[chain]` table).
 pub fn is_chain(src: &str) -> bool {
-    src.parse::<toml::Table>()
-        .is_ok_and(|t| t.contains_key("chain"))
+    match src.parse::<toml::Table>() {
+        Ok(t) => t.contains_key("chain"),
+        // A file with a TOML mistake (a duplicate key) is still a chain scene where it has a
+        // `[chain]` table header: its own reader then reports the mistake in its own words.
+        Err(_) => src.lines().any(|l| {
+            let l = l.trim_start();
+            l.starts_with("[chain]") || l.starts_with("[chain.") || l.starts_with("[[chain.")
+        }),
+    }
 }
 
 /// Whether the file at `path` is a chain scene (false where it cannot be read or parsed: the
@@ -304,6 +311,28 @@ fn per_body<T: Clone>(
 
 /// The number of bodies the arrays give: `count`, or the length of the first list.
 fn count(ctx: &Ctx, c: &RawChain, t: &Range<usize>) -> Result<usize, AppError> {
+    let empty_masses = c
+        .mass
+        .as_ref()
+        .filter(|m| matches!(m.get_ref(), PerBody::Each(l) if l.is_empty()))
+        .map(|m| (m.span(), "mass"));
+    let empty = [
+        (&c.position, "position"),
+        (&c.velocity, "velocity"),
+        (&c.length, "length"),
+    ]
+    .into_iter()
+    .find_map(|(v, key)| {
+        let s = v.as_ref()?;
+        matches!(s.get_ref(), PerBody::Each(l) if l.is_empty()).then(|| (s.span(), key))
+    });
+    if let Some((s, key)) = empty_masses.or(empty) {
+        return Err(ctx.invalid(
+            &s,
+            format!("[chain].{key}"),
+            "an empty list: give one value per body, or one number for all",
+        ));
+    }
     let lists = [
         c.mass.as_ref().and_then(|m| match m.get_ref() {
             PerBody::Each(l) => Some(l.len()),
@@ -341,6 +370,18 @@ struct Given {
     length: f64,
     input: Signal,
     span: Range<usize>,
+    /// Where each value was written, and the key to name (`[chain].gap` for a list,
+    /// `[[chain.body]] 2: gap` for a table).
+    keys: Keys,
+}
+
+/// The place and name of each of a body's values.
+#[derive(Clone)]
+struct Keys {
+    position: (Range<usize>, String),
+    gap: (Range<usize>, String),
+    velocity: (Range<usize>, String),
+    length: (Range<usize>, String),
 }
 
 /// The bodies as arrays in `[chain]` or as `[[chain.body]]` tables, not both.
@@ -384,6 +425,14 @@ fn given(ctx: &Ctx, c: &RawChain, t: &Range<usize>, g: f64) -> Result<Vec<Given>
             }
         }),
     };
+    let at =
+        |v: Option<Range<usize>>, key: &str| (v.unwrap_or(t.clone()), format!("[chain].{key}"));
+    let keys = Keys {
+        position: at(span(&c.position), "position"),
+        gap: at(span(&c.gap), "gap"),
+        velocity: at(span(&c.velocity), "velocity"),
+        length: at(span(&c.length), "length"),
+    };
     Ok((0..n)
         .map(|i| Given {
             mass: masses[i].0,
@@ -393,6 +442,7 @@ fn given(ctx: &Ctx, c: &RawChain, t: &Range<usize>, g: f64) -> Result<Vec<Given>
             length: lengths[i],
             input: gravity(masses[i].0, g),
             span: t.clone(),
+            keys: keys.clone(),
         })
         .collect())
 }
@@ -427,6 +477,7 @@ fn body_table(ctx: &Ctx, b: &Spanned<RawChainBody>, i: usize, g: f64) -> Result<
             Signal::Sum(vec![input, own])
         };
     }
+    let at = |v: Option<Range<usize>>, k: &str| (v.unwrap_or(t.clone()), key(k));
     Ok(Given {
         mass,
         position: ctx.opt(&r.position, &key("position"))?,
@@ -434,6 +485,12 @@ fn body_table(ctx: &Ctx, b: &Spanned<RawChainBody>, i: usize, g: f64) -> Result<
         velocity: ctx.opt(&r.velocity, &key("velocity"))?.unwrap_or(0.0),
         length: ctx.opt(&r.length, &key("length"))?.unwrap_or(0.0),
         input,
+        keys: Keys {
+            position: at(span(&r.position), "position"),
+            gap: at(span(&r.gap), "gap"),
+            velocity: at(span(&r.velocity), "velocity"),
+            length: at(span(&r.length), "length"),
+        },
         span: t,
     })
 }
@@ -510,6 +567,7 @@ fn positions(ctx: &Ctx, given: &[Given]) -> Result<Vec<f64>, AppError> {
     let by_gap = given.iter().skip(1).any(|b| b.gap.is_some());
     let mut out = Vec::with_capacity(given.len());
     for (i, b) in given.iter().enumerate() {
+        check_values(ctx, b, i)?;
         let x =
             match (b.position, b.gap, i) {
                 (Some(_), Some(_), _) => {
@@ -531,19 +589,54 @@ fn positions(ctx: &Ctx, given: &[Given]) -> Result<Vec<f64>, AppError> {
                     "missing: give every body a position, or every body after the first a gap (m)",
                 )),
             };
-        if !x.is_finite() || !b.length.is_finite() || b.length < 0.0 || !b.velocity.is_finite() {
+        if !x.is_finite() {
+            let (s, key) = &b.keys.gap;
             return Err(ctx.invalid(
-                &b.span,
-                format!("[chain] body {i}"),
-                format!(
-                    "position {x}, length {} and velocity {} must be finite, the length >= 0 (m)",
-                    b.length, b.velocity
-                ),
+                s,
+                key,
+                format!("body {i}'s position from the gaps is {x}: give gaps that sum to a finite length (m)"),
             ));
         }
         out.push(x);
     }
     Ok(out)
+}
+
+/// Body `i`'s own values, each against its admissible set and named by its key: a finite
+/// position, a finite gap >= 0 (m), a finite velocity (m/s), a finite length >= 0 (m).
+fn check_values(ctx: &Ctx, b: &Given, i: usize) -> Result<(), AppError> {
+    let checks = [
+        (b.position, &b.keys.position, true, "a finite position (m)"),
+        (
+            b.gap,
+            &b.keys.gap,
+            false,
+            "a finite gap >= 0 (m): neighbours may touch but not overlap",
+        ),
+        (
+            Some(b.velocity),
+            &b.keys.velocity,
+            true,
+            "a finite velocity (m/s)",
+        ),
+        (
+            Some(b.length),
+            &b.keys.length,
+            false,
+            "a finite length >= 0 (m)",
+        ),
+    ];
+    for (value, (s, key), signed, allowed) in checks {
+        let Some(v) = value else { continue };
+        if !v.is_finite() || (!signed && v < 0.0) {
+            return Err(ctx.invalid(
+                s,
+                key,
+                format!("body {i}: {v} is not admissible: {allowed}"),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Each pair's effective mass (kg): `m_l m_r / (m_l + m_r)`, or the body's mass against a
@@ -568,12 +661,22 @@ fn settings(ctx: &Ctx, raw: &RawChainScene, c: &RawChain) -> Result<ChainSetting
     let mut s = ChainSettings::default();
     if let Some(solver) = &raw.solver {
         let r = solver.get_ref();
-        for (v, key) in [(&r.rtol, "[solver].rtol"), (&r.atol, "[solver].atol")] {
-            if let Some(x) = ctx.opt(v, key)?.filter(|x| *x <= 0.0) {
+        // The floors of a single impact's [solver]: no tolerance below the double's rounding.
+        let checks = [
+            (
+                &r.rtol,
+                "[solver].rtol",
+                f64::EPSILON,
+                "finite and > 2.2e-16",
+            ),
+            (&r.atol, "[solver].atol", 0.0, "finite and > 0 (m)"),
+        ];
+        for (v, key, floor, allowed) in checks {
+            if let Some(x) = ctx.opt(v, key)?.filter(|x| !(*x > floor && x.is_finite())) {
                 return Err(ctx.invalid(
                     &span(v).unwrap_or(solver.span()),
                     key,
-                    format!("{x} is not admissible: > 0"),
+                    format!("{x:e} is not admissible: {allowed}"),
                 ));
             }
         }

@@ -105,7 +105,10 @@ fn only_its_keys(
             return Err(ctx.invalid(
                 &kind.span(),
                 format!("{table}.kind"),
-                format!("\"{other}\": use constant, gravity, arctan, table or sum"),
+                format!(
+                    "\"{other}\" is not an input kind: use \"constant\", \"gravity\", \"arctan\", \
+                     \"table\" or \"sum\""
+                ),
             ))
         }
     };

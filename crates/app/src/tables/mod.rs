@@ -179,28 +179,39 @@ pub(crate) fn every_error<T>(
         let name = line_key(&text, line).unwrap_or_default();
         let key = format!("`{name}`");
         let named = quoted(&last.to_string());
+        // Every stand-in that gets past the line is tried. One that parses means nothing else
+        // is wrong; otherwise the error most of them give is the file's, not one of a stand-in's
+        // making (`mass = "inf"` makes a wall that must not move), the first of equals first.
         let stand_ins = named.iter().map(|q| Some(q.as_str())).chain(STAND_INS);
-        let Some(next) = stand_ins.into_iter().find_map(|v| {
-            let patched = with_value(&text, line, v)?;
+        let mut past: Vec<(String, AppError)> = Vec::new();
+        let mut parsed = false;
+        for v in stand_ins {
+            let Some(patched) = with_value(&text, line, v) else {
+                continue;
+            };
             match parse(&patched) {
-                Ok(_) => Some((patched, None)),
+                Ok(_) => parsed = true,
                 Err(e)
                     if error_line(&e) != Some(line)
                         && !e.to_string().contains(&key)
                         && !missing(&e, &name) =>
                 {
-                    Some((patched, Some(e)))
+                    past.push((patched, e));
                 }
-                Err(_) => None,
+                Err(_) => {}
             }
-        }) else {
-            break;
-        };
-        text = next.0;
-        match next.1 {
-            Some(e) => errors.push(e),
-            None => break,
         }
+        if parsed || past.is_empty() {
+            break;
+        }
+        let said: Vec<String> = past.iter().map(|(_, e)| e.to_string()).collect();
+        let count = |m: &String| said.iter().filter(|o| *o == m).count();
+        let best = (0..said.len())
+            .max_by_key(|&i| (count(&said[i]), std::cmp::Reverse(i)))
+            .unwrap_or(0);
+        let (patched, e) = past.swap_remove(best);
+        text = patched;
+        errors.push(e);
     }
     if errors.len() == 1 {
         return Err(errors.pop().expect("one error"));
@@ -225,7 +236,11 @@ fn quoted(message: &str) -> Vec<String> {
 fn missing(e: &AppError, name: &str) -> bool {
     match e {
         AppError::Invalid { key, message, .. } => {
-            message.starts_with("missing") && (key == name || key.ends_with(&format!(".{name}")))
+            // `name` is the line's dotted key (`chain.body.input.kind`), the message's key may
+            // name its table otherwise (`[[chain.body]] 0: input.kind`): the last part decides.
+            let last = name.rsplit('.').next().unwrap_or(name);
+            message.starts_with("missing")
+                && (key == name || key == last || key.ends_with(&format!(".{last}")))
         }
         _ => false,
     }

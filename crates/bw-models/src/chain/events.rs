@@ -64,6 +64,46 @@ fn contact_at<I: Input>(it: &mut Chain<'_, I>, j: usize, t: f64) -> (f64, f64) {
     (it.system().pairs[j].law.force(&s, u), u)
 }
 
+/// Active pair `j`'s force (N) at `t` inside the last step, on the dense output.
+pub(super) fn force_at<I: Input>(it: &mut Chain<'_, I>, j: usize, t: f64) -> f64 {
+    contact_at(it, j, t).0
+}
+
+/// The largest force of active pair `j` inside the last step and when (golden-section search
+/// on the dense output, to a 1e-12 part of the step or the doubles' spacing): for a step that
+/// brackets a maximum.
+pub(super) fn peak_in_step<I: Input>(it: &mut Chain<'_, I>, j: usize) -> (f64, f64) {
+    const INV_PHI: f64 = 0.618_033_988_749_894_8;
+    let (mut a, mut b) = (it.t_prev(), it.t());
+    // 58 golden sections shrink the step by 1e-12 (0.618^58), or to the spacing of the
+    // doubles near `t`, whichever comes first.
+    let resolution = 4.0 * f64::EPSILON * b.abs().max(a.abs());
+    let mut c = b - INV_PHI * (b - a);
+    let mut d = a + INV_PHI * (b - a);
+    let (mut fc, mut fd) = (force_at(it, j, c), force_at(it, j, d));
+    for _ in 0..58 {
+        if b - a <= resolution {
+            break;
+        }
+        if fc >= fd {
+            b = d;
+            (d, fd) = (c, fc);
+            c = b - INV_PHI * (b - a);
+            fc = force_at(it, j, c);
+        } else {
+            a = c;
+            (c, fc) = (d, fd);
+            d = a + INV_PHI * (b - a);
+            fd = force_at(it, j, d);
+        }
+    }
+    if fc >= fd {
+        (fc, c)
+    } else {
+        (fd, d)
+    }
+}
+
 /// Active pair `j`'s kink functions at `t` inside the last step.
 fn kinks_at<I: Input>(it: &mut Chain<'_, I>, j: usize, t: f64) -> [f64; 2] {
     let u = velocity_at(it, j, t);

@@ -1,7 +1,7 @@
 //! A chain's run: the integration from event to event, the contacts it records, the energy
 //! ledger and the samples in time.
 
-use super::events::{self, Event, Kind};
+use super::events::{self, force_at, peak_in_step, Event, Kind};
 use super::free::{Flight, Motion, Onsets};
 use super::system::{ChainSystem, Pair, Tolerances, DISSIPATED, NONE, SLOT};
 use super::{Chain, Scheme, Stop};
@@ -41,20 +41,42 @@ pub struct ContactRecord {
     /// Energy dissipated by the contact (J), a reset law's stored energy at the separation
     /// included.
     pub dissipated: f64,
-    /// The largest force of the contact (N) at the ends of the integration's steps, which
-    /// include every stop at a kink of the law: exact at the maximal compression of a law
-    /// without damping (`u = 0`), within a step elsewhere.
+    /// The largest force of the contact (N): at the ends of the integration's steps, which
+    /// include every stop at a kink of the law (the maximal compression of a law without
+    /// damping, `u = 0`), and inside a step where the force rises into it and falls at its end
+    /// (a damped law's maximum before the maximal compression), located on the dense output to
+    /// a 1e-12 part of the step.
     pub peak_force: f64,
     /// When the contact's force was at `peak_force` (s).
     pub peak_at: f64,
+    /// Whether the contact began without approach: a pair touching at rest from `t = 0` (its
+    /// onset then reads 0 s and its onset velocity 0, whenever rounding in its neighbours'
+    /// motion took it up), or an approach speed below [`REST_SPEED`] times the chain's speed
+    /// scale (bodies that re-touch at rounding level).
+    pub began_at_rest: bool,
 }
+
+/// The chain's speed scale: its largest initial speed, 1 m/s where every body starts at rest.
+fn speed_scale(velocities: &[f64]) -> f64 {
+    let largest = velocities.iter().fold(0.0, |a: f64, v| a.max(v.abs()));
+    if largest > 0.0 {
+        largest
+    } else {
+        1.0
+    }
+}
+
+/// Approach speeds up to this fraction of the chain's speed scale (its largest initial speed,
+/// 1 m/s where all bodies start at rest) are rest: the integration's rounding, not an impact.
+pub const REST_SPEED: f64 = 1e-12;
 
 impl ContactRecord {
     /// The rebound ratio `-u(t_s) / u(onset)`: the pair's own coefficient of restitution
-    /// (`None` before the separation, or for a contact that began at rest).
+    /// (`None` before the separation, or for a contact that [began at rest](Self::began_at_rest),
+    /// which has none).
     pub fn rebound(&self) -> Option<f64> {
         let after = self.separation_velocity?;
-        (self.onset_velocity < 0.0).then(|| -after / self.onset_velocity)
+        (self.onset_velocity < 0.0 && !self.began_at_rest).then(|| -after / self.onset_velocity)
     }
 }
 
@@ -130,6 +152,12 @@ struct Book {
     masses: Vec<f64>,
     policy: Policy,
     queue: Onsets,
+    /// Pairs touching at rest since `t = 0`, not separated since.
+    at_rest: Vec<bool>,
+    /// Whether an open contact's force was rising at the last step's end.
+    rising: Vec<bool>,
+    /// Approach speeds up to this are rest (m/s, [`REST_SPEED`] of the speed scale).
+    rest_speed: f64,
     /// Pairs beginning and ending contact at the current point.
     began: Vec<usize>,
     ended: Vec<usize>,
@@ -198,7 +226,7 @@ impl<I: Input> Chain<I> {
             if let Some(s) = sampler.as_mut() {
                 s.emit(self, &mut it, &book, &mut observer);
             }
-            record_peaks(&it, &mut book);
+            record_peaks(&mut it, &mut book);
             if let Some(e) = event {
                 same_instant = if it.t() == it.t_prev() {
                     same_instant + 1
@@ -257,12 +285,20 @@ impl<I: Input> Chain<I> {
             masses,
             policy: self.settings.policy,
             queue: Onsets::new(pairs),
+            at_rest: vec![false; pairs],
+            rising: vec![true; pairs],
+            rest_speed: REST_SPEED * speed_scale(&velocities),
             began: Vec::new(),
             ended: Vec::new(),
             next: Vec::new(),
             y_next: Vec::new(),
             atol_next: Vec::new(),
         };
+        for j in 0..pairs {
+            let sys = it.system();
+            book.at_rest[j] =
+                sys.gap(j, 0.0, it.y()) <= 0.0 && sys.relative_velocity(j, 0.0, it.y()) == 0.0;
+        }
         if !whole {
             for j in 0..pairs {
                 predict(&it, &mut book, j);
@@ -460,27 +496,44 @@ fn ledger<I: Input>(system: &ChainSystem<'_, I>, t: f64, y: &[f64], book: &Book)
 /// means a gap is closing.
 fn is_settled<I: Input>(it: &It<'_, I>, book: &mut Book) -> bool {
     let (sys, t, y) = (it.system(), it.t(), it.y());
-    if !sys.active.is_empty() || !sys.whole && book.queue.first().is_some() {
+    if !sys.active.is_empty() {
         return false;
     }
+    // A pair closing at the rounding level of the speeds (an elastic chain's beads drifting at
+    // 1e-12 of the impact speed, meeting in years) is at rest, as its predicted onset is.
     let constant = sys.inputs.iter().all(|i| i.is_constant());
     (0..sys.pairs.len()).all(|j| {
-        sys.relative_velocity(j, t, y) >= 0.0
+        sys.relative_velocity(j, t, y) >= -book.rest_speed
             && constant
             && sys.relative_acceleration(j, it.derivative()) >= 0.0
     })
 }
 
 /// Raises the open contacts' peak forces to their forces at the current point.
-fn record_peaks<I: Input>(it: &It<'_, I>, book: &mut Book) {
-    let sys = it.system();
-    for &j in &sys.active {
+fn record_peaks<I: Input>(it: &mut It<'_, I>, book: &mut Book) {
+    let (t, t_prev) = (it.t(), it.t_prev());
+    for a in 0..it.system().active.len() {
+        let j = it.system().active[a];
         let Some(k) = book.open[j] else { continue };
-        let f = sys.force(j, it.t(), it.y());
+        let f = it.system().force(j, t, it.y());
+        let mut peak = (f, t);
+        // A maximum inside the step (a damped law's, away from the kinks the steps stop at):
+        // the force rose into the step and falls at its end.
+        if t > t_prev {
+            let before_end = force_at(it, j, t - 1e-6 * (t - t_prev));
+            let falling = before_end > f;
+            if falling && book.rising[j] {
+                let inside = peak_in_step(it, j);
+                if inside.0 > peak.0 {
+                    peak = inside;
+                }
+            }
+            book.rising[j] = !falling;
+        }
         let c = &mut book.contacts[k];
-        if f > c.peak_force {
-            c.peak_force = f;
-            c.peak_at = it.t();
+        if peak.0 > c.peak_force {
+            c.peak_force = peak.0;
+            c.peak_at = peak.1;
         }
     }
 }
@@ -519,10 +572,13 @@ fn begin<I: Input>(it: &It<'_, I>, book: &mut Book, j: usize) {
     let u = sys.relative_velocity(j, t, it.y());
     book.dissipated_at_onset[j] = sys.parked[j][DISSIPATED];
     book.open[j] = Some(book.contacts.len());
+    let touching = book.at_rest[j];
+    book.rising[j] = true;
     book.contacts.push(ContactRecord {
         pair: j,
-        onset: t,
-        onset_velocity: u.min(0.0),
+        onset: if touching { 0.0 } else { t },
+        onset_velocity: if touching { 0.0 } else { u.min(0.0) },
+        began_at_rest: touching || -u <= book.rest_speed,
         separation: None,
         separation_velocity: None,
         dissipated: 0.0,
@@ -545,6 +601,7 @@ fn end<I: Input>(it: &mut It<'_, I>, book: &mut Book, j: usize) {
         y[o..o + SLOT - 1].fill(0.0);
     }
     book.onsets[j] = sys.gap(j, t, y);
+    book.at_rest[j] = false;
     if let Some(k) = book.open[j].take() {
         let c = &mut book.contacts[k];
         c.separation = Some(t);

@@ -236,3 +236,151 @@ fn bad_chains_are_rejected_with_the_body_or_pair() {
         &["[base].kappa", "0 < kappa < 1"],
     );
 }
+
+/// A chain scene's one mistake is reported once, at its key's line, with no second error made
+/// by the reader's own stand-in for it (a mass of "inf" makes a wall that must not move).
+#[test]
+fn a_chain_mistake_is_named_once_at_its_key() {
+    let law = "[physical]\nk = 1e7\nc = 0.0\nn = 1.0\np = 1.5\nalpha = 0.5\nbeta = 0.0\ngamma = 0.0\nA = 1.0\n";
+    let scene = |chain: &str| format!("model = \"shccm\"\n[chain]\nhorizon = 0.01\n{chain}\n{law}");
+    let once = |name: &str, text: &str, line: usize, needles: &[&str]| {
+        rejects(name, text, Some(line), needles);
+        let dir = scratch(&format!("once-{name}"));
+        let path = dir.join("s.toml");
+        std::fs::write(&path, text).unwrap();
+        let err = String::from_utf8_lossy(&simulate(&["run", path.to_str().unwrap()]).stderr)
+            .into_owned();
+        assert_eq!(err.lines().count(), 1, "{name}: {err}");
+    };
+    let gaps = "velocity = [1.0, 0.0]\nlength = 0.01\n";
+    once(
+        "chain-heavy",
+        &scene(&format!("mass = \"heavy\"\ngap = 0.001\n{gaps}")),
+        4,
+        &["\"heavy\"", "a mass in kg or \"inf\""],
+    );
+    once(
+        "chain-heavy-list",
+        &scene(&format!("mass = [\"heavy\", 0.1]\ngap = 0.001\n{gaps}")),
+        4,
+        &["\"heavy\""],
+    );
+    once(
+        "chain-empty-mass",
+        &scene("mass = []\ngap = 0.001\n"),
+        4,
+        &["[chain].mass", "an empty list"],
+    );
+    once(
+        "chain-negative-gap",
+        &scene(&format!("mass = 0.1\ngap = -0.001\n{gaps}")),
+        5,
+        &["[chain].gap", "-0.001 is not admissible", "gap >= 0"],
+    );
+    once(
+        "chain-nan-gap",
+        &scene(&format!("mass = 0.1\ngap = nan\n{gaps}")),
+        5,
+        &["[chain].gap", "NaN is not admissible"],
+    );
+    once(
+        "chain-nan-in-a-list",
+        &scene("mass = 0.1\ngap = 0.001\nvelocity = [1.0, nan]\n"),
+        6,
+        &["[chain].velocity", "body 1: NaN"],
+    );
+    once(
+        "chain-duplicate-key",
+        &scene(&format!("mass = 0.1\ngap = 0.001\n{gaps}horizon = 0.02\n")),
+        8,
+        &["duplicate key `horizon`"],
+    );
+    once(
+        "chain-rtol",
+        &format!(
+            "{}[solver]\nrtol = 1e-20\n",
+            scene(&format!("mass = 0.1\ngap = 0.001\n{gaps}"))
+        ),
+        19,
+        &[
+            "[solver].rtol",
+            "1e-20 is not admissible: finite and > 2.2e-16",
+        ],
+    );
+    let body = "[[chain.body]]\nmass = 0.1\nvelocity = 1.0\ninput = { kind = \"wobble\" }\n\
+                [[chain.body]]\nmass = 0.1\ngap = 0.001\n";
+    once(
+        "chain-input-kind",
+        &format!("model = \"shccm\"\n[chain]\nhorizon = 0.01\n{body}{law}"),
+        7,
+        &["input.kind", "\"wobble\" is not an input kind"],
+    );
+}
+
+/// The granular chain's touching beads: a pair that begins touching at rest has no rebound
+/// ratio (null, with the reason) and its contact's onset at 0 s; the summary carries the
+/// units of its keys and the scene it ran (tolerances included).
+#[test]
+fn touching_pairs_at_rest_have_no_rebound_ratio_and_the_summary_says_its_units() {
+    let v = json(&simulate(&[
+        "run",
+        fixtures().join("granular_chain.toml").to_str().unwrap(),
+        "--json",
+    ]));
+    let contacts = v["chain"]["contacts"].as_array().unwrap();
+    assert!(contacts.len() > 30, "{}", contacts.len());
+    for c in contacts {
+        let onset_v = c["onset_velocity_m_s"].as_f64().unwrap();
+        if c["began_at_rest"] == true {
+            assert_eq!(c["rebound"], serde_json::Value::Null, "{c}");
+            assert!(
+                c["rebound_note"]
+                    .as_str()
+                    .unwrap()
+                    .contains("began at rest"),
+                "{c}"
+            );
+            assert_eq!(c["onset_s"], 0.0, "{c}");
+            assert_eq!(onset_v, 0.0, "{c}");
+        } else {
+            // The struck bead's pair approaches at 0.5 m/s.
+            assert!(onset_v < -1e-3, "{c}");
+        }
+        if let Some(r) = c["rebound"].as_f64() {
+            assert!((0.0..=1.0 + 1e-9).contains(&r), "{c}");
+        }
+    }
+    let units = &v["units"]["chain"]["contacts"];
+    for key in contacts[0].as_object().unwrap().keys() {
+        assert!(units.get(key).is_some(), "no unit for contacts' {key}");
+    }
+    for key in v["chain"].as_object().unwrap().keys() {
+        assert!(
+            v["units"]["chain"].get(key).is_some()
+                || ["outcome", "policy", "models"].contains(&key.as_str()),
+            "no unit for {key}"
+        );
+    }
+    assert_eq!(v["scene"]["solver"]["rtol"], 1e-10, "{}", v["scene"]);
+    assert_eq!(v["scene"]["bodies"], 40);
+}
+
+/// An elastic cradle whose balls drift apart (and together) at the rounding level of the
+/// speeds settles once the last contact ends, instead of running to the horizon.
+#[test]
+fn an_elastic_cradle_settles_despite_rounding_drift() {
+    let dir = scratch("elastic-cradle");
+    let text = std::fs::read_to_string(fixtures().join("newtons_cradle.toml"))
+        .unwrap()
+        .replace("beta = 2.0e5", "beta = 0.0")
+        .replace("gamma = -1.0e5", "gamma = 0.0")
+        .replace("until = \"horizon\"", "until = \"settled\"")
+        .replace("horizon = 0.001", "horizon = 10.0");
+    let path = dir.join("cradle.toml");
+    std::fs::write(&path, text).unwrap();
+    let v = json(&simulate(&["run", path.to_str().unwrap(), "--json"]));
+    assert_eq!(v["chain"]["outcome"], "settled", "{}", v["chain"]);
+    assert!(v["chain"]["t_end_s"].as_f64().unwrap() < 1e-3);
+    let last = &v["chain"]["bodies"][4];
+    assert!((last["velocity_m_s"].as_f64().unwrap() - 1.0).abs() < 1e-9);
+}
