@@ -157,7 +157,7 @@ fn padded(values: impl Iterator<Item = f64>, log: bool) -> Option<(f64, f64)> {
     })
 }
 
-/// Shows the supersampled SVG at its nominal size.
+/// Shows the supersampled SVG at its nominal size, each text drawn once.
 fn nominal_size(svg: String) -> String {
     let (w, h) = SIZE;
     let big = format!(
@@ -165,7 +165,31 @@ fn nominal_size(svg: String) -> String {
         w * SCALE as u32,
         h * SCALE as u32
     );
-    svg.replacen(&big, &format!("<svg width=\"{w}\" height=\"{h}\" "), 1)
+    let svg = svg.replacen(&big, &format!("<svg width=\"{w}\" height=\"{h}\" "), 1);
+    once_each(&svg)
+}
+
+/// `svg` without repeats of a `<text>` element at the same place with the same words: a log
+/// axis's key points hold each power of ten twice (as `10^k` and as `1 × 10^k`), and the label
+/// drawn twice on itself reads bold.
+fn once_each(svg: &str) -> String {
+    let mut seen = std::collections::HashSet::new();
+    let mut out = String::with_capacity(svg.len());
+    let mut rest = svg;
+    while let Some(start) = rest.find("<text") {
+        let Some(len) = rest[start..].find("</text>") else {
+            break;
+        };
+        let end = start + len + "</text>".len();
+        out.push_str(&rest[..start]);
+        let element = &rest[start..end];
+        if seen.insert(element.to_string()) {
+            out.push_str(element);
+        }
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// Builds the chart of `$builder` over the ranges with the axes' scales and calls the generic
@@ -274,7 +298,27 @@ pub fn chart(title: &str, x: Axis, y: Axis, series: &[Series]) -> Result<String,
         .collect();
     let xr = padded(points.iter().map(|p| p.0), x.log).unwrap_or((0.1, 1.0));
     let yr = padded(points.iter().map(|p| p.1), y.log).unwrap_or((0.1, 1.0));
-    let corner = legend_corner(&points, xr, yr, x.log, y.log);
+    let kept: Vec<Vec<(f64, f64)>> = series
+        .iter()
+        .map(|s| s.points.iter().copied().filter(keep).collect())
+        .collect();
+    let paths: Vec<&[(f64, f64)]> = (series.iter().zip(&kept))
+        .flat_map(|(s, k)| {
+            // Markers are points, lines are followed between them.
+            let k: &[(f64, f64)] = k;
+            if s.style == Style::Markers {
+                k.chunks(1).collect::<Vec<_>>()
+            } else {
+                vec![k]
+            }
+        })
+        .collect();
+    let labels: Vec<&str> = series
+        .iter()
+        .filter(|s| !s.label.is_empty())
+        .map(|s| s.label.as_str())
+        .collect();
+    let corner = legend_corner(&paths, &labels, xr, yr, (x.log, y.log));
     let spans = (xr.1 - xr.0, yr.1 - yr.0);
     svg(title, |b| {
         with_axes!(
@@ -331,6 +375,12 @@ where
     Ok(())
 }
 
+/// A legend entry with room after its words: plotters sizes the legend's box from a width
+/// estimate of the font that falls short of what viewers draw, so the words ran into the box.
+fn padded_label(label: &str) -> String {
+    format!("{label}\u{a0}\u{a0}\u{a0}")
+}
+
 /// Most markers of one series: a dense measured curve is thinned to these, evenly.
 const MOST_MARKERS: usize = 160;
 
@@ -358,7 +408,7 @@ where
             .draw_series(LineSeries::new(points.clone(), c.stroke_width(width)))
             .map_err(e)?;
         if !s.label.is_empty() {
-            drawn.label(s.label.clone()).legend(legend_line);
+            drawn.label(padded_label(&s.label)).legend(legend_line);
         }
     }
     if s.style != Style::Line {
@@ -372,7 +422,7 @@ where
             )
             .map_err(e)?;
         if s.style == Style::Markers && !s.label.is_empty() {
-            drawn.label(s.label.clone()).legend(legend_marker);
+            drawn.label(padded_label(&s.label)).legend(legend_marker);
         }
     }
     Ok(())
@@ -444,24 +494,26 @@ pub fn fit_chart(
         0.05 * y0.abs().max(1e-3)
     };
     let (y0, y1) = (y0 - py, y1 + py);
-    let drawn: Vec<(f64, f64)> = data
-        .1
-        .iter()
-        .map(|p| (p.0, p.1))
-        .chain(
-            model
-                .1
-                .iter()
-                .flat_map(|p| [(p.0, p.1), (p.0, p.2), (p.0, p.3)]),
-        )
-        .chain(reference.iter().flat_map(|r| r.1.iter().copied()))
-        .collect();
+    let measured: Vec<(f64, f64)> = data.1.iter().map(|p| (p.0, p.1)).collect();
+    let band = |f: fn(&(f64, f64, f64, f64)) -> f64| -> Vec<(f64, f64)> {
+        model.1.iter().map(|p| (p.0, f(p))).collect()
+    };
+    let (middle, lower, upper) = (band(|p| p.1), band(|p| p.2), band(|p| p.3));
+    let mut drawn: Vec<&[(f64, f64)]> = measured.chunks(1).collect();
+    drawn.extend([&middle[..], &lower[..], &upper[..]]);
+    drawn.extend(reference.iter().map(|r| r.1));
     let layers = FitLayers {
         data,
         model,
         reference,
         band_label,
-        corner: legend_corner(&drawn, (x0, x1), (y0, y1), log_x, false),
+        corner: legend_corner(
+            &drawn,
+            &[data.0, model.0, band_label, reference.map_or("", |r| r.0)],
+            (x0, x1),
+            (y0, y1),
+            (log_x, false),
+        ),
     };
     let xr = padded([x0, x1].into_iter(), log_x).expect("finite");
     let (x, y) = (
@@ -500,7 +552,7 @@ where
         chart
             .draw_series(std::iter::once(Polygon::new(outline, shade)))
             .map_err(e)?
-            .label(l.band_label)
+            .label(padded_label(l.band_label))
             .legend(move |(x, y)| {
                 Rectangle::new([(x, y - 5 * SCALE), (x + 20 * SCALE, y + 5 * SCALE)], shade)
             });
@@ -514,7 +566,7 @@ where
     chart
         .draw_series(LineSeries::new(curve, line.stroke_width(width)))
         .map_err(e)?
-        .label(l.model.0)
+        .label(padded_label(l.model.0))
         .legend(move |(x, y)| {
             PathElement::new(vec![(x, y), (x + 20 * SCALE, y)], line.stroke_width(width))
         });
@@ -524,7 +576,7 @@ where
         chart
             .draw_series(DashedLineSeries::new(finite, 6 * SCALE, 4 * SCALE, other))
             .map_err(e)?
-            .label(label)
+            .label(padded_label(label))
             .legend(move |(x, y)| {
                 plotters::element::DashedPathElement::new(
                     vec![(x, y), (x + 20 * SCALE, y)],
@@ -552,19 +604,21 @@ where
                 .map(|p| Circle::new((p.0, p.1), r, mark.filled())),
         )
         .map_err(e)?
-        .label(l.data.0)
+        .label(padded_label(l.data.0))
         .legend(move |(x, y)| Circle::new((x + 10 * SCALE, y), r, mark.filled()));
     legend(chart, l.corner.clone())
 }
 
-/// The corner of the plot whose quarter holds the fewest drawn points: where the legend hides
-/// the least.
+/// The corner of the plot whose legend box would cover the fewest drawn points: where the
+/// legend hides the least. The box is estimated from the entries (26 px each) and the longest
+/// label (7.5 px a character, 60 px for the key), and the lines are followed between their
+/// points, so that a curve crossing the box counts though few of its points lie in it.
 fn legend_corner(
-    points: &[(f64, f64)],
+    paths: &[&[(f64, f64)]],
+    labels: &[&str],
     (x0, x1): (f64, f64),
     (y0, y1): (f64, f64),
-    log_x: bool,
-    log_y: bool,
+    (log_x, log_y): (bool, bool),
 ) -> SeriesLabelPosition {
     let along = |v: f64, a: f64, b: f64, log: bool| {
         if log {
@@ -573,25 +627,58 @@ fn legend_corner(
             (v - a) / (b - a)
         }
     };
-    let fx = |x: f64| along(x, x0, x1, log_x);
-    let fy = |y: f64| along(y, y0, y1, log_y);
-    let count = |right: bool, upper: bool| {
-        points
+    // The plot area in px, less the label areas and margins of `builder`.
+    let (w, h) = (
+        f64::from(SIZE.0) - 84.0 - 32.0,
+        f64::from(SIZE.1) - 52.0 - 32.0 - 30.0,
+    );
+    let labels: Vec<&&str> = labels.iter().filter(|l| !l.is_empty()).collect();
+    let longest = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0) as f64;
+    let bw = ((longest + 3.0) * 7.5 + 60.0 + 10.0) / w;
+    let bh = (labels.len() as f64 * 26.0 + 20.0 + 10.0) / h;
+    let mut fractions: Vec<(f64, f64)> = Vec::new();
+    for path in paths {
+        let f: Vec<(f64, f64)> = path
             .iter()
             .filter(|p| p.0.is_finite() && p.1.is_finite())
-            .filter(|p| {
-                let (u, v) = (fx(p.0), fy(p.1));
-                (if right { u > 0.55 } else { u < 0.45 }) && (if upper { v > 0.6 } else { v < 0.4 })
-            })
+            .map(|p| (along(p.0, x0, x1, log_x), along(p.1, y0, y1, log_y)))
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+            .collect();
+        fractions.extend(f.first().copied());
+        for pair in f.windows(2) {
+            let (a, b) = (pair[0], pair[1]);
+            let steps = (((b.0 - a.0).abs() + (b.1 - a.1).abs()) * 100.0)
+                .ceil()
+                .min(200.0);
+            let steps = steps.max(1.0) as usize;
+            fractions.extend((1..=steps).map(|k| {
+                let t = k as f64 / steps as f64;
+                (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))
+            }));
+        }
+    }
+    // Where the box's lower left corner lies, in fractions of the plot, at each position
+    // (the corners first: of equals, the first wins).
+    let (left, right, middle_x) = (0.0, 1.0 - bw, 0.5 - bw / 2.0);
+    let (lower, upper, middle_y) = (0.0, 1.0 - bh, 0.5 - bh / 2.0);
+    let count = |(u0, v0): (f64, f64)| {
+        fractions
+            .iter()
+            .filter(|&&(u, v)| u >= u0 && u <= u0 + bw && v >= v0 && v <= v0 + bh)
             .count()
     };
     [
-        (SeriesLabelPosition::UpperRight, count(true, true)),
-        (SeriesLabelPosition::LowerRight, count(true, false)),
-        (SeriesLabelPosition::UpperLeft, count(false, true)),
-        (SeriesLabelPosition::LowerLeft, count(false, false)),
+        (SeriesLabelPosition::UpperRight, (right, upper)),
+        (SeriesLabelPosition::UpperLeft, (left, upper)),
+        (SeriesLabelPosition::LowerRight, (right, lower)),
+        (SeriesLabelPosition::LowerLeft, (left, lower)),
+        (SeriesLabelPosition::MiddleRight, (right, middle_y)),
+        (SeriesLabelPosition::MiddleLeft, (left, middle_y)),
+        (SeriesLabelPosition::UpperMiddle, (middle_x, upper)),
+        (SeriesLabelPosition::LowerMiddle, (middle_x, lower)),
     ]
     .into_iter()
+    .map(|(position, at)| (position, count(at)))
     .min_by_key(|c| c.1)
     .map_or(SeriesLabelPosition::UpperRight, |c| c.0)
 }
@@ -611,6 +698,46 @@ mod tests {
         assert_eq!(log_tick(3e-5, 1.0, true), "");
         assert_eq!(log_tick(5e-5, 1.0, true), "5e-5");
         assert_eq!(log_tick(0.2, 1.0, true), "0.2");
+    }
+
+    #[test]
+    fn a_log_axis_labels_each_decade_once() {
+        let series = [Series {
+            label: "e".into(),
+            points: (0..50)
+                .map(|i| (0.5 * 1.07f64.powi(i), 0.7 - 0.01 * i as f64))
+                .collect(),
+            style: Style::Line,
+            color: 0,
+        }];
+        let x = Axis::log_if_spanning("v0 (m/s)", series[0].points.iter().map(|p| p.0), 0.5);
+        assert!(x.log);
+        let svg = chart("t", x, Axis::linear("e (-)"), &series).unwrap();
+        let texts: Vec<&str> = svg.split("<text").skip(1).collect();
+        for label in [">1<", ">10<", ">2<", ">5<"] {
+            let n = texts
+                .iter()
+                .filter(|t| t.replace(['\n', ' '], "").contains(label))
+                .count();
+            assert_eq!(n, 1, "{label} drawn {n} times");
+        }
+    }
+
+    #[test]
+    fn the_legend_goes_where_it_covers_no_line() {
+        // A line along the top from the middle on and along the bottom: the upper left and
+        // every corner on the right hold some of it, the middle of the right side none.
+        let top: Vec<(f64, f64)> = (0..=50).map(|i| (0.5 + 0.01 * i as f64, 1.0)).collect();
+        let bottom: Vec<(f64, f64)> = vec![(0.0, 0.0), (1.0, 0.0)];
+        let drop: Vec<(f64, f64)> = vec![(0.0, 1.0), (0.05, 0.5), (0.5, 0.5), (0.5, 1.0)];
+        let corner = legend_corner(
+            &[&top, &bottom, &drop],
+            &["kinetic", "stored"],
+            (0.0, 1.0),
+            (0.0, 1.0),
+            (false, false),
+        );
+        assert_eq!(corner, SeriesLabelPosition::MiddleRight);
     }
 
     #[test]

@@ -340,7 +340,14 @@ impl<L: ContactLaw<N>, const N: usize> ContactElement<L, N> {
                 };
                 self.begin(&mut s);
                 if onsets {
-                    step.began_at.get_or_insert(t_on);
+                    // An onset located to the float above the step's start (a penetration
+                    // rising through the onset depth at t = 0) is at the start.
+                    let at = if t_on <= 4.0 * f64::EPSILON * dt {
+                        0.0
+                    } else {
+                        t_on
+                    };
+                    step.began_at.get_or_insert(at);
                 }
                 t = t_on;
             }

@@ -42,12 +42,31 @@ impl Failure {
 
 impl From<bw_models::ModelError> for Failure {
     fn from(e: bw_models::ModelError) -> Self {
+        use bw_models::ModelError as M;
+        use bwc_ode::Error as Ode;
         let status = match e {
-            bw_models::ModelError::Solver(_) => BwcStatus::Failed,
-            bw_models::ModelError::NotApplicable { .. } => BwcStatus::Failed,
+            M::Solver(_) | M::NotApplicable { .. } => BwcStatus::Failed,
             _ => BwcStatus::InvalidArgument,
         };
-        Self::new(status, e.to_string())
+        // What a host can change, by the integration's failure.
+        let hint = match &e {
+            M::Solver(bwc_events::Error::Solver(ode)) => match ode {
+                Ode::NonFiniteInitialValue { .. } | Ode::NonFiniteState { .. } => {
+                    "; the state overflowed: check the velocities (`u_start`, `u_end`, or the \
+                     penetration rates, m/s) and the law's parameters"
+                }
+                Ode::TooManySteps { .. } => {
+                    "; take a shorter host step `dt`, or loosen `rtol` in the element's settings"
+                }
+                Ode::StepSizeTooSmall { .. } => {
+                    "; loosen `rtol` and `atol` in the element's settings, or check the law's \
+                     parameters (a very stiff or large-exponent law)"
+                }
+                _ => "",
+            },
+            _ => "",
+        };
+        Self::new(status, format!("{e}{hint}"))
     }
 }
 

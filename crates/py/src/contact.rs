@@ -153,14 +153,57 @@ pub struct Step {
 #[pymethods]
 impl Step {
     fn __repr__(&self) -> String {
-        let opt = |v: Option<f64>| v.map_or("None".into(), |t| format!("{t:e}"));
+        let opt = |v: Option<f64>| v.map_or("None".into(), py_float);
         format!(
-            "Step(force={:e}, impulse={:e}, work={:e}, separated_at={}, began_at={})",
-            self.force,
-            self.impulse,
-            self.work,
+            "Step(force={}, impulse={}, work={}, separated_at={}, began_at={})",
+            py_float(self.force),
+            py_float(self.impulse),
+            py_float(self.work),
             opt(self.separated_at),
             opt(self.began_at)
+        )
+    }
+}
+
+/// A float as Python writes it in a repr, to 6 significant digits: `0.0`, `1.5`, `0.0025`,
+/// `1.23457e-07`.
+pub(crate) fn py_float(x: f64) -> String {
+    if x == 0.0 {
+        return "0.0".into();
+    }
+    if !x.is_finite() {
+        return if x.is_nan() {
+            "nan"
+        } else if x > 0.0 {
+            "inf"
+        } else {
+            "-inf"
+        }
+        .into();
+    }
+    let magnitude = x.abs();
+    if (1e-4..1e6).contains(&magnitude) {
+        let digits = (5 - magnitude.log10().floor() as i32).max(0) as usize;
+        let text = format!("{x:.digits$}");
+        let text = if text.contains('.') {
+            text.trim_end_matches('0').to_string()
+        } else {
+            text
+        };
+        if text.ends_with('.') {
+            format!("{text}0")
+        } else {
+            text
+        }
+    } else {
+        let text = format!("{x:.5e}");
+        let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+        let exponent: i32 = exponent.parse().unwrap_or(0);
+        format!(
+            "{mantissa}e{}{:02}",
+            if exponent < 0 { '-' } else { '+' },
+            exponent.abs()
         )
     }
 }
@@ -415,13 +458,13 @@ impl Contact {
 
     fn __repr__(&self) -> String {
         format!(
-            "Contact(model='{}', policy='{}', in_contact={}, force={:e}, dissipated={:e}, \
+            "Contact(model='{}', policy='{}', in_contact={}, force={}, dissipated={}, \
              contacts={})",
             self.model(),
             self.policy(),
             if self.in_contact() { "True" } else { "False" },
-            self.force(),
-            self.dissipated(),
+            py_float(self.force()),
+            py_float(self.dissipated()),
             self.contacts()
         )
     }

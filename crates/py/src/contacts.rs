@@ -4,13 +4,29 @@ use crate::contact::{element, policy_name, Contact};
 use crate::BwcError;
 use bw_models::{AnyContactElement, ElementStep, ModelError, Penetration};
 use numpy::ndarray::Array2;
-use numpy::{AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLike1};
+use numpy::{
+    AllowTypeChange, IntoPyArray, PyArray1, PyArray2, PyArrayLikeDyn, PyUntypedArrayMethods,
+};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
 
-type Floats<'py> = PyArrayLike1<'py, f64, AllowTypeChange>;
-type Indices<'py> = PyArrayLike1<'py, i64, AllowTypeChange>;
+// Taken at any dimension so that a 2-D array is an error naming its argument and shape, not
+// the extraction's own message.
+type Floats<'py> = PyArrayLikeDyn<'py, f64, AllowTypeChange>;
+type Indices<'py> = PyArrayLikeDyn<'py, i64, AllowTypeChange>;
+
+/// The error for argument `name` given an array of more than one dimension.
+fn one_dimensional(name: &str, shape: &[usize]) -> PyResult<()> {
+    if shape.len() <= 1 {
+        return Ok(());
+    }
+    let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
+    Err(BwcError::new_err(format!(
+        "{name}: an array of shape ({}): give a 1-D array, one value per contact advanced",
+        dims.join(", ")
+    )))
+}
 
 /// Many contact elements of one law, advanced together in parallel (the GIL released).
 ///
@@ -59,6 +75,7 @@ pub struct Contacts {
 
 /// An input array's values, checked to have one per advanced contact.
 fn values(name: &str, array: &Floats<'_>, expected: usize) -> PyResult<Vec<f64>> {
+    one_dimensional(name, array.shape())?;
     let values: Vec<f64> = array.as_array().iter().copied().collect();
     if values.len() != expected {
         return Err(BwcError::new_err(format!(
@@ -77,6 +94,7 @@ impl Contacts {
         let Some(index) = index else {
             return Ok((0..n).collect());
         };
+        one_dimensional("index", index.shape())?;
         let mut seen = vec![false; n];
         let mut out = Vec::with_capacity(index.as_array().len());
         for (k, &i) in index.as_array().iter().enumerate() {

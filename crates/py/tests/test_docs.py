@@ -23,10 +23,22 @@ def test_the_pages_have_python_examples():
 
 
 @pytest.mark.parametrize("block", BLOCKS)
-def test_example_runs_as_written(block):
-    # Under `if __name__ == "__main__"`, as a script that starts worker processes must be.
-    script = "if __name__ == '__main__':\n" + "\n".join("    " + line for line in block.splitlines())
+def test_example_runs_as_written(block, tmp_path):
+    # As a script file pasted from the page: one that starts worker processes (Dask spawns
+    # them, importing the script again) works only under its own `if __name__ == "__main__":`.
+    script = tmp_path / "example.py"
+    script.write_text(block)
     run = subprocess.run(
-        [sys.executable, "-c", script], cwd=ROOT, capture_output=True, text=True, timeout=600
+        [sys.executable, str(script)], cwd=ROOT, capture_output=True, text=True, timeout=600
     )
     assert run.returncode == 0, run.stderr[-3000:]
+
+
+def test_the_guides_shown_outputs_are_what_its_commands_print():
+    # The fast ones; `scripts/guide-outputs --slow` checks the rest (and `--write` renews them).
+    run = subprocess.run(
+        [sys.executable, str(ROOT / "scripts" / "guide-outputs")], cwd=ROOT, capture_output=True,
+        text=True, timeout=600,
+    )
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
+    assert "0 differences" in run.stdout and not run.stdout.startswith("0 shown"), run.stdout

@@ -18,6 +18,38 @@ pub(super) fn all(scene: &ChainScene, out: &ChainOutcome) -> Vec<(String, Result
     ]
 }
 
+/// The factor and unit that put the largest of `values` (in `unit`, "s" or "m") between 1 and
+/// 1000: a contact's microseconds read as µs, not as 2e-4 s.
+fn prefixed(values: impl Iterator<Item = f64>, unit: &str) -> (f64, String) {
+    let largest = values
+        .filter(|v| v.is_finite())
+        .fold(0.0f64, |a, v| a.max(v.abs()));
+    let prefixes = [(1.0, ""), (1e3, "m"), (1e6, "µ"), (1e9, "n")];
+    let (factor, prefix) = prefixes
+        .iter()
+        .copied()
+        .find(|(f, _)| largest * f >= 1.0)
+        .unwrap_or(prefixes[3]);
+    (factor, format!("{prefix}{unit}"))
+}
+
+/// `series` with their x (time, s) and y scaled by `(ft, fy)`.
+fn scaled(series: Vec<Series>, (ft, fy): (f64, f64)) -> Vec<Series> {
+    series
+        .into_iter()
+        .map(|s| Series {
+            points: s.points.iter().map(|&(t, y)| (t * ft, y * fy)).collect(),
+            ..s
+        })
+        .collect()
+}
+
+/// The time axis's factor and label for the samples of `out`.
+fn time_axis(out: &ChainOutcome) -> (f64, String) {
+    let (f, unit) = prefixed(out.samples.iter().map(|s| s.t), "s");
+    (f, format!("t ({unit})"))
+}
+
 /// Every `k`-th body's series of `value(sample, body)`, labelled where there are few.
 fn per_body(
     scene: &ChainScene,
@@ -54,21 +86,27 @@ fn title(what: &str, every: usize, n: usize) -> String {
 
 fn velocities(scene: &ChainScene, out: &ChainOutcome) -> Result<String, String> {
     let (series, every) = per_body(scene, out, |s, i| s.velocities[i]);
+    let (ft, t_label) = time_axis(out);
     chart(
         &title("Velocities of the bodies", every, scene.bodies.len()),
-        Axis::linear("t (s)"),
+        Axis::linear(&t_label),
         Axis::linear("v (m/s)"),
-        &series,
+        &scaled(series, (ft, 1.0)),
     )
 }
 
 fn space_time(scene: &ChainScene, out: &ChainOutcome) -> Result<String, String> {
     let (series, every) = per_body(scene, out, |s, i| s.positions[i] - scene.bodies[i].position);
+    let (ft, t_label) = time_axis(out);
+    let (fx, unit) = prefixed(
+        series.iter().flat_map(|s| s.points.iter().map(|p| p.1)),
+        "m",
+    );
     chart(
         &title("Displacements of the bodies", every, scene.bodies.len()),
-        Axis::linear("t (s)"),
-        Axis::linear("x - x(0) (m)"),
-        &series,
+        Axis::linear(&t_label),
+        Axis::linear(&format!("x - x(0) ({unit})")),
+        &scaled(series, (ft, fx)),
     )
 }
 
@@ -96,10 +134,11 @@ fn ledger(out: &ChainOutcome) -> Result<String, String> {
         line("dissipated", 2, &|l| l.dissipated),
         line("work of the inputs", 3, &|l| l.work),
     ];
+    let (ft, t_label) = time_axis(out);
     chart(
         "Energy ledger: kinetic + stored + dissipated - work = initial",
-        Axis::linear("t (s)"),
+        Axis::linear(&t_label),
         Axis::linear("energy (J)"),
-        &series,
+        &scaled(series.to_vec(), (ft, 1.0)),
     )
 }

@@ -159,7 +159,7 @@ pub(super) fn param_of(
                 return Err(ctx.invalid(
                     &pair.span(),
                     name,
-                    format!("[{lo}, {hi}] is reversed: give [lower, upper] with lower bound <= upper bound"),
+                    format!("[{lo}, {hi}] is not admissible: lower bound <= upper bound"),
                 ));
             }
             Ok(Some(Param::Free { lo, hi, log }))

@@ -347,7 +347,11 @@ fn missing_and_reversed_bounds_are_reported_together() {
         "reversed-bound",
         &config,
         Some(GOOD_DATA),
-        &["c.toml:6", "[fit.bounds].kappa", "[0.9, 0.1] is reversed"],
+        &[
+            "c.toml:6",
+            "[fit.bounds].kappa",
+            "[0.9, 0.1] is not admissible",
+        ],
     );
 }
 

@@ -15,12 +15,12 @@ Examples
 0.748434931597
 """
 
-import json
-import os
+import json as _json
+import math as _math
+import os as _os
+import warnings as _warnings
 
-import numpy as np
-
-import warnings
+import numpy as _np
 
 from ._native import BwcError, BwcWarning, __version__, cor as _cor, coverage_json as _coverage
 from ._native import identify_json as _identify, simulate_json as _simulate
@@ -29,7 +29,8 @@ from ._native import simulate_chains_json as _simulate_chains
 from ._native import posterior_json as _posterior
 from ._native import Contact, Contacts, Step
 from ._results import Cor, Coverage, Fit, Identification, Params, Posterior, Posteriors, Result, Run
-from ._results import Simulation, samples_as_arrays, wrap
+from ._results import Simulation
+from ._results import samples_as_arrays as _samples_as_arrays, wrap as _wrap
 
 __all__ = [
     "BwcError",
@@ -58,13 +59,13 @@ __all__ = [
 
 # The outcome of each run, indexed by the codes the native sweep returns (a numpy string array
 # without a Python object per speed).
-_OUTCOMES = np.array(["separated", "settled", "horizon", "failed"])
+_OUTCOMES = _np.array(["separated", "settled", "horizon", "failed"])
 # What each CoR's check against ``e_tol`` found, indexed by the codes the native sweep returns.
-_CHECKS = np.array(["off", "met", "unmet", "unverified", "none"])
+_CHECKS = _np.array(["off", "met", "unmet", "unverified", "none"])
 # Why the double-double retry of an unmet check reported nothing, indexed the same way.
-_DECLINED = np.array(["none", "stiff", "no-path", "failed", "steps-grew", "disagreed"])
+_DECLINED = _np.array(["none", "stiff", "no-path", "failed", "steps-grew", "disagreed"])
 # Why a sweep simulated a speed it tried to interpolate, indexed the same way.
-_GAVE_UP = np.array(["none", "noise", "too-few-speeds", "not-smooth", "budget"])
+_GAVE_UP = _np.array(["none", "noise", "too-few-speeds", "not-smooth", "budget"])
 
 _NONDIMENSIONAL = {"B", "Gamma", "kappa", "sigma", "n", "p", "U"}
 _BASE = {"B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "U_b", "T_b"}
@@ -94,11 +95,43 @@ def _plain(value):
         return {k: _plain(v) for k, v in value.items() if v is not None}
     if isinstance(value, (list, tuple)):
         return [_plain(v) for v in value]
-    if isinstance(value, np.ndarray):
+    if isinstance(value, _np.ndarray):
         return [_plain(v) for v in value.tolist()]
-    if isinstance(value, np.generic):
+    if isinstance(value, _np.generic):
         return value.item()
     return value
+
+
+def _finite(value, where):
+    """Raises :class:`BwcError` naming the first number in ``value`` (a dict, list, array or
+    number) that is NaN or infinite: ``where`` and the keys or indices that lead to it."""
+    if isinstance(value, dict):
+        for k, v in value.items():
+            _finite(v, "%s[%r]" % (where, k))
+    elif isinstance(value, (list, tuple, _np.ndarray)):
+        for i, v in enumerate(value):
+            _finite(v, "%s[%d]" % (where, i))
+    elif isinstance(value, (float, _np.floating)) and not _math.isfinite(value):
+        raise BwcError("%s = %r is not admissible: a finite number" % (where, float(value)))
+
+
+def _integer(value, name, lo, hi=2**64 - 1, none=None):
+    """``value`` as an int in ``[lo, hi]`` (``None`` passes where ``none`` says what it means),
+    else :class:`BwcError` naming the argument and the admissible range."""
+    if value is None and none is not None:
+        return None
+    if isinstance(value, (bool, _np.bool_)) or not isinstance(value, (int, _np.integer)):
+        raise BwcError("%s = %r is not admissible: an integer in [%d, %d]%s"
+                       % (name, value, lo, hi, " (or None: %s)" % none if none else ""))
+    if not lo <= int(value) <= hi:
+        raise BwcError("%s = %d is not admissible: an integer in [%d, %d]%s"
+                       % (name, value, lo, hi, " (or None: %s)" % none if none else ""))
+    return int(value)
+
+
+def _threads(threads):
+    """The worker threads argument: None (all cores) or 1 to 1024, as ``--threads``."""
+    return _integer(threads, "threads", 1, 1024, none="all cores")
 
 
 def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=None):
@@ -180,18 +213,29 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     (0.7655, 'separated')
     """
     table = _table(params)
+    _finite(dict(params), "params")
     scene = {"model": model, table: _plain(dict(params))}
-    scalar = v0 is not None and np.ndim(v0) == 0
+    scalar = v0 is not None and _np.ndim(v0) == 0
     if v0 is not None:
-        speeds = np.atleast_1d(np.asarray(v0, dtype=float))
+        speeds = _np.atleast_1d(_np.asarray(v0, dtype=float))
+        if speeds.ndim != 1:
+            raise BwcError("v0: an array of shape %s: give a scalar or a 1-D array of speeds (m/s)"
+                           % (speeds.shape,))
+        for i, v in enumerate(speeds):
+            if not _math.isfinite(v):
+                raise BwcError("v0[%d] = %r is not admissible: a finite impact speed > 0 (m/s)"
+                               % (i, float(v)))
         scene["v0"] = speeds.tolist()
+    for name, table_ in (("input", input), ("solver", solver), ("sweep", sweep)):
+        if table_ is not None:
+            _finite(dict(table_), name)
     if input is not None:
         scene["input"] = _plain(dict(input))
     if solver is not None:
         scene["solver"] = _plain(dict(solver))
     if sweep is not None:
         scene["sweep"] = _plain(dict(sweep))
-    out = _cor(json.dumps(scene), threads)
+    out = _cor(_json.dumps(scene), _threads(threads))
     out["outcome"] = _OUTCOMES[out["outcome"]]
     out["check"] = _CHECKS[out["check"]]
     out["double_double_declined"] = _DECLINED[out["double_double_declined"]]
@@ -203,10 +247,11 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
 
 def _source(description, what):
     """A path (str or os.PathLike) or a dict as the arguments of the native calls."""
-    if isinstance(description, (str, os.PathLike)):
-        return {"path": os.fspath(description)}
+    if isinstance(description, (str, _os.PathLike)):
+        return {"path": _os.fspath(description)}
     if isinstance(description, dict):
-        return {what + "_json": json.dumps(_plain(description))}
+        _finite(description, what)
+        return {what + "_json": _json.dumps(_plain(description))}
     raise BwcError("%s: give a path or a dict, not %s" % (what, type(description).__name__))
 
 
@@ -259,13 +304,13 @@ def simulate(scene, *, threads=None):
     """
     source = _source(scene, "scene")
     if "chain" in scene if isinstance(scene, dict) else _is_chain_file(source["path"]):
-        text, samples = _simulate_chain(threads=threads, **source)
-        value = wrap(json.loads(text), Simulation)
+        text, samples = _simulate_chain(threads=_threads(threads), **source)
+        value = _wrap(_json.loads(text), Simulation)
         if samples is not None:
             value["samples"] = Result(samples)
         return value
-    text, trajectories = _simulate(threads=threads, **source)
-    value = wrap(json.loads(text), Simulation, {"runs": Run})
+    text, trajectories = _simulate(threads=_threads(threads), **source)
+    value = _wrap(_json.loads(text), Simulation, {"runs": Run})
     for run, samples in zip(value["runs"], trajectories):
         if samples is not None:
             run["trajectory"] = Result(samples)
@@ -303,8 +348,8 @@ def simulate_many(scenes, *, threads=None):
     paths = [s.get("path") for s in sources]
     texts = [s.get("scene_json") for s in sources]
     results = []
-    for text, samples in _simulate_chains(paths, texts, threads=threads):
-        value = wrap(json.loads(text), Simulation)
+    for text, samples in _simulate_chains(paths, texts, threads=_threads(threads)):
+        value = _wrap(_json.loads(text), Simulation)
         if samples is not None:
             value["samples"] = Result(samples)
         results.append(value)
@@ -332,7 +377,7 @@ def _warn_fits(fits):
             kind = next((k for k, phrases in _WARNING_KINDS if any(p in text for p in phrases)), "data")
             grouped.setdefault(kind, []).append(text)
         for texts in grouped.values():
-            warnings.warn("; ".join(texts), BwcWarning, stacklevel=3)
+            _warnings.warn("; ".join(texts), BwcWarning, stacklevel=3)
 
 
 def identify(config, *, seed=None, threads=None):
@@ -381,9 +426,9 @@ def identify(config, *, seed=None, threads=None):
     >>> round(bwc.cor(fit.model, fit.params, 3.0).e, 3)
     0.762
     """
-    seed = 0 if seed is None else int(seed)
-    text = _identify(seed=seed, threads=threads, **_source(config, "config"))
-    value = wrap(json.loads(text), Identification, {"fits": Fit})
+    seed = 0 if seed is None else _integer(seed, "seed", 0)
+    text = _identify(seed=seed, threads=_threads(threads), **_source(config, "config"))
+    value = _wrap(_json.loads(text), Identification, {"fits": Fit})
     _warn_fits(value["fits"])
     return value
 
@@ -427,17 +472,22 @@ def coverage(config, *, replicates=40, first_seed=1, noise=None, fit=None, threa
     >>> study.coverage[0].name, len(study.coverage[0].replicates)
     ('DSA NDBWSHCCM', 2)
     """
-    text = _coverage(replicates=int(replicates), first_seed=int(first_seed), noise=noise, fit=fit,
-                     threads=threads, **_source(config, "config"))
-    return wrap(json.loads(text), Coverage)
+    if noise is not None and not (isinstance(noise, (int, float, _np.number))
+                                  and _math.isfinite(noise) and noise > 0):
+        raise BwcError("noise = %r is not admissible: a finite standard deviation in e, > 0 (or "
+                       "None: the fit's residual scale)" % (noise,))
+    text = _coverage(replicates=_integer(replicates, "replicates", 1, 100_000),
+                     first_seed=_integer(first_seed, "first_seed", 0), noise=noise, fit=fit,
+                     threads=_threads(threads), **_source(config, "config"))
+    return _wrap(_json.loads(text), Coverage)
 
 
 def _posteriors(text):
     """The JSON text of posteriors as :class:`Posteriors`, samples as numpy arrays, each
     posterior's warnings issued."""
-    value = wrap(json.loads(text), Posteriors, {"posteriors": Posterior})
+    value = _wrap(_json.loads(text), Posteriors, {"posteriors": Posterior})
     for p in value["posteriors"]:
-        samples_as_arrays(p)
+        _samples_as_arrays(p)
     _warn_fits(value["posteriors"])
     return value
 
@@ -486,6 +536,9 @@ def posterior(config, *, fit=None, seed=0, particles=None, runs=None, threads=No
     >>> bool(abs(p.samples.weight.sum() - 1) < 1e-9), len(p.samples.kappa)
     (True, 64)
     """
-    text = _posterior(seed=int(seed), fit=fit, particles=particles, runs=runs, threads=threads,
+    particles = _integer(particles, "particles", 16, 1_000_000, none="[fit.posterior] or 500")
+    runs = _integer(runs, "runs", 2, 10_000, none="[fit.posterior] or 4")
+    text = _posterior(seed=_integer(seed, "seed", 0), fit=fit, particles=particles, runs=runs,
+                      threads=_threads(threads),
                       **_source(config, "config"))
     return _posteriors(text)

@@ -24,8 +24,7 @@ class Result(dict):
         return sorted(set(super().__dir__()) | {k for k in self if isinstance(k, str) and k.isidentifier()})
 
     def __repr__(self):
-        fields = ", ".join("%s=%s" % (k, _short(v)) for k, v in self.items() if _shown(v))
-        return "%s(%s)" % (type(self).__name__, fields)
+        return _fields_repr(self)
 
 
 # The order parameters are shown in: base, nondimensional, physical (as the paper lists them).
@@ -106,11 +105,18 @@ class Identification(Result):
 
 class Simulation(Result):
     """What ``bwc.simulate`` returns: ``runs`` (each a :class:`Result`), ``units``, ``scene``
-    and the provenance."""
+    and the provenance; for a ``[chain]`` scene ``chain`` in place of ``runs``."""
 
     __slots__ = ()
 
     def __repr__(self):
+        chain = self.get("chain")
+        if chain is not None:
+            contacts = chain.get("contacts", [])
+            return "Simulation(chain: %s at t = %s s, %d bodies, %d contacts, momentum %s kg m/s)" % (
+                chain.get("outcome"), _short(chain.get("t_end_s")), len(chain.get("bodies", [])),
+                len(contacts), _short(chain.get("momentum_kg_m_s")),
+            )
         runs = self.get("runs", [])
         shown = ["  %r" % r for r in runs[:5]]
         more = ["  ... %d more" % (len(runs) - 5)] if len(runs) > 5 else []
@@ -174,9 +180,29 @@ def wrap(value, cls=Result, kinds=None):
     return value
 
 
-def _shown(v):
-    """Whether a field belongs in a short repr (not a nested result or a long list)."""
-    return not isinstance(v, (dict, list)) or (isinstance(v, list) and len(v) <= 4)
+# The longest a result nested two deep is shown in a repr; past it, its keys.
+_NESTED = 240
+
+
+def _fields_repr(result, depth=0):
+    """``Name(key=value, ...)``: numbers to 4 digits, short lists in full, long ones by their
+    length, the results nested in it in full, and those nested deeper in full where short and by
+    their keys where long."""
+    fields = []
+    for k, v in result.items():
+        if isinstance(v, dict):
+            if type(v).__repr__ is not Result.__repr__:
+                inner = repr(v)
+            else:
+                inner = _fields_repr(v if isinstance(v, Result) else Result(v), depth + 1)
+            if depth > 0 and len(inner) > _NESTED:
+                inner = "<%s: %s>" % (type(v).__name__, ", ".join(map(str, v)))
+            fields.append("%s=%s" % (k, inner))
+        elif isinstance(v, list) and len(v) > 4:
+            fields.append("%s=<%d items>" % (k, len(v)))
+        else:
+            fields.append("%s=%s" % (k, _short(v)))
+    return "%s(%s)" % (type(result).__name__, ", ".join(fields))
 
 
 def _short(v):
@@ -190,4 +216,6 @@ def _short(v):
             return np.array2string(v, separator=", ")
     if isinstance(v, list):
         return "[" + ", ".join(_short(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return repr(v) if isinstance(v, Result) else _fields_repr(Result(v))
     return repr(v)
