@@ -52,6 +52,9 @@ const INTERNAL: [&str; 6] = [
     "index out of bounds",
 ];
 
+/// A boundary's run over all its cases.
+type Boundary<'a> = Box<dyn Fn() -> Tally + 'a>;
+
 /// One boundary's tally.
 #[derive(Default)]
 struct Tally {
@@ -334,7 +337,7 @@ fn main() {
         "data/real/baseball_wood_v0_e.csv",
     ];
     let to_message = |e: bwc_app::AppError| e.to_string();
-    let boundaries: [(&str, Box<dyn Fn() -> Tally>); 5] = [
+    let boundaries: [(&str, Boundary); 5] = [
         (
             "scene TOML",
             Box::new(|| {

@@ -15,6 +15,37 @@ fn figure(name: &str, svg: Result<String, String>) -> Figure {
         .map_err(|m| (name.to_string(), m))
 }
 
+/// The figure `name` (`cor.svg`, ...) drawn with the scene's own title, axis labels and style
+/// where `[output.figures.NAME]` gives them, its own otherwise.
+fn drawn(
+    scene: &Scene,
+    name: &str,
+    title: &str,
+    (x, y): (Axis, Axis),
+    series: &[Series],
+) -> Figure {
+    let Some(own) = scene.figures.get(name.trim_end_matches(".svg")) else {
+        return figure(name, plot::chart(title, x, y, series));
+    };
+    let title = own.title.as_deref().unwrap_or(title);
+    let x = Axis {
+        label: own.x_label.as_deref().unwrap_or(x.label),
+        ..x
+    };
+    let y = Axis {
+        label: own.y_label.as_deref().unwrap_or(y.label),
+        ..y
+    };
+    let series: Vec<Series> = series
+        .iter()
+        .map(|s| Series {
+            style: own.style.unwrap_or(s.style),
+            ..s.clone()
+        })
+        .collect();
+    figure(name, plot::chart(title, x, y, &series))
+}
+
 /// Models computed at few speeds show their points; dense sweeps are lines.
 fn sweep_style(points: usize) -> Style {
     if points <= 20 {
@@ -53,14 +84,12 @@ fn by_system(runs: &[Run], f: impl Fn(&Run) -> (f64, f64)) -> Vec<Series> {
 pub(super) fn sweep(scene: &Scene, runs: &[Run]) -> Vec<Figure> {
     let speeds = || scene.speeds.iter().copied();
     let x = Axis::log_if_spanning("impact speed v0 (m/s)", speeds(), 1.0);
-    let mut out = vec![figure(
+    let mut out = vec![drawn(
+        scene,
         "cor.svg",
-        plot::chart(
-            "Coefficient of restitution",
-            x,
-            Axis::linear("coefficient of restitution e (-)"),
-            &by_system(runs, |r| (r.v0.unwrap_or(f64::NAN), r.e)),
-        ),
+        "Coefficient of restitution",
+        (x, Axis::linear("coefficient of restitution e (-)")),
+        &by_system(runs, |r| (r.v0.unwrap_or(f64::NAN), r.e)),
     )];
     if runs.iter().any(|r| r.t_d.is_some()) {
         let series = by_system(runs, |r| {
@@ -71,9 +100,12 @@ pub(super) fn sweep(scene: &Scene, runs: &[Run]) -> Vec<Figure> {
             runs.iter().filter_map(|r| r.t_d),
             1.0,
         );
-        out.push(figure(
+        out.push(drawn(
+            scene,
             "duration.svg",
-            plot::chart("Contact duration", x, y, &series),
+            "Contact duration",
+            (x, y),
+            &series,
         ));
     }
     out
@@ -101,14 +133,12 @@ pub(super) fn loops(scene: &Scene, runs: &[Run]) -> Figure {
             color: i,
         })
         .collect();
-    figure(
+    drawn(
+        scene,
         "loops.svg",
-        plot::chart(
-            "Force-compression loops",
-            Axis::linear(x),
-            Axis::linear(y),
-            &series,
-        ),
+        "Force-compression loops",
+        (Axis::linear(x), Axis::linear(y)),
+        &series,
     )
 }
 
@@ -212,9 +242,12 @@ pub(super) fn time_histories(scene: &Scene, runs: &[Run], bodies: bool) -> Vec<F
                     });
                 }
             }
-            figure(
+            drawn(
+                scene,
                 name,
-                plot::chart(title, Axis::linear(t), Axis::linear(y), &series),
+                title,
+                (Axis::linear(t), Axis::linear(y)),
+                &series,
             )
         })
         .collect()
@@ -273,14 +306,15 @@ pub(super) fn height(scene: &Scene, runs: &[Run]) -> Figure {
             color: i,
         });
     }
-    figure(
+    drawn(
+        scene,
         "height.svg",
-        plot::chart(
-            "Height of the body above the surface",
+        "Height of the body above the surface",
+        (
             Axis::linear("time from release t (s)"),
             Axis::linear("height (m)"),
-            &series,
         ),
+        &series,
     )
 }
 

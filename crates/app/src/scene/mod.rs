@@ -32,6 +32,7 @@ use bw_models::{
     BaseMap, BaseParams, Bodies, ModelKind, Nondim, NondimParams, PhysicalParams, Settings,
 };
 use raw::{RawBase, RawNondim, RawPhysical, RawScene, SeqOrMap};
+use std::collections::BTreeMap;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
@@ -56,6 +57,35 @@ pub struct Scene {
     pub hints: Vec<String>,
     /// `[sweep]`: whether many speeds may be served by interpolants.
     pub sweep: SweepSpec,
+    /// `[output.figures.NAME]`: the figures' own titles, axis labels and line styles, by the
+    /// figure's file name without `.svg`.
+    pub figures: BTreeMap<String, FigureLabels>,
+}
+
+/// The names of the figures a scene draws (`[output.figures.NAME]`).
+pub const FIGURES: [&str; 7] = [
+    "cor",
+    "duration",
+    "loops",
+    "displacements",
+    "velocities",
+    "forces",
+    "height",
+];
+
+/// A figure's title, axis labels and line style where the scene gives them (`None`: the
+/// figure's own).
+#[derive(Debug, Clone, Default, PartialEq)]
+#[non_exhaustive]
+pub struct FigureLabels {
+    /// The title.
+    pub title: Option<String>,
+    /// The x axis's quantity and unit.
+    pub x_label: Option<String>,
+    /// The y axis's quantity and unit.
+    pub y_label: Option<String>,
+    /// Every series as lines, markers or both.
+    pub style: Option<crate::plot::Style>,
 }
 
 /// One system of a scene.
@@ -193,6 +223,7 @@ impl Scene {
             sweep: sweep(&ctx, &raw, &settings)?,
             settings,
             output: output(&ctx, &raw)?,
+            figures: figures(&ctx, &raw)?,
             sequence,
             hints: Vec::new(),
         };
@@ -517,6 +548,59 @@ fn base_system(
             time_scale_known: t_b.is_some(),
         },
     })
+}
+
+/// `[output.figures.NAME]` tables: `title`, `x_label`, `y_label`, `style` (`"line"`,
+/// `"markers"` or `"line+markers"`), for NAME one of [`FIGURES`].
+fn figures(ctx: &Ctx, raw: &RawScene) -> Result<BTreeMap<String, FigureLabels>, AppError> {
+    use crate::plot::Style;
+    let Some(tables) = raw
+        .output
+        .as_ref()
+        .and_then(|o| o.get_ref().figures.as_ref())
+    else {
+        return Ok(BTreeMap::new());
+    };
+    let mut out = BTreeMap::new();
+    for (name, table) in tables {
+        let key = format!("[output.figures.{name}]");
+        if !FIGURES.contains(&name.as_str()) {
+            return Err(ctx.invalid(
+                &table.span(),
+                key,
+                format!("not a figure: one of {}", FIGURES.join(", ")),
+            ));
+        }
+        let t = table.get_ref();
+        let text = |v: &Option<Spanned<String>>| v.as_ref().map(|s| s.get_ref().clone());
+        let style = match &t.style {
+            None => None,
+            Some(s) => Some(match s.get_ref().as_str() {
+                "line" => Style::Line,
+                "markers" => Style::Markers,
+                "line+markers" => Style::LineAndMarkers,
+                other => {
+                    return Err(ctx.invalid(
+                        &s.span(),
+                        format!("{key}.style"),
+                        format!(
+                            "\"{other}\" is not a style: \"line\", \"markers\" or \"line+markers\""
+                        ),
+                    ))
+                }
+            }),
+        };
+        out.insert(
+            name.clone(),
+            FigureLabels {
+                title: text(&t.title),
+                x_label: text(&t.x_label),
+                y_label: text(&t.y_label),
+                style,
+            },
+        );
+    }
+    Ok(out)
 }
 
 fn output(ctx: &Ctx, raw: &RawScene) -> Result<OutputSpec, AppError> {

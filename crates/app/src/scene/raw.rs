@@ -192,4 +192,15 @@ pub struct RawOutput {
     pub loops: Option<Spanned<bool>>,
     pub sweep: Option<Spanned<bool>>,
     pub plots: Option<Spanned<bool>>,
+    pub figures: Option<std::collections::BTreeMap<String, Spanned<RawFigure>>>,
+}
+
+/// `[output.figures.NAME]`: a figure's own title, axis labels and line style.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawFigure {
+    pub title: Option<Spanned<String>>,
+    pub x_label: Option<Spanned<String>>,
+    pub y_label: Option<Spanned<String>>,
+    pub style: Option<Spanned<String>>,
 }

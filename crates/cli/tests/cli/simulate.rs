@@ -780,3 +780,73 @@ fn a_dt_that_undersamples_the_contact_says_so() {
     assert!(csv.starts_with("t,x,v,u,F,z\n"), "{csv}");
     assert!(!scene("1e-5").contains("samples the contact"));
 }
+
+/// `[output.figures.NAME]` gives a figure its own title, axis labels and line style; an unknown
+/// figure or style is an error naming the table and what is admissible.
+#[test]
+fn a_scene_gives_its_figures_their_titles_labels_and_styles() {
+    let dir = scratch("figure-labels");
+    let law = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/src/tutorial/first-cor.toml"),
+    )
+    .unwrap();
+    let text = format!(
+        "{law}\n[output.figures.cor]\ntitle = \"Baseball on a floor\"\nx_label = \"v (m/s)\"\n\
+         y_label = \"CoR\"\nstyle = \"markers\"\n"
+    );
+    let path = dir.join("labels.toml");
+    std::fs::write(&path, &text).unwrap();
+    let out_dir = dir.join("out");
+    let out = simulate(&[
+        "run",
+        path.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let svg = std::fs::read_to_string(out_dir.join("cor.svg")).unwrap();
+    for words in ["Baseball on a floor", ">v (m/s)<", ">CoR<"] {
+        assert!(
+            svg.replace(['\n', ' '], "")
+                .contains(&words.replace(' ', "")),
+            "{words}"
+        );
+    }
+    assert!(!svg.contains("Coefficient of restitution"));
+    // Markers only: the model's line and its legend key are gone (the mesh's lines remain).
+    let plain = dir.join("plain.toml");
+    std::fs::write(&plain, &law).unwrap();
+    let plain_out = dir.join("plain");
+    let out = simulate(&[
+        "run",
+        plain.to_str().unwrap(),
+        "--out",
+        plain_out.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let default = std::fs::read_to_string(plain_out.join("cor.svg")).unwrap();
+    let lines = |svg: &str| svg.matches("<polyline").count();
+    assert_eq!(lines(&svg) + 2, lines(&default), "markers only");
+    // The other figures keep their own titles.
+    let loops = std::fs::read_to_string(out_dir.join("loops.svg")).unwrap();
+    assert!(loops.contains("Force-compression loops"));
+    rejects(
+        "figure-name",
+        &format!("{law}\n[output.figures.corr]\ntitle = \"x\"\n"),
+        None,
+        &[
+            "[output.figures.corr]",
+            "not a figure: one of cor, duration, loops",
+        ],
+    );
+    rejects(
+        "figure-style",
+        &format!("{law}\n[output.figures.cor]\nstyle = \"dots\"\n"),
+        None,
+        &["[output.figures.cor].style", "\"dots\" is not a style"],
+    );
+}
