@@ -32,9 +32,9 @@ fn identify_eval_reports_the_json_contract() {
     assert_eq!(fits[0]["params"]["B_b"], 2.38);
 }
 
-/// Writes a synthetic dataset of a known NDBWSHCCM and a config that frees κ and σ_b.
-fn synthetic_config(dir: &Path) -> PathBuf {
-    use bw_models::{impact_at, input::Zero, BaseMap, BaseParams, ModelKind, Settings};
+/// The known NDBWSHCCM of the synthetic datasets: `κ = 0.6`, `σ_b = 0.03`, the rest fixed.
+fn synthetic_truth() -> bw_models::BaseMap {
+    use bw_models::{BaseMap, BaseParams, ModelKind};
     let truth = BaseParams {
         b_b: 1.0,
         gamma_b: -1.0,
@@ -45,7 +45,13 @@ fn synthetic_config(dir: &Path) -> PathBuf {
         u_b: 1.0,
         t_b: 1.0,
     };
-    let map = BaseMap::new(ModelKind::Shccm, truth).unwrap();
+    BaseMap::new(ModelKind::Shccm, truth).unwrap()
+}
+
+/// Writes a synthetic dataset of a known NDBWSHCCM and a config that frees κ and σ_b.
+fn synthetic_config(dir: &Path) -> PathBuf {
+    use bw_models::{impact_at, input::Zero, Settings};
+    let map = synthetic_truth();
     let mut csv = String::from("# synthetic: kappa = 0.6, sigma_b = 0.03\nv_0,e\n");
     for v0 in [0.2, 0.5, 1.0, 2.0, 4.0] {
         csv += &format!(
@@ -779,19 +785,9 @@ fn family_fits_recover_their_damping_and_name_wrong_keys() {
 /// the noise the data were drawn with.
 #[test]
 fn a_fits_sigma_is_the_residual_standard_deviation_of_its_csv() {
-    use bw_models::{impact_at, input::Zero, BaseMap, BaseParams, ModelKind, Settings};
+    use bw_models::{impact_at, input::Zero, Settings};
     let dir = scratch("identify-sigma");
-    let truth = BaseParams {
-        b_b: 1.0,
-        gamma_b: -1.0,
-        kappa: 0.6,
-        sigma_b: 0.03,
-        n: 1.5,
-        p: 1.5,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
-    let map = BaseMap::new(ModelKind::Shccm, truth).unwrap();
+    let map = synthetic_truth();
     // 24 speeds with fixed pseudo-random noise of standard deviation near 6e-3.
     let noise = [
         0.9, -1.2, 0.3, 1.5, -0.4, -0.8, 1.1, -1.6, 0.2, 0.7, -1.0, 1.3, -0.2, 0.5, -1.4, 0.8,
