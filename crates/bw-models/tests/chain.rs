@@ -49,12 +49,12 @@ impl Input for Force {
     }
 }
 
-/// The elastic Hertz law `F = k |x|^(3/2)` (N, `k` in N/m^1.5): the BWSHCCL with `c = 0`,
-/// `β = γ = 0` and `A = 1`, so that `z = x` for any `α`.
-fn elastic_hertz(k: f64) -> PairLaw {
+/// The Hunt-Crossley law `F = k |x|^(3/2) + c |x|^(3/2) (-ẋ)` (N; `k` in N/m^1.5, `c` in
+/// N s/m^2.5): the BWSHCCL with `β = γ = 0` and `A = 1`, so that `z = x` for any `α`.
+fn hunt_crossley(k: f64, c: f64) -> PairLaw {
     let law = Physical {
         k,
-        c: 0.0,
+        c,
         n: 1.0,
         p: 1.5,
         alpha: 0.5,
@@ -63,6 +63,11 @@ fn elastic_hertz(k: f64) -> PairLaw {
         a: 1.0,
     };
     PairLaw::new(&PhysicalParams::new(ModelKind::Shccm, law).unwrap()).unwrap()
+}
+
+/// The elastic Hertz law `F = k |x|^(3/2)`: Hunt-Crossley without damping.
+fn elastic_hertz(k: f64) -> PairLaw {
+    hunt_crossley(k, 0.0)
 }
 
 fn tight() -> ChainSettings {
@@ -528,17 +533,7 @@ fn integrating_only_the_bodies_in_contact_changes_nothing() {
 #[test]
 fn a_damped_contacts_peak_force_is_found_inside_a_step() {
     let (m1, m2, k, c, v0) = (0.1, 0.3, 1.0e7, 3.0e6, 1.0);
-    let law = Physical {
-        k,
-        c,
-        n: 1.0,
-        p: 1.5,
-        alpha: 0.5,
-        beta: 0.0,
-        gamma: 0.0,
-        a: 1.0,
-    };
-    let pair = PairLaw::new(&PhysicalParams::new(ModelKind::Shccm, law).unwrap()).unwrap();
+    let pair = hunt_crossley(k, c);
     let bodies = vec![
         ChainBody::new(m1, 0.0, v0, 0.1, Constant(0.0)),
         ChainBody::new(m2, 0.1, 0.0, 0.1, Constant(0.0)),

@@ -35,6 +35,17 @@ fn shccm() -> BwcLawParams {
     }
 }
 
+/// A step to write into.
+fn zero_step() -> BwcStep {
+    BwcStep {
+        force: 0.0,
+        impulse: 0.0,
+        work: 0.0,
+        separated_at: 0.0,
+        began_at: 0.0,
+    }
+}
+
 fn info(contact: BwcContact) -> [f64; 5] {
     let mut i = BwcContactInfo {
         force: 0.0,
@@ -150,13 +161,7 @@ fn bad_impacts_are_named() {
 #[test]
 fn bad_steps_leave_the_contact_unchanged() {
     let (mut law, mut contact) = (0, 0);
-    let mut step = BwcStep {
-        force: 0.0,
-        impulse: 0.0,
-        work: 0.0,
-        separated_at: 0.0,
-        began_at: 0.0,
-    };
+    let mut step = zero_step();
     // SAFETY: valid pointers or NULL, as each call's contract allows.
     unsafe {
         assert_eq!(bwc_law_new(&shccm(), &mut law), BwcStatus::Ok);
@@ -259,13 +264,7 @@ fn bad_steps_leave_the_contact_unchanged() {
 fn a_handle_of_the_wrong_kind_is_an_error() {
     let mut law = 0;
     let mut contact = 0;
-    let mut step = BwcStep {
-        force: 0.0,
-        impulse: 0.0,
-        work: 0.0,
-        separated_at: 0.0,
-        began_at: 0.0,
-    };
+    let mut step = zero_step();
     // SAFETY: every pointer is to a live local.
     unsafe {
         assert_eq!(bwc_law_new(&shccm(), &mut law), BwcStatus::Ok);

@@ -20,6 +20,19 @@ fn fixtures() -> PathBuf {
 mod hunt_crossley;
 use hunt_crossley::hunt_crossley_e;
 
+/// Runs `bwc-simulate run SCENE --out OUT`, which must succeed; its stderr.
+fn simulate_to(scene: &Path, out: &Path) -> String {
+    let run = simulate(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&run.stderr).into_owned();
+    assert!(run.status.success(), "{err}");
+    err
+}
+
 fn simulate(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_bwc-simulate"))
         .args(args)

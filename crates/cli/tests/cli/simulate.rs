@@ -761,14 +761,7 @@ fn a_dt_that_undersamples_the_contact_says_so() {
             ),
         )
         .unwrap();
-        let out = simulate(&[
-            "run",
-            path.to_str().unwrap(),
-            "--out",
-            dir.join(dt).to_str().unwrap(),
-        ]);
-        assert!(out.status.success());
-        String::from_utf8_lossy(&out.stderr).into_owned()
+        simulate_to(&path, &dir.join(dt))
     };
     let err = scene("0.001");
     assert!(
@@ -797,17 +790,7 @@ fn a_scene_gives_its_figures_their_titles_labels_and_styles() {
     let path = dir.join("labels.toml");
     std::fs::write(&path, &text).unwrap();
     let out_dir = dir.join("out");
-    let out = simulate(&[
-        "run",
-        path.to_str().unwrap(),
-        "--out",
-        out_dir.to_str().unwrap(),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    simulate_to(&path, &out_dir);
     let svg = std::fs::read_to_string(out_dir.join("cor.svg")).unwrap();
     for words in ["Baseball on a floor", ">v (m/s)<", ">CoR<"] {
         assert!(
@@ -821,13 +804,7 @@ fn a_scene_gives_its_figures_their_titles_labels_and_styles() {
     let plain = dir.join("plain.toml");
     std::fs::write(&plain, &law).unwrap();
     let plain_out = dir.join("plain");
-    let out = simulate(&[
-        "run",
-        plain.to_str().unwrap(),
-        "--out",
-        plain_out.to_str().unwrap(),
-    ]);
-    assert!(out.status.success());
+    simulate_to(&plain, &plain_out);
     let default = std::fs::read_to_string(plain_out.join("cor.svg")).unwrap();
     let lines = |svg: &str| svg.matches("<polyline").count();
     assert_eq!(lines(&svg) + 2, lines(&default), "markers only");
