@@ -65,7 +65,7 @@ fn contact_at<I: Input>(it: &mut Chain<'_, I>, j: usize, t: f64) -> (f64, f64) {
 }
 
 /// Active pair `j`'s force (N) at `t` inside the last step, on the dense output.
-pub(super) fn force_at<I: Input>(it: &mut Chain<'_, I>, j: usize, t: f64) -> f64 {
+fn force_at<I: Input>(it: &mut Chain<'_, I>, j: usize, t: f64) -> f64 {
     contact_at(it, j, t).0
 }
 

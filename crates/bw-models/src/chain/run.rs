@@ -1,7 +1,7 @@
 //! A chain's run: the integration from event to event, the contacts it records, the energy
 //! ledger and the samples in time.
 
-use super::events::{self, force_at, peak_in_step, Event, Kind};
+use super::events::{self, peak_in_step, Event, Kind};
 use super::free::{Flight, Motion, Onsets};
 use super::system::{ChainSystem, Pair, Tolerances, DISSIPATED, NONE, SLOT};
 use super::{Chain, Scheme, Stop};
@@ -520,8 +520,9 @@ fn record_peaks<I: Input>(it: &mut It<'_, I>, book: &mut Book) {
         // A maximum inside the step (a damped law's, away from the kinks the steps stop at):
         // the force rose into the step and falls at its end.
         if t > t_prev {
-            let before_end = force_at(it, j, t - 1e-6 * (t - t_prev));
-            let falling = before_end > f;
+            let falling =
+                it.system()
+                    .force_falling(j, t, (it.y(), it.derivative()), 1e-6 * (t - t_prev));
             if falling && book.rising[j] {
                 let inside = peak_in_step(it, j);
                 if inside.0 > peak.0 {

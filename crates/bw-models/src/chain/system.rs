@@ -248,6 +248,28 @@ impl<'a, I: Input> ChainSystem<'a, I> {
         }
     }
 
+    /// Whether active pair `j`'s force is falling at `t`: the sign of its rate along the
+    /// derivative `dy`, by a central difference over `e` (s) on the law's state and the
+    /// relative velocity (two law evaluations, no dense output).
+    pub(super) fn force_falling(
+        &self,
+        j: usize,
+        t: f64,
+        (y, dy): (&[f64], &[f64]),
+        e: f64,
+    ) -> bool {
+        let o = self.slot(j);
+        let (u, du) = (
+            self.relative_velocity(j, t, y),
+            self.relative_acceleration(j, dy),
+        );
+        let at = |sign: f64| {
+            let s = [0, 1, 2].map(|c| y[o + c] + sign * e * dy[o + c]);
+            self.pairs[j].law.force(&s, u + sign * e * du)
+        };
+        at(1.0) < at(-1.0)
+    }
+
     /// The relative acceleration of pair `j` (m/s²) from the derivative `dy` of the
     /// integrated state.
     pub(super) fn relative_acceleration(&self, j: usize, dy: &[f64]) -> f64 {
