@@ -16,12 +16,35 @@ use std::collections::HashMap;
 /// others are unaffected. The speeds of a sweep are served by verified interpolants where that
 /// saves simulations (`[sweep] interpolate`, see [`Run::interpolation`]).
 pub fn run(scene: &Scene, progress: Option<&(dyn Fn() + Sync)>) -> Vec<Run> {
+    let mut runs = Vec::with_capacity(scene.systems.len() * scene.speeds.len().max(1));
+    let kept: Result<(), std::convert::Infallible> = stream(scene, progress, |chunk| {
+        runs.extend(chunk);
+        Ok(())
+    });
+    kept.unwrap_or_else(|never| match never {});
+    runs
+}
+
+/// The most runs [`stream`] hands over at once: a few megabytes of records, enough to keep
+/// every core busy.
+pub const CHUNK: usize = 8192;
+
+/// [`run`], handing the runs to `sink` in order, at most [`CHUNK`] at a time, as they are
+/// computed: a study of any size holds one chunk of records (a sampled trajectory, where the
+/// scene asks for one, is part of its run's record). Stops at the first error of `sink`.
+///
+/// # Errors
+/// The first error `sink` returns.
+pub fn stream<E>(
+    scene: &Scene,
+    progress: Option<&(dyn Fn() + Sync)>,
+    mut sink: impl FnMut(Vec<Run>) -> Result<(), E>,
+) -> Result<(), E> {
     if let Some(seq) = &scene.sequence {
-        return scene
-            .systems
-            .iter()
+        let runs = (scene.systems.iter())
             .map(|s| crate::sequence::run(s, seq, &scene.settings))
             .collect();
+        return sink(runs);
     }
     let sampling = (scene.output.trajectory || scene.output.loops).then(|| {
         scene
@@ -34,36 +57,39 @@ pub fn run(scene: &Scene, progress: Option<&(dyn Fn() + Sync)>) -> Vec<Run> {
             p();
         }
     };
-    let speeds: Vec<Option<f64>> = if scene.speeds.is_empty() {
-        vec![None]
-    } else {
-        scene.speeds.iter().copied().map(Some).collect()
-    };
+    // Runs per system: one per speed, or one without a speed.
+    let per_system = scene.speeds.len().max(1);
     let served = sweep_served(scene);
-    // Every simulated run of every other system in one parallel pass (a scene of many systems
-    // with a speed each keeps its parallelism).
-    let jobs: Vec<(&SystemSpec, Option<f64>)> = (scene.systems.iter().zip(&served))
-        .filter(|(_, &served)| !served)
-        .flat_map(|(s, _)| speeds.iter().map(move |&v| (s, v)))
-        .collect();
-    let mut simulated_runs = jobs
-        .par_iter()
-        .map(|&(spec, v0)| {
-            let run = simulated(spec, v0, &scene.settings, sampling);
-            tick();
-            run
-        })
-        .collect::<Vec<Run>>()
-        .into_iter();
-    let mut runs = Vec::with_capacity(scene.systems.len() * speeds.len());
-    for (spec, &served) in scene.systems.iter().zip(&served) {
-        if served {
-            runs.extend(interpolated(spec, scene, &tick));
-        } else {
-            runs.extend(simulated_runs.by_ref().take(speeds.len()));
+    let mut first = 0;
+    while first < scene.systems.len() {
+        if served[first] {
+            interpolated(&scene.systems[first], scene, &tick, &mut sink)?;
+            first += 1;
+            continue;
         }
+        // A stretch of systems simulated at every speed, chunked as one list of jobs (a scene
+        // of many systems with a speed each keeps its parallelism).
+        let end = (first..scene.systems.len())
+            .find(|&i| served[i])
+            .unwrap_or(scene.systems.len());
+        let systems = &scene.systems[first..end];
+        let jobs = systems.len() * per_system;
+        for start in (0..jobs).step_by(CHUNK) {
+            let chunk = (start..jobs.min(start + CHUNK))
+                .into_par_iter()
+                .map(|k| {
+                    let spec = &systems[k / per_system];
+                    let v0 = scene.speeds.get(k % per_system).copied();
+                    let run = simulated(spec, v0, &scene.settings, sampling);
+                    tick();
+                    run
+                })
+                .collect();
+            sink(chunk)?;
+        }
+        first = end;
     }
-    runs
+    Ok(())
 }
 
 /// For each system of `scene`, whether its speeds go through the sweep's plan (verified
@@ -119,48 +145,108 @@ pub fn sampling_notes(scene: &Scene, runs: &[Run]) -> Vec<String> {
         .collect()
 }
 
-/// For each system whose sweep went through the plan but found no interpolant (every speed
-/// simulated, on top of the plan's trials), a note naming the system, why the plan gave up
-/// and the setting that would let it interpolate (`bwc-simulate` prints these on stderr,
-/// `bwc.cor` and `bwc.simulate` issue them as warnings). `runs` are [`run`]'s, in its order.
-pub fn no_interpolant_notes(scene: &Scene, runs: &[Run]) -> Vec<String> {
-    let n = scene.speeds.len();
-    let served = sweep_served(scene);
-    if n == 0 || !served.contains(&true) {
-        return Vec::new();
-    }
-    (scene.systems.iter().zip(served.iter().zip(runs.chunks(n))))
-        .filter(|(_, (&served, runs))| served && runs.iter().all(|r| r.interpolation.is_none()))
-        .map(|(spec, (_, runs))| {
-            let causes = [
-                GaveUp::Noise,
-                GaveUp::TooFewSpeeds,
-                GaveUp::NotSmooth,
-                GaveUp::Budget,
-            ]
-            .iter()
-            .filter_map(|&why| gave_up_because(scene, runs, why))
-            .collect::<Vec<_>>()
-            .join("; ");
-            format!(
-                "{}: no interpolant held to [sweep].tolerance {:e}, so all {n} speeds were \
-                 simulated, after up to {} trial simulations: {causes}; [sweep] interpolate = \
-                 false skips the trials",
-                spec.name.as_deref().unwrap_or("the sweep"),
-                scene.sweep.tolerance,
-                n / 4
-            )
-        })
-        .collect()
+/// What a scene's runs add up to, gathered as they come (chunk by chunk from [`stream`], in its
+/// order): what the notes and warnings after a study say.
+#[derive(Debug, Clone, Default)]
+pub struct Tally {
+    /// Runs seen.
+    pub runs: usize,
+    /// Failed runs.
+    pub failed: usize,
+    /// Runs whose `e` and `t_s` came from an interpolant.
+    pub interpolated: usize,
+    /// The largest error estimate of an interpolated run (0 without one).
+    pub largest_estimate: f64,
+    /// The unit of `t_s` of the first run and whether every run shares it.
+    time_unit: Option<(&'static str, bool)>,
+    /// Per system: whether some run was interpolated, and which reasons for giving up its runs
+    /// carry.
+    systems: Vec<(bool, Vec<GaveUp>)>,
 }
 
-/// What giving up for `why` means for the runs of one system's sweep, and the setting that
-/// helps, where some of its runs were given up for it.
-fn gave_up_because(scene: &Scene, runs: &[Run], why: GaveUp) -> Option<String> {
-    if !runs.iter().any(|r| r.sweep_gave_up == Some(why)) {
-        return None;
+impl Tally {
+    /// The tally of `runs`, all of a scene's runs in [`run`]'s order.
+    pub fn of(scene: &Scene, runs: &[Run]) -> Self {
+        let mut tally = Tally::default();
+        tally.add(scene, runs);
+        tally
     }
-    Some(match why {
+
+    /// Adds the next runs of `scene`, in [`stream`]'s order.
+    pub fn add(&mut self, scene: &Scene, runs: &[Run]) {
+        let per_system = (scene.run_count() / scene.systems.len().max(1)).max(1);
+        self.systems
+            .resize(scene.systems.len(), (false, Vec::new()));
+        for r in runs {
+            let (interpolated, gave_up) = &mut self.systems[self.runs / per_system];
+            self.runs += 1;
+            self.failed += usize::from(r.outcome == Outcome::Failed);
+            if let Some(i) = r.interpolation {
+                *interpolated = true;
+                self.interpolated += 1;
+                self.largest_estimate = self.largest_estimate.max(i.estimate);
+            }
+            if let Some(why) = r.sweep_gave_up.filter(|w| !gave_up.contains(w)) {
+                gave_up.push(why);
+            }
+            self.time_unit = match self.time_unit {
+                None => Some((r.time_unit, true)),
+                Some((u, same)) => Some((u, same && u == r.time_unit)),
+            };
+        }
+    }
+
+    /// The unit of `t_s` of every run, for the `units` of a summary: `None` without runs.
+    pub fn time_unit(&self) -> Option<&'static str> {
+        self.time_unit.map(|(u, same)| {
+            if same {
+                u
+            } else {
+                "s or nondimensional (each run's time_unit)"
+            }
+        })
+    }
+
+    /// For each system whose sweep went through the plan but found no interpolant (every speed
+    /// simulated, on top of the plan's trials), a note naming the system, why the plan gave up
+    /// and the setting that would let it interpolate (`bwc-simulate` prints these on stderr,
+    /// `bwc.cor` and `bwc.simulate` issue them as warnings).
+    pub fn no_interpolant_notes(&self, scene: &Scene) -> Vec<String> {
+        let n = scene.speeds.len();
+        let served = sweep_served(scene);
+        if n == 0 || !served.contains(&true) {
+            return Vec::new();
+        }
+        (scene.systems.iter().zip(served.iter().zip(&self.systems)))
+            .filter(|(_, (&served, (interpolated, _)))| served && !interpolated)
+            .map(|(spec, (_, (_, gave_up)))| {
+                let causes = [
+                    GaveUp::Noise,
+                    GaveUp::TooFewSpeeds,
+                    GaveUp::NotSmooth,
+                    GaveUp::Budget,
+                ]
+                .into_iter()
+                .filter(|why| gave_up.contains(why))
+                .map(|why| gave_up_because(scene, n, why))
+                .collect::<Vec<_>>()
+                .join("; ");
+                format!(
+                    "{}: no interpolant held to [sweep].tolerance {:e}, so all {n} speeds were \
+                     simulated, after up to {} trial simulations: {causes}; [sweep] interpolate = \
+                     false skips the trials",
+                    spec.name.as_deref().unwrap_or("the sweep"),
+                    scene.sweep.tolerance,
+                    n / 4
+                )
+            })
+            .collect()
+    }
+}
+
+/// What giving up for `why` means for a sweep of `speeds` speeds, and the setting that helps.
+fn gave_up_because(scene: &Scene, speeds: usize, why: GaveUp) -> String {
+    match why {
         GaveUp::Noise => {
             // Without the stops at kinks and the series, the error in `e` is far above rtol.
             let error = if scene.settings.series {
@@ -175,9 +261,8 @@ fn gave_up_because(scene: &Scene, runs: &[Run], why: GaveUp) -> Option<String> {
         }
         GaveUp::TooFewSpeeds => format!(
             "e(v0) or t_s(v0) changes too sharply (a kink, such as where the order of the \
-             impact's events changes with v0) for the pieces {} speeds pay for (at least {} \
+             impact's events changes with v0) for the pieces {speeds} speeds pay for (at least {} \
              speeds each): more speeds let the sweep isolate the change",
-            runs.len(),
             sweep::MIN_SPEEDS
         ),
         GaveUp::NotSmooth => "runs without separation split the speeds into pieces too short \
@@ -185,7 +270,7 @@ fn gave_up_because(scene: &Scene, runs: &[Run], why: GaveUp) -> Option<String> {
             .to_string(),
         GaveUp::Budget => "the trials reached their budget, a quarter of the speeds".to_string(),
         other => format!("the sweep gave up interpolating ({})", other.name()),
-    })
+    }
 }
 
 /// Whether a system's runs are smooth in the impact speed wherever the outcome holds: a
@@ -209,15 +294,20 @@ fn simulated(
     run_one(spec, v0, settings, sampling).unwrap_or_else(|e| failed(spec, v0, &e, settings))
 }
 
-/// The runs of `spec` at the scene's speeds: simulated at the points and checks of
-/// [`sweep::plan`] (kept where they are speeds of the sweep) and wherever it says so,
-/// interpolated elsewhere.
-fn interpolated(spec: &SystemSpec, scene: &Scene, tick: &(dyn Fn() + Sync)) -> Vec<Run> {
+/// The runs of `spec` at the scene's speeds, handed to `sink` a [`CHUNK`] at a time: simulated
+/// at the points and checks of [`sweep::plan_lazily`] (kept where they are speeds of the sweep) and
+/// wherever it says so, interpolated elsewhere.
+fn interpolated<E>(
+    spec: &SystemSpec,
+    scene: &Scene,
+    tick: &(dyn Fn() + Sync),
+    sink: &mut impl FnMut(Vec<Run>) -> Result<(), E>,
+) -> Result<(), E> {
     let settings = &scene.settings;
     let tolerance = scene.sweep.tolerance;
     // Every simulation the plan asked for, by speed: those at speeds of the sweep are its rows.
     let mut done: HashMap<u64, Run> = HashMap::new();
-    let plan = sweep::plan(&scene.speeds, &SweepSettings { tolerance }, |batch| {
+    let plan = sweep::plan_lazily(&scene.speeds, &SweepSettings { tolerance }, |batch| {
         let runs: Vec<Run> = batch
             .par_iter()
             .map(|&v| simulated(spec, Some(v), settings, None))
@@ -226,43 +316,44 @@ fn interpolated(spec: &SystemSpec, scene: &Scene, tick: &(dyn Fn() + Sync)) -> V
         done.extend(batch.iter().map(|v| v.to_bits()).zip(runs));
         values
     });
-    scene
-        .speeds
-        .par_iter()
-        .zip(&plan.rows)
-        .map(|(&v, row)| {
-            let run = match *row {
-                Row::Interpolated {
-                    values,
-                    estimate,
-                    piece,
-                } => {
-                    let p = &plan.pieces[piece];
-                    let how = Interpolation {
+    for speeds in scene.speeds.chunks(CHUNK) {
+        let chunk = (speeds.par_iter())
+            .map(|&v| {
+                let run = match plan.row(v) {
+                    Row::Interpolated {
+                        values,
                         estimate,
-                        degree: p.degree,
-                        from: p.from,
-                        to: p.to,
-                    };
-                    from_interpolant(spec, v, values, how, settings)
-                }
-                Row::Simulate => {
-                    let mut run = match done.get(&v.to_bits()) {
-                        Some(r) => r.clone(),
-                        None => simulated(spec, Some(v), settings, None),
-                    };
-                    // The innermost range holding the speed: ranges given up later lie
-                    // within those given up before them.
-                    run.sweep_gave_up = (plan.given_up.iter().rev())
-                        .find(|g| g.from <= v && v <= g.to)
-                        .map(|g| g.why);
-                    run
-                }
-            };
-            tick();
-            run
-        })
-        .collect()
+                        piece,
+                    } => {
+                        let p = &plan.pieces[piece];
+                        let how = Interpolation {
+                            estimate,
+                            degree: p.degree,
+                            from: p.from,
+                            to: p.to,
+                        };
+                        from_interpolant(spec, v, values, how, settings)
+                    }
+                    Row::Simulate => {
+                        let mut run = match done.get(&v.to_bits()) {
+                            Some(r) => r.clone(),
+                            None => simulated(spec, Some(v), settings, None),
+                        };
+                        // The innermost range holding the speed: ranges given up later lie
+                        // within those given up before them.
+                        run.sweep_gave_up = (plan.given_up.iter().rev())
+                            .find(|g| g.from <= v && v <= g.to)
+                            .map(|g| g.why);
+                        run
+                    }
+                };
+                tick();
+                run
+            })
+            .collect();
+        sink(chunk)?;
+    }
+    Ok(())
 }
 
 /// `[e, t_s]` of a separated run, the values a sweep interpolates.

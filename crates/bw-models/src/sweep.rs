@@ -172,31 +172,90 @@ pub struct Sweep {
 /// speeds (evaluate them in parallel if you like: the result depends only on the values).
 /// `evaluate` returns `None` for a speed whose impact has no smooth values (no separation, a
 /// failure); such speeds are simulated, and so are those near them.
-pub fn plan<F>(speeds: &[f64], settings: &SweepSettings, mut evaluate: F) -> Sweep
+pub fn plan<F>(speeds: &[f64], settings: &SweepSettings, evaluate: F) -> Sweep
 where
     F: FnMut(&[f64]) -> Vec<Option<Values>>,
 {
-    let mut v: Vec<f64> = speeds
-        .iter()
-        .copied()
-        .filter(|x| x.is_finite() && *x > 0.0)
-        .collect();
-    v.sort_by(f64::total_cmp);
-    v.dedup();
-    let u: Vec<f64> = v.iter().map(|x| x.ln()).collect();
-    let mut sweep = Sweep {
-        rows: vec![Row::Simulate; speeds.len()],
+    let plan = plan_lazily(speeds, settings, evaluate);
+    Sweep {
+        rows: speeds.iter().map(|&s| plan.row(s)).collect(),
+        pieces: plan.pieces,
+        evaluations: plan.evaluations,
+        given_up: plan.given_up,
+    }
+}
+
+/// What [`plan_lazily`] decided: the pieces and their interpolants, each speed's row read when
+/// it is needed ([`Plan::row`]), so that a sweep of any size holds no more than its pieces.
+pub struct Plan {
+    /// The pieces served by interpolants.
+    pub pieces: Vec<Piece>,
+    /// Evaluations made (points and checks, including those of pieces later halved).
+    pub evaluations: usize,
+    /// The ranges tried and given up, in the order they were given up.
+    pub given_up: Vec<GivenUp>,
+    fitted: Vec<Active>,
+    /// The sweep's speeds that were evaluated (piece ends and checks), sorted: their rows are
+    /// simulations.
+    simulated: Vec<f64>,
+}
+
+impl Plan {
+    /// The row of `speed`, a speed of the sweep planned: [`Row::Simulate`] where it was
+    /// evaluated or no piece covers it, its piece's interpolant otherwise.
+    pub fn row(&self, speed: f64) -> Row {
+        if (self.simulated)
+            .binary_search_by(|x| x.total_cmp(&speed))
+            .is_ok()
+        {
+            return Row::Simulate;
+        }
+        let x = speed.ln();
+        match self.fitted.iter().position(|p| p.covers(x)) {
+            Some(k) => Row::Interpolated {
+                values: self.fitted[k].at(x),
+                estimate: self.fitted[k].estimate,
+                piece: k,
+            },
+            None => Row::Simulate,
+        }
+    }
+}
+
+/// [`plan`], the rows left to [`Plan::row`]: nothing that grows with the sweep is kept, and
+/// while it is planned only a sorted copy of speeds not given in increasing order.
+pub fn plan_lazily<F>(speeds: &[f64], settings: &SweepSettings, mut evaluate: F) -> Plan
+where
+    F: FnMut(&[f64]) -> Vec<Option<Values>>,
+{
+    // The distinct speeds in increasing order: those given, where they already are.
+    let increasing = (speeds.windows(2)).all(|w| w[0] < w[1])
+        && speeds.iter().all(|x| x.is_finite() && *x > 0.0);
+    let v: std::borrow::Cow<[f64]> = if increasing {
+        speeds.into()
+    } else {
+        let mut v: Vec<f64> = (speeds.iter().copied())
+            .filter(|x| x.is_finite() && *x > 0.0)
+            .collect();
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+        v.into()
+    };
+    let u = Logs(&v);
+    let mut sweep = Plan {
         pieces: Vec::new(),
         evaluations: 0,
         given_up: Vec::new(),
+        fitted: Vec::new(),
+        simulated: Vec::new(),
     };
     let budget = speeds.len() / 4;
     // Sweep speeds that were evaluated (piece ends and checks): their rows are simulations.
     let mut simulated: Vec<f64> = Vec::new();
-    let mut active: Vec<Active> = Active::start(&u, 0, u.len()).into_iter().collect();
+    let mut active: Vec<Active> = Active::start(u, 0, u.len()).into_iter().collect();
     let mut fitted: Vec<Active> = Vec::new();
     while !active.is_empty() {
-        let requests: Vec<Vec<Request>> = active.iter().map(|p| p.requests(&u)).collect();
+        let requests: Vec<Vec<Request>> = active.iter().map(|p| p.requests(u)).collect();
         let batch: Vec<f64> = requests
             .iter()
             .flatten()
@@ -217,7 +276,7 @@ where
         let mut next = Vec::new();
         for (mut piece, asked) in active.into_iter().zip(requests) {
             let got: Vec<Option<Values>> = results.by_ref().take(asked.len()).collect();
-            match piece.absorb(&u, &asked, &got, settings.tolerance) {
+            match piece.absorb(u, &asked, &got, settings.tolerance) {
                 Step::More => next.push(piece),
                 Step::Done => {
                     sweep.pieces.push(piece.summary(&v));
@@ -234,20 +293,30 @@ where
         active = next;
     }
     simulated.sort_by(f64::total_cmp);
-    for (i, &s) in speeds.iter().enumerate() {
-        if simulated.binary_search_by(|x| x.total_cmp(&s)).is_ok() {
-            continue;
-        }
-        let x = s.ln();
-        if let Some(k) = fitted.iter().position(|p| p.covers(x)) {
-            sweep.rows[i] = Row::Interpolated {
-                values: fitted[k].at(x),
-                estimate: fitted[k].estimate,
-                piece: k,
-            };
-        }
-    }
+    sweep.simulated = simulated;
+    sweep.fitted = fitted;
     sweep
+}
+
+/// `u = ln v0` of the sorted speeds `v0`, computed where it is read: a sweep of any size keeps
+/// no copy of them.
+#[derive(Clone, Copy)]
+struct Logs<'a>(&'a [f64]);
+
+impl Logs<'_> {
+    fn at(self, i: usize) -> f64 {
+        self.0[i].ln()
+    }
+
+    fn len(self) -> usize {
+        self.0.len()
+    }
+
+    /// The index in `lo..=hi` of the first `u` in `lo..hi` for which `before` is false
+    /// (`before` true, then false, along the speeds).
+    fn partition_point(self, lo: usize, hi: usize, before: impl Fn(f64) -> bool) -> usize {
+        lo + self.0[lo..hi].partition_point(|&y| before(y.ln()))
+    }
 }
 
 /// A speed a piece asks for: a point `u = ln v0`, or a speed of the sweep (its index in the
@@ -291,10 +360,10 @@ struct Active {
 impl Active {
     /// A piece over `u[lo..hi]` if it holds enough speeds to pay for its first two degrees'
     /// points and its check four times over.
-    fn start(u: &[f64], lo: usize, hi: usize) -> Option<Active> {
+    fn start(u: Logs, lo: usize, hi: usize) -> Option<Active> {
         (hi - lo >= pays(DEGREES[1])).then(|| Active {
-            a: u[lo],
-            b: u[hi - 1],
+            a: u.at(lo),
+            b: u.at(hi - 1),
             lo,
             hi,
             degree: 0,
@@ -308,9 +377,9 @@ impl Active {
 
     /// The speeds this piece needs next: the first degree's points (its ends are the piece's
     /// first and last speed), the points a doubling adds, or the check.
-    fn requests(&self, u: &[f64]) -> Vec<Request> {
+    fn requests(&self, u: Logs) -> Vec<Request> {
         let sweep = |i: usize| Request {
-            u: u[i],
+            u: u.at(i),
             sweep_index: Some(i),
         };
         if let Some(x) = self.check {
@@ -333,9 +402,9 @@ impl Active {
     }
 
     /// Index of the speed of the piece nearest `x`.
-    fn nearest(&self, u: &[f64], x: f64) -> usize {
-        let i = self.lo + u[self.lo..self.hi].partition_point(|&y| y < x);
-        if i == self.hi || (i > self.lo && x - u[i - 1] < u[i] - x) {
+    fn nearest(&self, u: Logs, x: f64) -> usize {
+        let i = u.partition_point(self.lo, self.hi, |y| y < x);
+        if i == self.hi || (i > self.lo && x - u.at(i - 1) < u.at(i) - x) {
             i - 1
         } else {
             i
@@ -353,7 +422,7 @@ impl Active {
     /// Takes the values at `asked` and decides what comes next.
     fn absorb(
         &mut self,
-        u: &[f64],
+        u: Logs,
         asked: &[Request],
         got: &[Option<Values>],
         tolerance: f64,
@@ -413,7 +482,7 @@ impl Active {
     /// (from its first to its last point), and each gap between a smooth and a non-smooth
     /// point (its speeds strictly between them), where the change lies. Speeds under runs of
     /// non-smooth points are simulated.
-    fn smooth_runs(&self, u: &[f64], asked: &[Request], got: &[Option<Values>]) -> Vec<Active> {
+    fn smooth_runs(&self, u: Logs, asked: &[Request], got: &[Option<Values>]) -> Vec<Active> {
         let mut points: Vec<(f64, bool)> = asked
             .iter()
             .zip(got)
@@ -425,8 +494,8 @@ impl Active {
             points.extend((0..=n).step_by(2).map(|k| (self.node(k, n), true)));
         }
         points.sort_by(|p, q| p.0.total_cmp(&q.0));
-        let index = |x: f64| self.lo + u[self.lo..self.hi].partition_point(|&y| y < x);
-        let after = |x: f64| self.lo + u[self.lo..self.hi].partition_point(|&y| y <= x);
+        let index = |x: f64| u.partition_point(self.lo, self.hi, |y| y < x);
+        let after = |x: f64| u.partition_point(self.lo, self.hi, |y| y <= x);
         let mut pieces = Vec::new();
         let mut first = 0;
         for i in 0..points.len() {
@@ -505,9 +574,9 @@ impl Active {
     }
 
     /// The two halves of the piece that hold enough speeds to be fitted.
-    fn halves(&self, u: &[f64]) -> Vec<Active> {
+    fn halves(&self, u: Logs) -> Vec<Active> {
         let middle = 0.5 * (self.a + self.b);
-        let split = self.lo + u[self.lo..self.hi].partition_point(|&x| x <= middle);
+        let split = u.partition_point(self.lo, self.hi, |x| x <= middle);
         [
             Active::start(u, self.lo, split),
             Active::start(u, split, self.hi),

@@ -59,7 +59,7 @@ create_exception!(
 /// thousands), runs that met the horizon and CoRs whose check against `e_tol` was not met.
 fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[bwc_app::runs::Run]) -> PyResult<()> {
     let mut notes = scene.hints.clone();
-    notes.extend(simulate::no_interpolant_notes(scene, runs));
+    notes.extend(simulate::Tally::of(scene, runs).no_interpolant_notes(scene));
     let n = runs.len();
     let (k, labels) = labels_of(runs, |r| r.outcome == Outcome::Horizon);
     if k > 0 {

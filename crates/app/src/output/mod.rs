@@ -3,13 +3,14 @@
 //! run leaves no half-written file.
 
 mod figures;
+mod study;
+
+pub use study::{Study, FIGURE_POINTS, FIGURE_RUNS, RUNS_FILE};
 
 use crate::runs::{Outcome, Run};
-use crate::scene::{OutputSpec, Scene, System};
-use crate::AppError;
-use bw_models::{Check, ModelKind};
+use crate::scene::{Scene, System};
+use bw_models::Check;
 use serde::Serialize;
-use std::path::Path;
 
 /// One run in the JSON summary. Key names are a fixed contract; keys may be added.
 #[derive(Debug, Serialize)]
@@ -275,40 +276,118 @@ impl Summary {
         }
     }
 
-    /// [`Summary::with_provenance`] as JSON text, written straight from the summaries: the same
-    /// text as the tree's, without building it (a sweep of 20,000 speeds spent a third of its
-    /// whole-process time building and dropping the tree). The keys of every summary type are
-    /// declared in sorted order, the order of the tree's maps.
+    /// The JSON text `bwc-simulate --json` prints for `runs`, the runs of `scene`: `{"command",
+    /// "runs", "scene", "tool", "units", "version"}` ([`SummaryWriter`]).
     pub fn provenance_json(&self, scene: &Scene, runs: &[Run]) -> String {
-        /// The top level, keys in sorted order.
-        #[derive(Serialize)]
-        struct Provenanced<'a> {
-            command: Vec<String>,
-            runs: &'a [RunSummary],
-            scene: serde_json::Value,
-            tool: &'static str,
-            units: serde_json::Value,
-            version: &'static str,
-        }
-        serde_json::to_string(&Provenanced {
-            command: std::env::args().collect(),
-            runs: &self.runs,
-            scene: scene.describe(),
-            tool: "bwc-simulate",
-            units: units(scene, runs),
-            version: env!("CARGO_PKG_VERSION"),
+        let mut w = SummaryWriter::array(Vec::new(), scene).expect("in-memory writer");
+        w.add_summaries(&self.runs).expect("in-memory writer");
+        let tally = crate::simulate::Tally::of(scene, runs);
+        let text = w.finish(scene, &tally, None).expect("in-memory writer");
+        String::from_utf8(text).expect("JSON is UTF-8")
+    }
+}
+
+/// The JSON summary of a scene's runs written as they come, in either of two forms:
+///
+/// * an array: `{"command": [...], "runs": [...], "scene": {...}, "tool": "bwc-simulate",
+///   "units": {...}, "version": "..."}` (and `"files"` last in `summary.json`), the keys in
+///   sorted order, the runs written one by one as they are added;
+/// * JSON Lines: one run per line, for `runs.jsonl`.
+pub struct SummaryWriter<W> {
+    sink: W,
+    sequence: bool,
+    lines: bool,
+    first: bool,
+}
+
+impl<W: std::io::Write> SummaryWriter<W> {
+    /// The array form: writes the head up to the runs' opening bracket.
+    ///
+    /// # Errors
+    /// What writing to `sink` returned.
+    pub fn array(mut sink: W, scene: &Scene) -> std::io::Result<Self> {
+        let command: Vec<String> = std::env::args().collect();
+        write!(sink, "{{\"command\":")?;
+        serde_json::to_writer(&mut sink, &command)?;
+        write!(sink, ",\"runs\":[")?;
+        Ok(SummaryWriter {
+            sink,
+            sequence: scene.sequence.is_some(),
+            lines: false,
+            first: true,
         })
-        .expect("summaries serialize")
     }
 
-    /// The summary with the provenance of `scene`: `{"runs", "units", "scene", "tool",
-    /// "version", "command"}`.
-    pub fn with_provenance(&self, scene: &Scene, runs: &[Run]) -> serde_json::Value {
-        let mut v = crate::outdir::provenance("bwc-simulate");
-        v["runs"] = serde_json::to_value(&self.runs).expect("runs serialize");
-        v["units"] = units(scene, runs);
-        v["scene"] = scene.describe();
-        v
+    /// The JSON Lines form.
+    pub fn lines(sink: W, scene: &Scene) -> Self {
+        SummaryWriter {
+            sink,
+            sequence: scene.sequence.is_some(),
+            lines: true,
+            first: true,
+        }
+    }
+
+    /// Whether this is the JSON Lines form.
+    pub fn is_lines(&self) -> bool {
+        self.lines
+    }
+
+    /// Where the text goes.
+    pub fn sink(&self) -> &W {
+        &self.sink
+    }
+
+    /// Writes the summaries of the next runs.
+    ///
+    /// # Errors
+    /// What writing to the sink returned.
+    pub fn add(&mut self, runs: &[Run]) -> std::io::Result<()> {
+        self.add_summaries(&Summary::new(runs, self.sequence).runs)
+    }
+
+    fn add_summaries(&mut self, runs: &[RunSummary]) -> std::io::Result<()> {
+        for r in runs {
+            if self.lines {
+                serde_json::to_writer(&mut self.sink, r)?;
+                self.sink.write_all(b"\n")?;
+            } else {
+                if !self.first {
+                    self.sink.write_all(b",")?;
+                }
+                serde_json::to_writer(&mut self.sink, r)?;
+            }
+            self.first = false;
+        }
+        Ok(())
+    }
+
+    /// Closes the array (with `files` as the last key, where given) and returns the sink; the
+    /// JSON Lines form is returned as it is. No newline is written.
+    ///
+    /// # Errors
+    /// What writing to the sink returned.
+    pub fn finish(
+        mut self,
+        scene: &Scene,
+        tally: &crate::simulate::Tally,
+        files: Option<&[String]>,
+    ) -> std::io::Result<W> {
+        if !self.lines {
+            let w = &mut self.sink;
+            write!(w, "],\"scene\":")?;
+            serde_json::to_writer(&mut *w, &scene.describe())?;
+            write!(w, ",\"tool\":\"bwc-simulate\",\"units\":")?;
+            serde_json::to_writer(&mut *w, &units(scene, tally.time_unit()))?;
+            write!(w, ",\"version\":\"{}\"", env!("CARGO_PKG_VERSION"))?;
+            if let Some(files) = files {
+                write!(w, ",\"files\":")?;
+                serde_json::to_writer(&mut *w, files)?;
+            }
+            write!(w, "}}")?;
+        }
+        self.sink.flush()?;
+        Ok(self.sink)
     }
 }
 
@@ -323,13 +402,11 @@ pub(crate) fn si_states(scene: &Scene) -> bool {
 
 /// The unit of every JSON key of a run and of every CSV column (`"1"`: dimensionless; the
 /// nondimensional quantities are in the scales of Table 1).
-pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
+/// `time_unit`: that of `t_s` of every run ([`crate::simulate::Tally::time_unit`]; `None`
+/// without runs: s).
+pub fn units(scene: &Scene, time_unit: Option<&str>) -> serde_json::Value {
     let nd = "nondimensional";
-    let t = match runs.first().map(|r| r.time_unit) {
-        Some(u) if runs.iter().all(|r| r.time_unit == u) => u,
-        Some(_) => "s or nondimensional (each run's time_unit)",
-        None => "s",
-    };
+    let t = time_unit.unwrap_or("s");
     let si = si_states(scene);
     let (m, ms, n) = if si { ("m", "m/s", "N") } else { (nd, nd, nd) };
     serde_json::json!({
@@ -352,178 +429,8 @@ pub fn units(scene: &Scene, runs: &[Run]) -> serde_json::Value {
     })
 }
 
-/// Renders every requested output of `runs` into `(file name, bytes)` pairs.
-///
-/// # Errors
-/// [`AppError::Csv`] or [`AppError::Plot`] if rendering fails.
-pub fn render(scene: &Scene, runs: &[Run], out: &Path) -> Result<Vec<(String, Vec<u8>)>, AppError> {
-    let spec: OutputSpec = scene.output;
-    let mut files = Vec::new();
-
-    let several_systems = scene.systems.len() > 1;
-    let several_runs = runs.len() > 1;
-    let sweep = spec.sweep || scene.speeds.len() > 1;
-    let csv_err = |name: &str| {
-        let path = out.join(name);
-        move |source: csv::Error| AppError::Csv {
-            path: path.clone(),
-            source,
-        }
-    };
-    let plot_err = |name: &str| {
-        let path = out.join(name);
-        move |message: String| AppError::Plot {
-            path: path.clone(),
-            message,
-        }
-    };
-
-    if scene.sequence.is_some() {
-        files.push((
-            "bounces.csv".into(),
-            bounces_csv(runs).map_err(csv_err("bounces.csv"))?,
-        ));
-        let height = figures::height(scene, runs);
-        files.push(height.map_err(|(name, m)| plot_err(&name)(m))?);
-    }
-
-    if sweep {
-        files.push((
-            "sweep.csv".into(),
-            sweep_csv(runs, several_systems).map_err(csv_err("sweep.csv"))?,
-        ));
-        if spec.plots {
-            for f in figures::sweep(scene, runs) {
-                files.push(f.map_err(|(name, m)| plot_err(&name)(m))?);
-            }
-        }
-    }
-
-    if spec.trajectory {
-        let bodies = runs
-            .iter()
-            .any(|r| r.trajectory.iter().any(|s| s.bodies.is_some()));
-        files.push((
-            "trajectory.csv".into(),
-            trajectory_csv(runs, several_runs, bodies).map_err(csv_err("trajectory.csv"))?,
-        ));
-        if spec.plots {
-            for f in figures::time_histories(scene, runs, bodies) {
-                files.push(f.map_err(|(name, m)| plot_err(&name)(m))?);
-            }
-        }
-    }
-
-    if spec.loops {
-        files.push((
-            "loop.csv".into(),
-            loop_csv(runs, several_systems).map_err(csv_err("loop.csv"))?,
-        ));
-        if spec.plots {
-            files.push(figures::loops(scene, runs).map_err(|(name, m)| plot_err(&name)(m))?);
-        }
-    }
-    Ok(files)
-}
-
-/// `sweep.csv`: one row per run (`name` where the scene has several systems).
-fn sweep_csv(runs: &[Run], several_systems: bool) -> Result<Vec<u8>, csv::Error> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    let mut header = vec!["v_0", "e", "t_d", "t_s", "separated"];
-    if several_systems {
-        header.push("name");
-    }
-    header.extend(["outcome", "source"]);
-    w.write_record(&header)?;
-    for r in runs {
-        let mut rec = vec![
-            opt(r.v0),
-            opt(Some(r.e).filter(|e| e.is_finite())),
-            opt(r.t_d),
-            opt(r.t_s),
-            (r.outcome == Outcome::Separated).to_string(),
-        ];
-        if several_systems {
-            rec.push(r.name.clone().unwrap_or_default());
-        }
-        rec.push(r.outcome.name().to_string());
-        rec.push(source(r).to_string());
-        w.write_record(&rec)?;
-    }
-    Ok(w.into_inner().expect("in-memory writer"))
-}
-
-/// `trajectory.csv`: every sample of every run (`v_0` and `name` where there are several runs;
-/// the bodies' columns where a run has two bodies; `r`, `y`, `z` for the MCM, else `z`).
-fn trajectory_csv(runs: &[Run], several_runs: bool, bodies: bool) -> Result<Vec<u8>, csv::Error> {
-    let mcm = runs.first().is_some_and(|r| r.model == ModelKind::Mcm);
-    let mut header: Vec<&str> = Vec::new();
-    if several_runs {
-        header.extend(["v_0", "name"]);
-    }
-    if bodies {
-        header.extend([
-            "t", "x_m_1", "x_m_2", "x_m", "x", "v_m_1", "v_m_2", "v_m", "v", "u_1", "u_2", "u", "F",
-        ]);
-    } else {
-        header.extend(["t", "x", "v", "u", "F"]);
-    }
-    header.extend(if mcm {
-        ["r", "y", "z"].as_slice()
-    } else {
-        ["z"].as_slice()
-    });
-    let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record(&header)?;
-    for r in runs {
-        for s in &r.trajectory {
-            let mut rec: Vec<String> = Vec::with_capacity(header.len());
-            if several_runs {
-                rec.push(opt(r.v0));
-                rec.push(r.name.clone().unwrap_or_default());
-            }
-            rec.push(s.t.to_string());
-            match &s.bodies {
-                Some(b) if bodies => rec.extend(
-                    [
-                        b.x_m_1, b.x_m_2, b.x_m, s.x, b.v_m_1, b.v_m_2, b.v_m, s.v, b.u_1, b.u_2,
-                        s.u, s.f,
-                    ]
-                    .iter()
-                    .map(f64::to_string),
-                ),
-                _ => rec.extend([s.x, s.v, s.u, s.f].iter().map(f64::to_string)),
-            }
-            let extra: &[f64] = if mcm { &s.state[..3] } else { &s.state[1..2] };
-            rec.extend(extra.iter().map(f64::to_string));
-            w.write_record(&rec)?;
-        }
-    }
-    Ok(w.into_inner().expect("in-memory writer"))
-}
-
-/// `loop.csv`: the force against the displacement, every sample of every run.
-fn loop_csv(runs: &[Run], several_systems: bool) -> Result<Vec<u8>, csv::Error> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    let mut header = vec!["v_0", "x", "F"];
-    if several_systems {
-        header.push("name");
-    }
-    w.write_record(&header)?;
-    for r in runs {
-        for s in &r.trajectory {
-            let mut rec = vec![opt(r.v0), s.x.to_string(), s.f.to_string()];
-            if several_systems {
-                rec.push(r.name.clone().unwrap_or_default());
-            }
-            w.write_record(&rec)?;
-        }
-    }
-    Ok(w.into_inner().expect("in-memory writer"))
-}
-
 /// `bounces.csv`: the columns of [`BounceSummary`], one row per contact.
-fn bounces_csv(runs: &[Run]) -> Result<Vec<u8>, csv::Error> {
+pub(super) fn bounces_csv(runs: &[Run]) -> Result<Vec<u8>, csv::Error> {
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record([
         "n",
@@ -563,7 +470,7 @@ pub fn source(r: &Run) -> &'static str {
     }
 }
 
-fn opt(v: Option<f64>) -> String {
+pub(super) fn opt(v: Option<f64>) -> String {
     v.map(|x| x.to_string()).unwrap_or_default()
 }
 
@@ -571,8 +478,7 @@ fn opt(v: Option<f64>) -> String {
 mod tests {
     use super::*;
 
-    /// The JSON text written straight from the summaries is the text of the tree, byte for
-    /// byte: a sequence with its bounces, a settled and a separated run under an input (`rest`
+    /// The JSON text written run by run is the text of the tree, byte for byte: a sequence with its bounces, a settled and a separated run under an input (`rest`
     /// filled and null), a failed run (`error`, null results), and a sweep served by an
     /// interpolant (`interpolation` filled).
     #[test]
@@ -592,14 +498,20 @@ mod tests {
         let mut outcomes = Vec::new();
         let mut interpolated = 0;
         for text in scenes {
-            let scene = Scene::parse(Path::new("test.toml"), text).unwrap();
+            let scene = Scene::parse(std::path::Path::new("test.toml"), text).unwrap();
             let runs = crate::simulate::run(&scene, None);
             outcomes.extend(runs.iter().map(|r| (r.outcome.name(), r.bounces.len())));
             interpolated += runs.iter().filter(|r| r.interpolation.is_some()).count();
             let summary = Summary::new(&runs, scene.sequence.is_some());
+            // The tree built key by key, sorted as serde_json's maps are.
+            let mut tree = crate::outdir::provenance("bwc-simulate");
+            tree["runs"] = serde_json::to_value(&summary.runs).unwrap();
+            let unit = crate::simulate::Tally::of(&scene, &runs).time_unit();
+            tree["units"] = units(&scene, unit);
+            tree["scene"] = scene.describe();
             assert_eq!(
                 summary.provenance_json(&scene, &runs),
-                summary.with_provenance(&scene, &runs).to_string(),
+                tree.to_string(),
                 "{text}"
             );
         }

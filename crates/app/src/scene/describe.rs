@@ -8,12 +8,20 @@ use serde_json::{json, Value};
 
 impl Scene {
     /// The scene as parsed: the systems with every parameter, the speeds, the solver settings
-    /// and the outputs, defaults filled in (keys as in a scene file).
+    /// and the outputs, defaults filled in (keys as in a scene file). The speeds of a study
+    /// with more runs than `[output].summary_runs` (whose runs are listed in `runs.jsonl`, each
+    /// with its `v0`) are given as `{"count", "first", "last", "listed_in"}`.
     pub fn describe(&self) -> Value {
+        let v0 = if self.runs_listed_apart() {
+            json!({"count": self.speeds.len(), "first": self.speeds.first(),
+                "last": self.speeds.last(), "listed_in": crate::output::RUNS_FILE})
+        } else {
+            json!(self.speeds)
+        };
         json!({
             "path": self.path.display().to_string(),
             "systems": self.systems.iter().map(system).collect::<Vec<_>>(),
-            "v0": self.speeds,
+            "v0": v0,
             "solver": settings(&self.settings),
             "output": output(&self.output),
             "sequence": self.sequence.map(|q| sequence(&q)),
@@ -118,7 +126,7 @@ pub(crate) fn settings(s: &Settings) -> Value {
 
 fn output(o: &OutputSpec) -> Value {
     json!({"trajectory": o.trajectory, "dt": o.dt, "loops": o.loops, "sweep": o.sweep,
-        "plots": o.plots})
+        "plots": o.plots, "summary_runs": o.summary_runs})
 }
 
 fn sequence(q: &super::SequenceSpec) -> Value {

@@ -11,7 +11,7 @@
 //! kind = "gravity"
 //! [solver]                   # optional: method, rtol, atol, max_step, t_max, max_steps, stop_at_kinks,
 //!                            #   switch_when_stiff, series, e_tol (0: off), double_double, phase
-//! [output]                   # optional: trajectory, dt, loops, sweep, plots
+//! [output]                   # optional: trajectory, dt, loops, sweep, plots, summary_runs
 //! [sweep]                    # optional: interpolate (default true), tolerance (default e_tol / 10)
 //! ```
 
@@ -149,7 +149,18 @@ pub struct OutputSpec {
     pub sweep: bool,
     /// SVG plots of whatever is written.
     pub plots: bool,
+    /// The most runs `summary.json` lists under `"runs"`; a study with more lists them in
+    /// `runs.jsonl`, one JSON object per line ([`SUMMARY_RUNS`] by default).
+    pub summary_runs: usize,
 }
+
+/// The most speeds a range `v0 = { from, to, count }` makes: a study streams its runs, so that
+/// only the speeds themselves (8 bytes each, and a sorted copy while a sweep is planned) grow
+/// with it.
+pub const MAX_SPEEDS: i64 = 100_000_000;
+
+/// The default `[output].summary_runs`: a `summary.json` of about 80 MB.
+pub const SUMMARY_RUNS: usize = 100_000;
 
 /// `[sweep]`: how the speeds of a sweep are evaluated.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -170,6 +181,22 @@ impl Scene {
     /// values (with line and key).
     pub fn load(path: &Path) -> Result<Self, AppError> {
         Self::parse(path, &read_text(path)?)
+    }
+
+    /// Runs the scene makes: one per system and speed (one per system for a sequence).
+    pub fn run_count(&self) -> usize {
+        let per_system = if self.sequence.is_some() {
+            1
+        } else {
+            self.speeds.len().max(1)
+        };
+        self.systems.len() * per_system
+    }
+
+    /// Whether the scene makes more runs than `[output].summary_runs`, so that its output
+    /// folder lists them in `runs.jsonl` rather than in `summary.json`.
+    pub fn runs_listed_apart(&self) -> bool {
+        self.run_count() > self.output.summary_runs
     }
 
     /// Validates a scene given as text (`path` is only used in messages).
@@ -432,11 +459,11 @@ fn parse_speeds(ctx: &Ctx, raw: &RawScene) -> Result<Vec<f64>, AppError> {
         SeqOrMap::Map(r) => {
             let (from, to) = (ctx.num(&r.from, "v0.from")?, ctx.num(&r.to, "v0.to")?);
             let count = *r.count.get_ref();
-            if !(1..=1_000_000).contains(&count) {
+            if !(1..=MAX_SPEEDS).contains(&count) {
                 return Err(ctx.invalid(
                     &r.count.span(),
                     "v0.count",
-                    format!("{count} is not admissible: 1 <= count <= 1000000"),
+                    format!("{count} is not admissible: 1 <= count <= {MAX_SPEEDS}"),
                 ));
             }
             if from <= 0.0 || to < from {
@@ -610,6 +637,7 @@ fn output(ctx: &Ctx, raw: &RawScene) -> Result<OutputSpec, AppError> {
         loops: false,
         sweep: false,
         plots: false,
+        summary_runs: SUMMARY_RUNS,
     };
     let Some(out) = &raw.output else { return Ok(o) };
     let r = out.get_ref();
@@ -628,6 +656,15 @@ fn output(ctx: &Ctx, raw: &RawScene) -> Result<OutputSpec, AppError> {
             ));
         }
         o.dt = Some(v);
+    }
+    if let Some(v) = &r.summary_runs {
+        o.summary_runs = usize::try_from(*v.get_ref()).map_err(|_| {
+            ctx.invalid(
+                &v.span(),
+                "[output].summary_runs",
+                format!("{} is not admissible: a count >= 0", v.get_ref()),
+            )
+        })?;
     }
     Ok(o)
 }

@@ -192,6 +192,7 @@ pub struct RawOutput {
     pub loops: Option<Spanned<bool>>,
     pub sweep: Option<Spanned<bool>>,
     pub plots: Option<Spanned<bool>>,
+    pub summary_runs: Option<Spanned<i64>>,
     pub figures: Option<std::collections::BTreeMap<String, Spanned<RawFigure>>>,
 }
 

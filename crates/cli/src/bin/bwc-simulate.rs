@@ -3,11 +3,13 @@
 use bw_models::{Check, ModelKind, LADDER};
 use bwc_app::chain::ChainScene;
 use bwc_app::outdir;
+use bwc_app::output::{self, SummaryWriter};
 use bwc_app::runs::Outcome;
-use bwc_app::{output, scene::Scene, simulate, tidy, AppError};
+use bwc_app::{scene::Scene, simulate, tidy, AppError};
 use bwc_cli::exit;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -56,7 +58,8 @@ fn main() -> ExitCode {
     }
 }
 
-/// Runs a scene; returns the exit status ([`exit`]).
+/// Runs a scene; returns the exit status ([`exit`]). The runs are printed and written as they
+/// come ([`simulate::stream`]), so that memory stays flat however many speeds a study has.
 fn run(
     path: &std::path::Path,
     out: Option<&std::path::Path>,
@@ -70,9 +73,13 @@ fn run(
     for hint in &scene.hints {
         eprintln!("bwc-simulate: warning: {hint}");
     }
-    if let Some(dir) = out {
-        outdir::prepare(dir)?;
-    }
+    let mut study = match out {
+        Some(dir) => {
+            outdir::prepare(dir)?;
+            Some(output::Study::start(&scene, dir)?)
+        }
+        None => None,
+    };
     let total = (scene.systems.len() * scene.speeds.len().max(1)) as u64;
     let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
     bar.set_style(
@@ -90,52 +97,95 @@ fn run(
             bar.set_draw_target(ProgressDrawTarget::stderr());
         }
     };
-    let runs = bwc_app::with_threads(threads, || Ok(simulate::run(&scene, Some(&tick))))?;
+    let mut tally = simulate::Tally::default();
+    let mut table = Table::default();
+    let mut printed = match json {
+        true => Some(SummaryWriter::array(Stdout, &scene).expect("stdout ignores errors")),
+        false => None,
+    };
+    // A file that cannot be written stops the folder, not the study: every result is still
+    // printed, and the error reported at the end.
+    let mut unwritten: Option<AppError> = None;
+    bwc_app::with_threads(threads, || {
+        simulate::stream(&scene, Some(&tick), |chunk| {
+            tally.add(&scene, &chunk);
+            report(&scene, &chunk);
+            match &mut printed {
+                Some(w) => w.add(&chunk).expect("stdout ignores errors"),
+                None if scene.sequence.is_some() => bounce_table(&chunk),
+                None => table.rows(&chunk),
+            }
+            if let Some(s) = &mut study {
+                if let Err(e) = s.add(chunk) {
+                    unwritten = Some(e);
+                    study = None;
+                }
+            }
+            Ok(())
+        })
+    })?;
     bar.finish_and_clear();
-    report(&scene, &runs);
-    let summary = output::Summary::new(&runs, scene.sequence.is_some());
-    // The results are printed before the files are written: a failed write loses nothing.
-    if json {
-        bwc_app::out!("{}", summary.provenance_json(&scene, &runs));
-    } else if scene.sequence.is_some() {
-        bounce_table(&runs);
-    } else {
-        table(&runs);
+    notes(&scene, &tally);
+    table.finish();
+    if let Some(w) = printed {
+        let mut w = w
+            .finish(&scene, &tally, None)
+            .expect("stdout ignores errors");
+        let _ = writeln!(w);
     }
-    if let Some(dir) = out {
-        let files = output::render(&scene, &runs, dir)?;
-        let written = outdir::write_all(dir, summary.with_provenance(&scene, &runs), files)?;
+    if let Some(e) = unwritten {
+        return Err(e);
+    }
+    if let Some(study) = study {
+        let written = study.finish(&tally)?;
         if !json {
             for p in written {
                 eprintln!("wrote {}", p.display());
             }
         }
     }
-    let failed = runs.iter().any(|r| r.outcome == Outcome::Failed);
-    Ok(if failed { exit::SOME_FAILED } else { exit::OK })
+    Ok(if tally.failed > 0 {
+        exit::SOME_FAILED
+    } else {
+        exit::OK
+    })
+}
+
+/// Standard output that ignores errors such as a closed pipe (`bwc-simulate ... | head` must
+/// not panic), buffered through the lock of each write.
+struct Stdout;
+
+impl Write for Stdout {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let _ = std::io::stdout().lock().write_all(buf);
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        let _ = std::io::stdout().lock().flush();
+        Ok(())
+    }
+}
+
+/// The notes on a whole study, on stderr: how many runs came from interpolants, and why a
+/// sweep found none.
+fn notes(scene: &Scene, tally: &simulate::Tally) {
+    if tally.interpolated > 0 {
+        eprintln!(
+            "bwc-simulate: {} of {} runs took e and t_s from interpolants in ln v0 verified \
+             against simulations (largest error estimate {:.1e}, [sweep].tolerance {:e}); \
+             [sweep] interpolate = false simulates every speed",
+            tally.interpolated, tally.runs, tally.largest_estimate, scene.sweep.tolerance
+        );
+    }
+    for note in tally.no_interpolant_notes(scene) {
+        eprintln!("bwc-simulate: {note}");
+    }
 }
 
 /// Says on stderr what is not a plain separation: failures with their reason, horizons with the
 /// setting that moves them, settled contacts with their force balance.
 fn report(scene: &Scene, runs: &[bwc_app::runs::Run]) {
-    let interpolated: Vec<f64> = runs
-        .iter()
-        .filter_map(|r| r.interpolation.map(|i| i.estimate))
-        .collect();
-    if !interpolated.is_empty() {
-        eprintln!(
-            "bwc-simulate: {} of {} runs took e and t_s from interpolants in ln v0 verified \
-             against simulations (largest error estimate {:.1e}, [sweep].tolerance {:e}); \
-             [sweep] interpolate = false simulates every speed",
-            interpolated.len(),
-            runs.len(),
-            interpolated.iter().fold(0.0, |a: f64, &b| a.max(b)),
-            scene.sweep.tolerance
-        );
-    }
-    for note in simulate::no_interpolant_notes(scene, runs) {
-        eprintln!("bwc-simulate: {note}");
-    }
     for note in simulate::sampling_notes(scene, runs) {
         eprintln!("bwc-simulate: warning: {note}");
     }
@@ -245,69 +295,86 @@ fn unmet_e_tol(scene: &Scene, label: &str, r: &bwc_app::runs::Run) {
     }
 }
 
-/// The human-readable table, with the unit of every column.
-fn table(runs: &[bwc_app::runs::Run]) {
-    // The first column as wide as the longest label (named bases make long ones).
-    let labels: Vec<String> = runs.iter().map(|r| r.label()).collect();
-    let width = labels
-        .iter()
-        .map(|l| l.chars().count())
-        .fold(24, usize::max);
-    let t_unit = match runs.first().map(|r| r.time_unit) {
-        Some(u) if runs.iter().all(|r| r.time_unit == u) && u == "s" => "(s)",
-        Some(u) if runs.iter().all(|r| r.time_unit == u) => "(T, nondim.)",
-        _ => "(s or T)",
-    };
-    bwc_app::out!(
-        "{:<width$} {:>10} {:>12} {:>11} {:>16} {:>14} {:>10}",
-        "run",
-        "outcome",
-        "e (-)",
-        "e_error (-)",
-        format!("t_s {t_unit}"),
-        "t_d (s)",
-        "rhs_evals"
-    );
-    for (r, label) in runs.iter().zip(&labels) {
-        let e = if r.e.is_finite() {
-            format!("{:.9}", r.e)
-        } else {
-            "-".into()
+/// The human-readable table, with the unit of every column, printed a chunk of runs at a time:
+/// the first column as wide as the first chunk's longest label (named bases make long ones).
+#[derive(Default)]
+struct Table {
+    width: Option<usize>,
+    /// The labels of the runs in double-double arithmetic.
+    precise: Vec<String>,
+}
+
+impl Table {
+    fn rows(&mut self, runs: &[bwc_app::runs::Run]) {
+        let labels: Vec<String> = runs.iter().map(|r| r.label()).collect();
+        let width = match self.width {
+            Some(w) => w,
+            None => {
+                let w = (labels.iter().map(|l| l.chars().count())).fold(24, usize::max);
+                self.header(runs, w);
+                *self.width.insert(w)
+            }
         };
-        // A checked CoR's estimate; an interpolated row's is its interpolant's.
-        let estimate = r
-            .e_error
-            .or(r.interpolation.map(|i| i.estimate))
-            .map_or("-".to_string(), |d| format!("{d:.1e}"));
-        let ts = r.t_s.map_or("-".to_string(), |t| format!("{t:.9e}"));
-        let td = r.t_d.map_or("-".to_string(), |t| format!("{t:.6e}"));
-        let evals = match r.interpolation {
-            Some(_) => "interp.".to_string(),
-            None => r.stats.rhs_evals.to_string(),
+        for (r, label) in runs.iter().zip(labels) {
+            let e = if r.e.is_finite() {
+                format!("{:.9}", r.e)
+            } else {
+                "-".into()
+            };
+            // A checked CoR's estimate; an interpolated row's is its interpolant's.
+            let estimate = r
+                .e_error
+                .or(r.interpolation.map(|i| i.estimate))
+                .map_or("-".to_string(), |d| format!("{d:.1e}"));
+            let ts = r.t_s.map_or("-".to_string(), |t| format!("{t:.9e}"));
+            let td = r.t_d.map_or("-".to_string(), |t| format!("{t:.6e}"));
+            let evals = match r.interpolation {
+                Some(_) => "interp.".to_string(),
+                None => r.stats.rhs_evals.to_string(),
+            };
+            bwc_app::out!(
+                "{:<width$} {:>10} {:>12} {:>11} {:>16} {:>14} {:>10}",
+                label,
+                r.outcome.name(),
+                e,
+                estimate,
+                ts,
+                td,
+                evals
+            );
+            if r.double_double {
+                self.precise.push(label);
+            }
+        }
+    }
+
+    /// The header; the unit of `t_s` is that of the first chunk's runs.
+    fn header(&self, runs: &[bwc_app::runs::Run], width: usize) {
+        let t_unit = match runs.first().map(|r| r.time_unit) {
+            Some(u) if runs.iter().all(|r| r.time_unit == u) && u == "s" => "(s)",
+            Some(u) if runs.iter().all(|r| r.time_unit == u) => "(T, nondim.)",
+            _ => "(s or T)",
         };
         bwc_app::out!(
             "{:<width$} {:>10} {:>12} {:>11} {:>16} {:>14} {:>10}",
-            label,
-            r.outcome.name(),
-            e,
-            estimate,
-            ts,
-            td,
-            evals
+            "run",
+            "outcome",
+            "e (-)",
+            "e_error (-)",
+            format!("t_s {t_unit}"),
+            "t_d (s)",
+            "rhs_evals"
         );
     }
-    let precise: Vec<&str> = runs
-        .iter()
-        .zip(&labels)
-        .filter(|(r, _)| r.double_double)
-        .map(|(_, l)| l.as_str())
-        .collect();
-    if !precise.is_empty() {
-        bwc_app::out!(
-            "double-double arithmetic ([solver] double_double), where double precision could not \
-             meet [solver].e_tol: {}",
-            precise.join("; ")
-        );
+
+    fn finish(self) {
+        if !self.precise.is_empty() {
+            bwc_app::out!(
+                "double-double arithmetic ([solver] double_double), where double precision \
+                 could not meet [solver].e_tol: {}",
+                self.precise.join("; ")
+            );
+        }
     }
 }
 

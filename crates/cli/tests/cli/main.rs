@@ -1,11 +1,12 @@
 //! The binaries run on good and bad scenes: `bwc-simulate` ([`simulate`]), `bwc-identify`
 //! ([`identify`]), impact sequences and drop tests ([`sequence`]), sweeps served by interpolants
-//! ([`sweep`]), chains of bodies ([`chain`]).
+//! ([`sweep`]), chains of bodies ([`chain`]), studies written as they are computed ([`study`]).
 
 mod chain;
 mod identify;
 mod sequence;
 mod simulate;
+mod study;
 mod sweep;
 
 use std::path::{Path, PathBuf};
