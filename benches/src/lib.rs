@@ -182,6 +182,8 @@ pub mod cor {
 }
 
 pub mod stress;
+#[cfg(test)]
+mod stress_sample;
 
 /// The truths of the coverage studies on the baseball design (`fixtures/baseball_wood.toml`):
 /// the default fits of the NDBWSHCCM and the NDBWMCM to the measured data (BENCHMARKS.md) and

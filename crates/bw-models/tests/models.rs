@@ -1,7 +1,12 @@
 //! Known-answer tests of the collision models: closed forms (each stated where it is used) and
 //! the paper's tables.
+
 #![allow(clippy::excessive_precision)] // reference values keep their published digits
 #![allow(clippy::approx_constant)] // p = 3.14 is a published exponent (Table 3), not π
+
+// One test binary: each binary compiles the generic solver anew.
+mod chain;
+mod families;
 
 #[path = "support/alloc_counter.rs"]
 mod alloc_counter;

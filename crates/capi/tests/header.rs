@@ -21,7 +21,7 @@ fn the_header_in_the_repository_is_current() {
     assert!(
         kept == made,
         "{} is stale: regenerate it with `BWC_WRITE_HEADER=1 cargo test -p bwc-capi --test \
-         header` and commit it",
+         capi header` and commit it",
         path.display()
     );
 }

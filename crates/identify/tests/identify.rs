@@ -1,5 +1,9 @@
 //! Identification recovers known parameters from synthetic data, deterministically.
 
+// One test binary: each binary compiles the generic solver anew.
+mod posterior;
+mod smc;
+
 use bw_models::input::{Constant, Zero};
 use bw_models::{impact_at, BaseMap, BaseParams, ModelKind, Settings};
 use bwc_identify::*;

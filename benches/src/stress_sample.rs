@@ -1,7 +1,7 @@
-//! A small sample of the stress sweep (the full one runs by hand: see STABILITY.md).
+//! A small sample of the stress sweep, as tests (the full one runs by hand: see STABILITY.md).
 
+use crate::stress::{run_with, sample, settings, sweep, Class};
 use bw_models::{Settings, Stiffness};
-use bwc_benches::stress::{run_with, sample, settings, sweep, Class};
 
 /// Every case ends in a known class: separated with finite T_s and 0 <= e (<= 1 + 1e-9 without
 /// input), no separation, or a classified solver failure; never energy created, never an
@@ -56,7 +56,7 @@ fn stress_sample_is_classified() {
 /// sweep).
 #[test]
 fn stress_sample_with_the_series_path() {
-    use bwc_benches::stress::sweep_with;
+    use crate::stress::sweep_with;
     let series = sweep(7, 300);
     let plain = sweep_with(
         7,
@@ -89,7 +89,7 @@ fn stress_sample_with_the_series_path() {
 /// scan an empty interval forever. It now ends in a class (here: the step size underflows).
 #[test]
 fn a_boundary_scan_at_the_end_of_a_step_terminates() {
-    let o = bwc_benches::stress::run(&sample(1, 69494));
+    let o = crate::stress::run(&sample(1, 69494));
     assert!(
         !matches!(o.class, Class::EnergyCreated(_) | Class::Other(_)),
         "{:?}",
