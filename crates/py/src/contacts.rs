@@ -176,6 +176,9 @@ fn step_arrays<'py>(py: Python<'py>, steps: &[ElementStep]) -> PyResult<Bound<'p
     Ok(out)
 }
 
+/// The most contacts one [`Contacts`] holds: about 50 GB of elements.
+const MAX_CONTACTS: usize = 100_000_000;
+
 #[pymethods]
 impl Contacts {
     #[new]
@@ -188,14 +191,21 @@ impl Contacts {
         rtol: f64,
         atol: f64,
     ) -> PyResult<Self> {
-        if count == 0 {
-            return Err(BwcError::new_err("count = 0: give at least one contact"));
+        if !(1..=MAX_CONTACTS).contains(&count) {
+            return Err(BwcError::new_err(format!(
+                "count = {count} is not admissible: 1 <= count <= {MAX_CONTACTS}"
+            )));
         }
         let (one, mass) = element(model, params, policy, rtol, atol)?;
-        Ok(Self {
-            elements: vec![one; count],
-            mass,
-        })
+        let mut elements = Vec::new();
+        elements.try_reserve_exact(count).map_err(|_| {
+            BwcError::new_err(format!(
+                "count = {count}: no memory for so many contacts; a smaller count, or several \
+                 Contacts, would fit"
+            ))
+        })?;
+        elements.resize(count, one);
+        Ok(Self { elements, mass })
     }
 
     /// Advances the contacts over a host step with their relative velocities.

@@ -95,3 +95,19 @@ def test_results_print_what_they_hold():
     assert step.began_at == 0.0, step
     assert "began_at=0.0" in repr(step), repr(step)
     assert "e0" not in repr(step) and "5e-324" not in repr(step), repr(step)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: bwc.cor(float("nan"), HUNT_CROSSLEY), r'^model = nan is not admissible: "shccm" \(BWSHCCM\) or "mcm"'),
+    (lambda: bwc.cor({"kind": "sine"}, HUNT_CROSSLEY), r"^model = \{'kind': 'sine'\} is not admissible"),
+    (lambda: bwc.cor("shccm", [0.5, None]), r"^params = \[0.5, None\] is not admissible: a dict of parameters"),
+    (lambda: bwc.cor("shccm", None), r"^params = None is not admissible"),
+    (lambda: bwc.cor("shccm", PAPER_DSS, "fast"), r"^v0 = 'fast' is not admissible: a speed or a 1-D array"),
+    (lambda: bwc.cor("shccm", PAPER_DSS, 1.0, solver=1.5), r"^solver = 1.5 is not admissible: a dict as a scene's \[solver\] table"),
+    (lambda: bwc.cor("shccm", PAPER_DSS, 1.0, input=[1.0]), r"^input = \[1.0\] is not admissible"),
+])
+def test_arguments_of_the_wrong_type_are_named(call, message):
+    # These raised TypeError ("'<' not supported", "'float' object is not iterable") or reached
+    # the JSON parser ("not a JSON-like dict: invalid number at line 1 column 12").
+    with pytest.raises(bwc.BwcError, match=message):
+        call()

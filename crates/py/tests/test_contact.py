@@ -150,6 +150,10 @@ def test_bad_input_is_named_and_changes_nothing():
         many.advance(1e-5, [-1.0] * 2, [-1.0] * 2, index=[0, 0])
     with pytest.raises(bwc.BwcError, match="count = 0"):
         bwc.Contacts("shccm", LAW, 0)
+    # A count whose elements no memory holds is refused before anything is allocated (it was a
+    # panic: "capacity overflow").
+    with pytest.raises(bwc.BwcError, match=r"count = 9223372036854775808 is not admissible: 1 <= count <= 100000000"):
+        bwc.Contacts("shccm", LAW, 2**63)
 
 
 def test_base_parameters_give_the_law_and_its_mass():

@@ -16,6 +16,7 @@ Examples
 """
 
 import json as _json
+from collections.abc import Mapping as _Mapping
 import math as _math
 import os as _os
 import warnings as _warnings
@@ -129,6 +130,30 @@ def _integer(value, name, lo, hi=2**64 - 1, none=None):
     return int(value)
 
 
+def _mapping(value, name, what):
+    """``value`` as a dict with string keys (``None`` passes as ``None``), else
+    :class:`BwcError` naming the argument and what it holds."""
+    if value is None:
+        return None
+    if not isinstance(value, _Mapping) or not all(isinstance(k, str) for k in value):
+        raise BwcError("%s = %s is not admissible: %s" % (name, _shown(value), what))
+    return dict(value)
+
+
+def _shown(value):
+    """``repr(value)``, cut to a line."""
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _model(model):
+    """The model argument: ``"shccm"`` or ``"mcm"``."""
+    if not isinstance(model, str) or model not in ("shccm", "mcm"):
+        raise BwcError('model = %s is not admissible: "shccm" (BWSHCCM) or "mcm" (BWMCM)'
+                       % _shown(model))
+    return model
+
+
 def _threads(threads):
     """The worker threads argument: None (all cores) or 1 to 1024, as ``--threads``."""
     return _integer(threads, "threads", 1, 1024, none="all cores")
@@ -212,12 +237,23 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
     >>> round(out.e, 4), out.outcome
     (0.7655, 'separated')
     """
+    model = _model(model)
+    params = _mapping(params, "params", "a dict of parameters by name")
+    if params is None:
+        raise BwcError("params = None is not admissible: a dict of parameters by name")
+    input = _mapping(input, "input", "a dict as a scene's [input] table, or None")
+    solver = _mapping(solver, "solver", "a dict as a scene's [solver] table, or None")
+    sweep = _mapping(sweep, "sweep", "a dict as a scene's [sweep] table, or None")
     table = _table(params)
-    _finite(dict(params), "params")
-    scene = {"model": model, table: _plain(dict(params))}
+    _finite(params, "params")
+    scene = {"model": model, table: _plain(params)}
     scalar = v0 is not None and _np.ndim(v0) == 0
     if v0 is not None:
-        speeds = _np.atleast_1d(_np.asarray(v0, dtype=float))
+        try:
+            speeds = _np.atleast_1d(_np.asarray(v0, dtype=float))
+        except (TypeError, ValueError):
+            raise BwcError("v0 = %s is not admissible: a speed or a 1-D array of speeds (m/s)"
+                           % _shown(v0)) from None
         if speeds.ndim != 1:
             raise BwcError("v0: an array of shape %s: give a scalar or a 1-D array of speeds (m/s)"
                            % (speeds.shape,))
@@ -228,13 +264,8 @@ def cor(model, params, v0=None, *, input=None, solver=None, sweep=None, threads=
         scene["v0"] = speeds.tolist()
     for name, table_ in (("input", input), ("solver", solver), ("sweep", sweep)):
         if table_ is not None:
-            _finite(dict(table_), name)
-    if input is not None:
-        scene["input"] = _plain(dict(input))
-    if solver is not None:
-        scene["solver"] = _plain(dict(solver))
-    if sweep is not None:
-        scene["sweep"] = _plain(dict(sweep))
+            _finite(table_, name)
+            scene[name] = _plain(table_)
     out = _cor(_json.dumps(scene), _threads(threads))
     out["outcome"] = _OUTCOMES[out["outcome"]]
     out["check"] = _CHECKS[out["check"]]
