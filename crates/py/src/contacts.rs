@@ -179,6 +179,24 @@ fn step_arrays<'py>(py: Python<'py>, steps: &[ElementStep]) -> PyResult<Bound<'p
 /// The most contacts one [`Contacts`] holds: about 50 GB of elements.
 const MAX_CONTACTS: usize = 100_000_000;
 
+/// The `count` argument: an integer in `1..=MAX_CONTACTS`, else a [`BwcError`] naming it (not
+/// Python's OverflowError for a negative one, nor a panic for a huge one).
+fn contact_count(count: &Bound<'_, PyAny>) -> PyResult<usize> {
+    let refused = |shown: String| {
+        BwcError::new_err(format!(
+            "count = {shown} is not admissible: an integer, 1 <= count <= {MAX_CONTACTS}"
+        ))
+    };
+    if count.is_instance_of::<pyo3::types::PyBool>() {
+        return Err(refused(count.repr()?.to_string()));
+    }
+    match count.extract::<i128>() {
+        Ok(c) if (1..=MAX_CONTACTS as i128).contains(&c) => Ok(c as usize),
+        Ok(c) => Err(refused(c.to_string())),
+        Err(_) => Err(refused(count.repr()?.to_string())),
+    }
+}
+
 #[pymethods]
 impl Contacts {
     #[new]
@@ -186,16 +204,12 @@ impl Contacts {
     fn new(
         model: &str,
         params: &Bound<'_, PyDict>,
-        count: usize,
+        count: &Bound<'_, PyAny>,
         policy: &str,
         rtol: f64,
         atol: f64,
     ) -> PyResult<Self> {
-        if !(1..=MAX_CONTACTS).contains(&count) {
-            return Err(BwcError::new_err(format!(
-                "count = {count} is not admissible: 1 <= count <= {MAX_CONTACTS}"
-            )));
-        }
+        let count = contact_count(count)?;
         let (one, mass) = element(model, params, policy, rtol, atol)?;
         let mut elements = Vec::new();
         elements.try_reserve_exact(count).map_err(|_| {

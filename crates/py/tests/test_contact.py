@@ -152,8 +152,12 @@ def test_bad_input_is_named_and_changes_nothing():
         bwc.Contacts("shccm", LAW, 0)
     # A count whose elements no memory holds is refused before anything is allocated (it was a
     # panic: "capacity overflow").
-    with pytest.raises(bwc.BwcError, match=r"count = 9223372036854775808 is not admissible: 1 <= count <= 100000000"):
+    with pytest.raises(bwc.BwcError, match=r"count = 9223372036854775808 is not admissible: an integer, 1 <= count <= 100000000"):
         bwc.Contacts("shccm", LAW, 2**63)
+    # A negative count was Python's OverflowError ("can't convert negative int to unsigned").
+    for count, shown in [(-3, "-3"), (2.5, "2.5"), ("3", "'3'"), (True, "True")]:
+        with pytest.raises(bwc.BwcError, match=r"^count = %s is not admissible" % shown):
+            bwc.Contacts("shccm", LAW, count)
 
 
 def test_base_parameters_give_the_law_and_its_mass():
