@@ -10,10 +10,11 @@
 //! `cargo run --release -p bwc-benches --bin posterior-band -- [REPLICATES]` (default 20;
 //! about 5 min on two cores).
 
-use bw_models::{BaseParams, ModelKind, Settings};
-use bwc_identify::{
-    coverage, posterior_replicate, Budget, Param, PosteriorTask, SmcSettings, Space,
-};
+// The design the identification tests sample, defined once.
+#[path = "../../../crates/identify/tests/support/band_design.rs"]
+mod band_design;
+use band_design::task;
+use bwc_identify::{coverage, posterior_replicate};
 use rayon::prelude::*;
 
 fn main() {
@@ -42,61 +43,4 @@ fn main() {
         );
     }
     std::process::exit(if held { 0 } else { 1 });
-}
-
-fn task(given_noise: bool) -> PosteriorTask {
-    let truth = BaseParams {
-        b_b: 1.0,
-        gamma_b: -1.0,
-        kappa: 0.6,
-        sigma_b: 0.03,
-        n: 1.5,
-        p: 1.5,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
-    let fixed = Param::Fixed;
-    let space = Space::new(
-        ModelKind::Shccm,
-        [
-            fixed(1.0),
-            fixed(-1.0),
-            Param::Free {
-                lo: 0.1,
-                hi: 0.9,
-                log: false,
-            },
-            Param::Free {
-                lo: 1e-4,
-                hi: 0.3,
-                log: true,
-            },
-            fixed(1.5),
-            fixed(1.5),
-            fixed(1.0),
-            fixed(1.0),
-        ],
-        None,
-    )
-    .unwrap();
-    PosteriorTask {
-        space,
-        truth,
-        speeds: vec![0.2, 0.5, 1.0, 2.0, 4.0],
-        noise: 0.01,
-        given_noise,
-        from_prior: false,
-        smc: SmcSettings::new(150, 4),
-        budget: Budget {
-            particles: 10,
-            iterations: 10,
-            ..Budget::default()
-        },
-        draws: 300,
-        settings: Settings {
-            rtol: 1e-8,
-            atol: 1e-10,
-            ..Settings::default()
-        },
-    }
 }

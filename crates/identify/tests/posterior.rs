@@ -2,69 +2,15 @@
 //! κ and σ_b searched; the study itself, 20-40 replicates of minutes each, is the benchmark
 //! `posterior-band`: BENCHMARKS.md, "Posteriors").
 
+#[path = "support/band_design.rs"]
+mod band_design;
+use band_design::task;
 use bw_models::input::Zero;
-use bw_models::{BaseParams, ModelKind, Settings};
+use bw_models::Settings;
 use bwc_identify::{
-    run_spread, sample, Budget, Dataset, Param, PosteriorProblem, PosteriorSpec, PosteriorTask,
-    SmcReference, SmcSettings, Space, Weights, RUN_SPREAD,
+    run_spread, sample, Dataset, PosteriorProblem, PosteriorSpec, SmcReference, SmcSettings,
+    Weights, RUN_SPREAD,
 };
-
-fn task(given_noise: bool) -> PosteriorTask {
-    let truth = BaseParams {
-        b_b: 1.0,
-        gamma_b: -1.0,
-        kappa: 0.6,
-        sigma_b: 0.03,
-        n: 1.5,
-        p: 1.5,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
-    let fixed = Param::Fixed;
-    let space = Space::new(
-        ModelKind::Shccm,
-        [
-            fixed(1.0),
-            fixed(-1.0),
-            Param::Free {
-                lo: 0.1,
-                hi: 0.9,
-                log: false,
-            },
-            Param::Free {
-                lo: 1e-4,
-                hi: 0.3,
-                log: true,
-            },
-            fixed(1.5),
-            fixed(1.5),
-            fixed(1.0),
-            fixed(1.0),
-        ],
-        None,
-    )
-    .unwrap();
-    PosteriorTask {
-        space,
-        truth,
-        speeds: vec![0.2, 0.5, 1.0, 2.0, 4.0],
-        noise: 0.01,
-        given_noise,
-        from_prior: false,
-        smc: SmcSettings::new(150, 4),
-        budget: Budget {
-            particles: 10,
-            iterations: 10,
-            ..Budget::default()
-        },
-        draws: 300,
-        settings: Settings {
-            rtol: 1e-8,
-            atol: 1e-10,
-            ..Settings::default()
-        },
-    }
-}
 
 /// A posterior with one region (κ and σ_b of the synthetic design, the CoRs of the truth to four
 /// digits, noise 0.01 given): four runs of 200 particles from the uniform reference agree on

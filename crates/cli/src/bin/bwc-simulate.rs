@@ -100,7 +100,10 @@ fn run(
     let mut tally = simulate::Tally::default();
     let mut table = Table::default();
     let mut printed = match json {
-        true => Some(SummaryWriter::array(Stdout, &scene).expect("stdout ignores errors")),
+        true => Some(
+            SummaryWriter::array(std::io::BufWriter::new(Stdout), &scene)
+                .expect("stdout ignores errors"),
+        ),
         false => None,
     };
     // A file that cannot be written stops the folder, not the study: every result is still
@@ -152,7 +155,7 @@ fn run(
 }
 
 /// Standard output that ignores errors such as a closed pipe (`bwc-simulate ... | head` must
-/// not panic), buffered through the lock of each write.
+/// not panic).
 struct Stdout;
 
 impl Write for Stdout {

@@ -4,6 +4,7 @@
 //! leaves the folder's complete files of the run before it or none.
 
 use super::{hunt_crossley_e, json, scratch, simulate};
+use std::path::Path;
 use std::process::{Command, Stdio};
 
 /// A Hunt-Crossley contact (`B_b = Γ_b = 0`, closed form `e(σ v0)`) at `count` log-spaced
@@ -13,6 +14,21 @@ fn hunt_crossley(count: usize, extra: &str) -> String {
         "model = \"shccm\"\nv0 = {{ from = 0.1, to = 6.0, count = {count}, spacing = \"log\" }}\n\
          [base]\nB_b = 0.0\nGamma_b = 0.0\nkappa = 0.5\nsigma_b = 0.3\nn = 1.0\np = 1.5\n{extra}"
     )
+}
+
+/// The one JSON object `bwc-simulate run SCENE --json --out OUT` prints.
+fn json_and_out(scene: &Path, out: &Path) -> serde_json::Value {
+    let args = ["run", path(scene), "--json", "--out", path(out)];
+    json(&simulate(&args))
+}
+
+/// The `summary.json` in `out`.
+fn summary_of(out: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
+fn path(p: &Path) -> &str {
+    p.to_str().unwrap()
 }
 
 /// A study of three chunks (8192 runs each: `bwc_app::simulate::CHUNK`) and a bit, listed in
@@ -29,13 +45,7 @@ fn runs_above_summary_runs_go_to_runs_jsonl_in_order_and_match_json() {
     )
     .unwrap();
     let out = dir.join("out");
-    let printed = json(&simulate(&[
-        "run",
-        scene.to_str().unwrap(),
-        "--json",
-        "--out",
-        out.to_str().unwrap(),
-    ]));
+    let printed = json_and_out(&scene, &out);
     let runs = printed["runs"].as_array().unwrap();
     assert_eq!(runs.len(), count);
     let lines = std::fs::read_to_string(out.join("runs.jsonl")).unwrap();
@@ -47,8 +57,7 @@ fn runs_above_summary_runs_go_to_runs_jsonl_in_order_and_match_json() {
         let want = hunt_crossley_e(0.3 * r["v0"].as_f64().unwrap());
         assert!((r["e"].as_f64().unwrap() - want).abs() < 1e-10, "{r}");
     }
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_of(&out);
     assert!(summary.get("runs").is_none(), "{summary}");
     assert_eq!(summary["run_count"], count);
     assert_eq!(summary["runs_file"], "runs.jsonl");
@@ -83,15 +92,8 @@ fn runs_up_to_summary_runs_stay_in_summary_json() {
     )
     .unwrap();
     let out = dir.join("out");
-    let printed = json(&simulate(&[
-        "run",
-        scene.to_str().unwrap(),
-        "--json",
-        "--out",
-        out.to_str().unwrap(),
-    ]));
-    let mut summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let printed = json_and_out(&scene, &out);
+    let mut summary = summary_of(&out);
     assert_eq!(
         summary["files"],
         serde_json::json!(["summary.json", "sweep.csv"])
@@ -176,8 +178,7 @@ fn a_killed_study_leaves_complete_files_or_none() {
     let status = child.wait().unwrap();
     assert!(!status.success(), "the study finished before it was killed");
     assert_eq!(std::fs::read(out.join("sweep.csv")).unwrap(), before);
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let summary = summary_of(&out);
     assert_eq!(summary["runs"].as_array().unwrap().len(), 300);
     let left = temporary(&out);
     assert!(!left.is_empty());
