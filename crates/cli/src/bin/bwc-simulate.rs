@@ -141,6 +141,16 @@ fn run(
     }
     if let Some(study) = study {
         let written = study.finish(&tally)?;
+        if scene.runs_listed_apart() {
+            eprintln!(
+                "bwc-simulate: the {} runs are in {}, one JSON object per line, not in {}: \
+                 more than [output].summary_runs = {}",
+                tally.runs,
+                output::RUNS_FILE,
+                outdir::SUMMARY,
+                scene.output.summary_runs
+            );
+        }
         if !json {
             for p in written {
                 eprintln!("wrote {}", p.display());

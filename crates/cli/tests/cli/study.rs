@@ -45,7 +45,16 @@ fn runs_above_summary_runs_go_to_runs_jsonl_in_order_and_match_json() {
     )
     .unwrap();
     let out = dir.join("out");
-    let printed = json_and_out(&scene, &out);
+    let run = simulate(&["run", path(&scene), "--json", "--out", path(&out)]);
+    let said = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        said.contains(&format!(
+            "the {count} runs are in runs.jsonl, one JSON object per line, not in summary.json: \
+             more than [output].summary_runs = 1000"
+        )),
+        "{said}"
+    );
+    let printed = json(&run);
     let runs = printed["runs"].as_array().unwrap();
     assert_eq!(runs.len(), count);
     let lines = std::fs::read_to_string(out.join("runs.jsonl")).unwrap();
