@@ -27,6 +27,7 @@
 #![deny(missing_docs)]
 
 pub mod chain;
+pub mod checkpoint;
 pub mod config;
 pub mod corner;
 mod error;

@@ -19,6 +19,7 @@
 //! ```
 #![deny(missing_docs)]
 
+mod checkpoint;
 mod contact;
 mod contacts;
 mod dict_errors;
@@ -292,16 +293,7 @@ fn simulate_chain_json<'py>(
     scene_json: Option<&str>,
     threads: Option<usize>,
 ) -> PyResult<(String, Option<Bound<'py, PyDict>>)> {
-    let scene = match (path, scene_json) {
-        (Some(p), _) => ChainScene::load(&p).map_err(error)?,
-        (None, Some(j)) => {
-            let text = toml_text(j, "scene")?;
-            ChainScene::parse(Path::new("<scene>"), &text).map_err(|e| {
-                BwcError::new_err(dict_errors::explain(&e, &text, Root::Dict("scene")))
-            })?
-        }
-        (None, None) => return Err(BwcError::new_err("a scene needs a path or a dict")),
-    };
+    let scene = chain_scene_of(path, scene_json, "<scene>")?;
     let out = py
         .allow_threads(|| bwc_app::with_threads(threads, || bwc_app::chain::run(&scene)))
         .map_err(error)?;
@@ -309,32 +301,31 @@ fn simulate_chain_json<'py>(
 }
 
 /// `bwc.simulate_many`: many `[chain]` scenes, each a path or JSON text (`paths[i]` or
-/// `scene_jsons[i]`), run in parallel; per scene the summary as JSON text and its samples, as
-/// [`simulate_chain_json`] gives them.
+/// `scene_jsons[i]`; `indices[i]` its place in the caller's list, if given), run in parallel;
+/// per scene the summary as JSON text and its samples, as [`simulate_chain_json`] gives them.
 #[pyfunction]
-#[pyo3(signature = (paths, scene_jsons, threads=None))]
+#[pyo3(signature = (paths, scene_jsons, threads=None, indices=None))]
 #[allow(clippy::type_complexity)]
 fn simulate_chains_json<'py>(
     py: Python<'py>,
     paths: Vec<Option<PathBuf>>,
     scene_jsons: Vec<Option<String>>,
     threads: Option<usize>,
+    indices: Option<Vec<usize>>,
 ) -> PyResult<Vec<(String, Option<Bound<'py, PyDict>>)>> {
+    // Errors name a scene by its place in the caller's list (`indices`, for a part of it).
+    let index = |i: usize| {
+        indices
+            .as_ref()
+            .and_then(|x| x.get(i).copied())
+            .unwrap_or(i)
+    };
     let scenes = paths
         .into_iter()
         .zip(&scene_jsons)
         .enumerate()
-        .map(|(i, (path, json))| match (path, json) {
-            (Some(p), _) => ChainScene::load(&p).map_err(error),
-            (None, Some(j)) => {
-                let text = toml_text(j, "scene")?;
-                ChainScene::parse(Path::new(&format!("<scenes[{i}]>")), &text).map_err(|e| {
-                    BwcError::new_err(dict_errors::explain(&e, &text, Root::Dict("scene")))
-                })
-            }
-            (None, None) => Err(BwcError::new_err(format!(
-                "scenes[{i}]: a scene needs a path or a dict"
-            ))),
+        .map(|(i, (path, json))| {
+            chain_scene_of(path, json.as_deref(), &format!("<scenes[{}]>", index(i)))
         })
         .collect::<PyResult<Vec<_>>>()?;
     let outs = py
@@ -432,19 +423,22 @@ fn trajectory<'py>(py: Python<'py>, r: &bwc_app::runs::Run) -> PyResult<Bound<'p
 /// `bwc.identify`: the JSON text `bwc-identify run --json` prints for the config (with
 /// `seed`; without, the evaluation at each fit's `[fit.params]`, as `bwc-identify eval`).
 #[pyfunction]
-#[pyo3(signature = (path=None, config_json=None, seed=None, threads=None))]
+#[pyo3(signature = (path=None, config_json=None, seed=None, threads=None, checkpoint=None))]
 fn identify_json(
     py: Python<'_>,
     path: Option<PathBuf>,
     config_json: Option<&str>,
     seed: Option<u64>,
     threads: Option<usize>,
+    checkpoint: Option<PathBuf>,
 ) -> PyResult<String> {
     let (file, config) = config_of(path, config_json)?;
+    let checkpoint = checkpoint::open(checkpoint, "run")?;
     let (reports, loops) = py
         .allow_threads(|| {
             bwc_app::with_threads(threads, || {
-                bwc_app::identify::fit_all(&file, &config, seed, &|| {})
+                let c = checkpoint.as_ref();
+                bwc_app::identify::fit_all(&file, &config, seed, &|| {}, c)
             })
         })
         .map_err(error)?;
@@ -454,7 +448,7 @@ fn identify_json(
 /// `bwc.coverage`: the JSON text `bwc-identify coverage --json` prints for the config over the
 /// replicates with seeds `first_seed .. first_seed + replicates`.
 #[pyfunction]
-#[pyo3(signature = (path=None, config_json=None, replicates=40, first_seed=1, noise=None, fit=None, threads=None))]
+#[pyo3(signature = (path=None, config_json=None, replicates=40, first_seed=1, noise=None, fit=None, threads=None, checkpoint=None))]
 #[allow(clippy::too_many_arguments)]
 fn coverage_json(
     py: Python<'_>,
@@ -465,13 +459,16 @@ fn coverage_json(
     noise: Option<f64>,
     fit: Option<&str>,
     threads: Option<usize>,
+    checkpoint: Option<PathBuf>,
 ) -> PyResult<String> {
     let (file, config) = config_of(path, config_json)?;
     let seeds = first_seed..first_seed.saturating_add(replicates);
+    let checkpoint = checkpoint::open(checkpoint, "coverage")?;
     let reports = py
         .allow_threads(|| {
             bwc_app::with_threads(threads, || {
-                bwc_app::identify::coverage_study(&file, &config, noise, fit, seeds)
+                let c = checkpoint.as_ref();
+                bwc_app::identify::coverage_study(&file, &config, noise, fit, seeds, c)
             })
         })
         .map_err(error)?;
@@ -483,7 +480,7 @@ fn coverage_json(
 /// `bwc.posterior`: the JSON text `bwc-identify posterior --json` prints for the config, each
 /// posterior with its weighted sample under `"samples"`.
 #[pyfunction]
-#[pyo3(signature = (path=None, config_json=None, seed=0, fit=None, particles=None, runs=None, threads=None))]
+#[pyo3(signature = (path=None, config_json=None, seed=0, fit=None, particles=None, runs=None, threads=None, checkpoint=None))]
 #[allow(clippy::too_many_arguments)]
 fn posterior_json(
     py: Python<'_>,
@@ -494,13 +491,16 @@ fn posterior_json(
     particles: Option<usize>,
     runs: Option<usize>,
     threads: Option<usize>,
+    checkpoint: Option<PathBuf>,
 ) -> PyResult<String> {
     let (file, config) = config_of(path, config_json)?;
     let sizes = posterior_sizes(particles, runs)?;
+    let checkpoint = checkpoint::open(checkpoint, "posterior")?;
     let reports = py
         .allow_threads(|| {
             bwc_app::with_threads(threads, || {
-                bwc_app::identify::posterior_all(&file, &config, seed, fit, sizes)
+                let c = checkpoint.as_ref();
+                bwc_app::identify::posterior_all(&file, &config, seed, fit, sizes, c)
             })
         })
         .map_err(error)?;
@@ -632,6 +632,23 @@ fn posterior_pool_json(
     Ok(posterior_text(&config, &reports))
 }
 
+/// A `[chain]` scene from a path or from the JSON text of a dict, which errors call `label`
+/// (`<scene>`, `<scenes[3]>`).
+fn chain_scene_of(path: Option<PathBuf>, json: Option<&str>, label: &str) -> PyResult<ChainScene> {
+    match (path, json) {
+        (Some(p), _) => ChainScene::load(&p).map_err(error),
+        (None, Some(j)) => {
+            let text = toml_text(j, "scene")?;
+            ChainScene::parse(Path::new(label), &text).map_err(|e| {
+                BwcError::new_err(dict_errors::explain(&e, &text, Root::Dict("scene")))
+            })
+        }
+        (None, None) => Err(BwcError::new_err(format!(
+            "{label}: a scene needs a path or a dict"
+        ))),
+    }
+}
+
 /// A config from a path or from the JSON text of a dict shaped like a config file (data paths
 /// relative to the working directory).
 fn config_of(path: Option<PathBuf>, json: Option<&str>) -> PyResult<(PathBuf, Config)> {
@@ -667,6 +684,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(posterior_pool_json, m)?)?;
     m.add_function(wrap_pyfunction!(fit_names, m)?)?;
     m.add_function(wrap_pyfunction!(posterior_runs, m)?)?;
+    m.add_class::<checkpoint::Checkpoint>()?;
+    m.add_function(wrap_pyfunction!(checkpoint::config_fingerprint, m)?)?;
+    m.add_function(wrap_pyfunction!(checkpoint::scene_fingerprint, m)?)?;
     m.add_class::<contact::Contact>()?;
     m.add_class::<contact::Step>()?;
     m.add_class::<contacts::Contacts>()?;

@@ -69,7 +69,7 @@ fn compare_one(
     folds: usize,
     sizes: (Option<usize>, Option<usize>),
 ) -> Result<Comparison, AppError> {
-    let report = run_fit(path, f, seed, &|| {})?;
+    let report = run_fit(path, f, seed, &|| {}, None)?;
     let (n1, n2) = (
         f.data
             .points
@@ -98,7 +98,7 @@ fn compare_one(
     let (l2, k2) = term(n2, report.costs.j2);
     let k = (f.space.dim() + k1 + k2) as f64;
     let log_l = l1 + l2;
-    let post = run_posterior(path, f, seed, sizes)?;
+    let post = run_posterior(path, f, seed, sizes, None)?;
     Ok(Comparison {
         name: f.name.clone(),
         model: f.model_name(),

@@ -4,11 +4,13 @@
 //! `--replicates` shard a study over machines).
 
 use super::report::{fail, reporting};
+use crate::checkpoint::{exact, fingerprint, float_of, Checkpoint};
 use crate::config::FitConfig;
 use crate::AppError;
 use bw_models::input::Input;
 use bw_models::BaseParams;
-use bwc_identify::{coverage, fit, study, CoverageTask, Objective, Replicate};
+use bwc_identify::{coverage, fit, replicate, CoverageTask, Objective, Replicate};
+use rayon::prelude::*;
 use serde_json::{json, Value};
 use std::path::Path;
 
@@ -31,15 +33,19 @@ pub struct CoverageReport {
 /// from `[fit.params]` (or, without it, from the fit's optimum on its data), Gaussian noise of
 /// standard deviation `noise` (default: the truth's residual standard deviation on the data,
 /// `sqrt(sum (e_model - e)^2 / (M - 1))`), each fitted from the bounds with the fit's budget.
+/// With a `checkpoint`, the replicates it holds for this design are taken from it and each
+/// new one is recorded as it finishes.
 ///
 /// # Errors
 /// [`AppError::Invalid`] for a fit with an input or a duration objective (studies cover CoR-only
-/// fits without input); [`AppError::Identify`] when a fit or simulation fails.
+/// fits without input); [`AppError::Identify`] when a fit or simulation fails;
+/// [`AppError::Io`] when the checkpoint cannot be written.
 pub fn run_coverage(
     config: &Path,
     f: &FitConfig,
     noise: Option<f64>,
     seeds: std::ops::Range<u64>,
+    checkpoint: Option<&Checkpoint>,
 ) -> Result<CoverageReport, AppError> {
     let err = fail(config, &f.name);
     if !f.input.is_zero() || f.weights.j2 > 0.0 || f.space.known().is_some() {
@@ -79,7 +85,23 @@ pub fn run_coverage(
             (r.iter().map(|x| x * x).sum::<f64>() / (r.len().max(2) - 1) as f64).sqrt()
         }
     };
-    let replicates = study(&coverage_task(f, truth, noise), seeds).map_err(&err)?;
+    let task = coverage_task(f, truth, noise);
+    let print = fingerprint(&[&"coverage", &task]);
+    let replicates = seeds
+        .into_par_iter()
+        .map(|seed| {
+            let key = format!("{}/{seed}", f.name);
+            let kept = checkpoint.and_then(|c| c.get(&key, &print));
+            if let Some(r) = kept.and_then(|v| replicate_of_json(v, &task)) {
+                return Ok(r);
+            }
+            let r = replicate(&task, seed).map_err(&err)?;
+            if let Some(c) = checkpoint {
+                c.record(&key, &print, replicate_json(&r))?;
+            }
+            Ok(r)
+        })
+        .collect::<Result<Vec<_>, AppError>>()?;
     Ok(CoverageReport {
         name: f.name.clone(),
         truth,
@@ -102,6 +124,38 @@ pub fn coverage_task(f: &FitConfig, truth: BaseParams, noise: f64) -> CoverageTa
     }
 }
 
+/// A replicate as a checkpoint holds it: every field, the numbers exact (non-finite ones as
+/// strings, which JSON numbers cannot be).
+fn replicate_json(r: &Replicate) -> Value {
+    json!({
+        "seed": r.seed, "covered": r.covered, "points": r.points,
+        "halfwidth": exact(r.halfwidth), "J1": exact(r.j1), "at_bound": r.at_bound,
+        "evaluations": r.evaluations, "error": r.error,
+    })
+}
+
+/// The replicate of [`replicate_json`]; `None` for an entry that is not one (recomputed then).
+fn replicate_of_json(v: &Value, task: &CoverageTask) -> Option<Replicate> {
+    let names = task.space.free_names();
+    Some(Replicate {
+        seed: v["seed"].as_u64()?,
+        covered: usize::try_from(v["covered"].as_u64()?).ok()?,
+        points: usize::try_from(v["points"].as_u64()?).ok()?,
+        halfwidth: float_of(&v["halfwidth"])?,
+        j1: float_of(&v["J1"])?,
+        at_bound: v["at_bound"]
+            .as_array()?
+            .iter()
+            .map(|n| names.iter().copied().find(|m| Some(*m) == n.as_str()))
+            .collect::<Option<_>>()?,
+        evaluations: v["evaluations"].as_u64()?,
+        error: match &v["error"] {
+            Value::Null => None,
+            e => Some(e.as_str()?.to_owned()),
+        },
+    })
+}
+
 /// `{"coverage": [...]}`: per fit the truth, the noise, the coverage and every replicate.
 pub fn coverage_summary(reports: &[CoverageReport]) -> Value {
     let studies: Vec<Value> = reports
@@ -119,6 +173,7 @@ pub fn coverage_summary(reports: &[CoverageReport]) -> Value {
                     "seed": x.seed, "covered": x.covered, "points": x.points,
                     "halfwidth": x.halfwidth.is_finite().then_some(x.halfwidth),
                     "J1": x.j1, "at_bound": x.at_bound, "error": x.error,
+                    "evaluations": x.evaluations,
                 })).collect::<Vec<_>>(),
             })
         })
@@ -127,7 +182,7 @@ pub fn coverage_summary(reports: &[CoverageReport]) -> Value {
 }
 
 /// The coverage study of every CoR-only fit of `config` (or only the one named `only`) over
-/// the replicates of `seeds` (`bwc-identify coverage`).
+/// the replicates of `seeds` (`bwc-identify coverage`), resumed from `checkpoint` if given.
 ///
 /// # Errors
 /// [`AppError::Invalid`] for a non-positive `noise` or no fit named `only`; as
@@ -138,6 +193,7 @@ pub fn coverage_study(
     noise: Option<f64>,
     only: Option<&str>,
     seeds: std::ops::Range<u64>,
+    checkpoint: Option<&Checkpoint>,
 ) -> Result<Vec<CoverageReport>, AppError> {
     let invalid = |key: &str, message: String| AppError::Invalid {
         path: path.to_owned(),
@@ -164,6 +220,6 @@ pub fn coverage_study(
         ));
     }
     fits.iter()
-        .map(|f| run_coverage(path, f, noise, seeds.clone()))
+        .map(|f| run_coverage(path, f, noise, seeds.clone(), checkpoint))
         .collect()
 }

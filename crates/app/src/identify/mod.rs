@@ -8,6 +8,7 @@ mod posterior;
 mod reference;
 mod render;
 mod report;
+mod search;
 
 pub use compare::{compare_all, compare_summary, groups, verdict, Comparison};
 pub use coverage::{coverage_study, coverage_summary, coverage_task, run_coverage, CoverageReport};
@@ -21,6 +22,7 @@ pub use render::{loop_summary, render, render_loops, slug, summary, units};
 use report::{fail, missing_params, reporting, search_warnings};
 pub use report::{DropOutcome, FitReport, LoopReport, ParetoPoint};
 
+use crate::checkpoint::Checkpoint;
 use crate::config::FitConfig;
 use crate::signal::Signal;
 use crate::AppError;
@@ -59,15 +61,19 @@ fn plain_curve(
         .collect())
 }
 
-/// Fits `f` from its bounds (seeded by `seed` combined with the fit's own seed).
+/// Fits `f` from its bounds (seeded by `seed` combined with the fit's own seed); with a
+/// `checkpoint`, the search it holds for this fit and seed is taken and a new one recorded
+/// (drop-test fits and Pareto fronts are computed again).
 ///
 /// # Errors
-/// [`AppError::Identify`] if the optimizer or a final evaluation fails.
+/// [`AppError::Identify`] if the optimizer or a final evaluation fails; [`AppError::Io`] if the
+/// checkpoint cannot be written.
 pub fn run_fit(
     config: &Path,
     f: &FitConfig,
     seed: u64,
     progress: &(dyn Fn() + Sync),
+    checkpoint: Option<&Checkpoint>,
 ) -> Result<FitReport, AppError> {
     if let Some(d) = &f.drops {
         return drops::run_drop_fit(config, f, d, seed, progress);
@@ -77,7 +83,7 @@ pub fn run_fit(
     let objective = Objective::new(&f.space, &f.data, &f.input, f.settings, f.weights)
         .map_err(&err)?
         .with_progress(progress);
-    let result = fit(&objective, &f.budget, seed ^ f.seed, f.start.as_deref()).map_err(&err)?;
+    let result = search::search(config, f, &objective, seed, checkpoint)?;
     // Report the costs at the reporting (accurate) settings.
     let exact =
         Objective::new(&f.space, &f.data, &f.input, reporting(), f.weights).map_err(&err)?;
@@ -384,6 +390,7 @@ pub fn fit_all(
     config: &crate::config::Config,
     seed: Option<u64>,
     tick: &(dyn Fn() + Sync),
+    checkpoint: Option<&Checkpoint>,
 ) -> Result<(Vec<FitReport>, Vec<LoopReport>), AppError> {
     use rayon::prelude::*;
     let Some(seed) = seed else {
@@ -402,7 +409,7 @@ pub fn fit_all(
     let reports: Vec<_> = config
         .fits
         .par_iter()
-        .map(|f| run_fit(path, f, seed, tick))
+        .map(|f| run_fit(path, f, seed, tick, checkpoint))
         .collect();
     let loops: Vec<_> = config
         .loop_fits

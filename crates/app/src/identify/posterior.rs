@@ -6,6 +6,7 @@
 
 use super::curve_speeds;
 use super::report::fail;
+use crate::checkpoint::{fingerprint, Checkpoint};
 use crate::config::{Config, FitConfig};
 use crate::corner::CornerColumn;
 use crate::AppError;
@@ -145,29 +146,61 @@ pub fn posterior_run(
     smc_run(&p, &settings, &r, seed ^ f.seed, index).map_err(fail(config, &f.name))
 }
 
-/// Samples fit `f`'s posterior: every run of [`posterior_run`] in parallel, pooled.
+/// Samples fit `f`'s posterior: every run of [`posterior_run`] in parallel, pooled. With a
+/// `checkpoint`, the runs it holds for this fit, seed and sampler settings are taken from it
+/// and each new one is recorded as it finishes.
 ///
 /// # Errors
 /// [`AppError::Identify`] for a drop-test fit, for data or settings a
 /// posterior cannot use (one point, a noise column with zeros, a prior outside the bounds) or
-/// a sampler that does not reach the posterior.
+/// a sampler that does not reach the posterior; [`AppError::Io`] when the checkpoint cannot
+/// be written.
 pub fn run_posterior(
     config: &Path,
     f: &FitConfig,
     seed: u64,
     sizes: (Option<usize>, Option<usize>),
+    checkpoint: Option<&Checkpoint>,
 ) -> Result<PosteriorReport, AppError> {
     let clock = Instant::now();
     let (p, _) = problem(config, f)?;
-    let (r, optimum) = reference(config, f, &p, seed)?;
     let settings = settings_of(f, sizes.0, sizes.1);
-    let runs: Vec<SmcRun> = (0..settings.runs)
-        .into_par_iter()
-        .map(|k| smc_run(&p, &settings, &r, seed ^ f.seed, k).map_err(fail(config, &f.name)))
-        .collect::<Result<_, _>>()?;
+    let print = fingerprint(&[&"posterior", f, &seed, &settings]);
+    let kept = |k: usize| {
+        let v = checkpoint?.get(&format!("{}/{k}", f.name), &print)?;
+        run_of_json(v).ok().filter(|r| r.index == k)
+    };
+    let mut runs: Vec<Option<SmcRun>> = (0..settings.runs).map(kept).collect();
+    // The reference search's evaluations count in the report: kept with the runs, so that a
+    // study resumed with every run done reports what an uninterrupted one does.
+    let reference_key = format!("{}/reference", f.name);
+    let kept_reference = checkpoint
+        .and_then(|c| c.get(&reference_key, &print))
+        .and_then(|v| v["evaluations"].as_u64());
+    let mut evaluations = kept_reference.unwrap_or(0);
+    if runs.iter().any(Option::is_none) || kept_reference.is_none() {
+        let (r, optimum) = reference(config, f, &p, seed)?;
+        evaluations = optimum.evaluations;
+        if let Some(c) = checkpoint {
+            c.record(&reference_key, &print, json!({"evaluations": evaluations}))?;
+        }
+        runs.par_iter_mut()
+            .enumerate()
+            .filter(|(_, run)| run.is_none())
+            .try_for_each(|(k, run)| {
+                let fresh =
+                    smc_run(&p, &settings, &r, seed ^ f.seed, k).map_err(fail(config, &f.name))?;
+                if let Some(c) = checkpoint {
+                    c.record(&format!("{}/{k}", f.name), &print, run_json(&fresh))?;
+                }
+                *run = Some(fresh);
+                Ok::<_, AppError>(())
+            })?;
+    }
+    let runs: Vec<SmcRun> = runs.into_iter().flatten().collect();
     let mut report = posterior_from_runs(config, f, seed, runs)?;
     report.wall_s = clock.elapsed().as_secs_f64();
-    report.evaluations += optimum.evaluations;
+    report.evaluations += evaluations;
     Ok(report)
 }
 
@@ -350,6 +383,7 @@ pub fn posterior_all(
     seed: u64,
     only: Option<&str>,
     sizes: (Option<usize>, Option<usize>),
+    checkpoint: Option<&Checkpoint>,
 ) -> Result<Vec<PosteriorReport>, AppError> {
     let fits: Vec<&FitConfig> = config
         .fits
@@ -367,7 +401,7 @@ pub fn posterior_all(
         });
     }
     fits.into_iter()
-        .map(|f| run_posterior(path, f, seed, sizes))
+        .map(|f| run_posterior(path, f, seed, sizes, checkpoint))
         .collect()
 }
 

@@ -1,5 +1,6 @@
 //! `bwc-identify`: identify base parameters of the Bouc-Wen collision models from data.
 
+use bwc_app::checkpoint::Checkpoint;
 use bwc_app::config::Config;
 use bwc_app::identify::{render, render_loops, summary, FitReport, LoopReport};
 use bwc_app::outdir;
@@ -37,6 +38,11 @@ enum Command {
         /// Base seed (combined with each fit's seed).
         #[arg(long, default_value_t = 0)]
         seed: u64,
+        /// Record each finished fit's search in this file (JSON Lines, created if absent) and
+        /// take the searches it holds: an interrupted run of many fits run again with it
+        /// resumes.
+        #[arg(long)]
+        checkpoint: Option<PathBuf>,
         /// Worker threads (default: all cores, or RAYON_NUM_THREADS).
         #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1024))]
         threads: Option<u64>,
@@ -58,6 +64,10 @@ enum Command {
         /// Only the fit with this name.
         #[arg(long)]
         fit: Option<String>,
+        /// Record each finished replicate in this file (JSON Lines, created if absent) and take
+        /// the replicates it holds: an interrupted study run again with it resumes.
+        #[arg(long)]
+        checkpoint: Option<PathBuf>,
         /// Print exactly one JSON object on stdout: {"coverage": [...]}.
         #[arg(long)]
         json: bool,
@@ -89,6 +99,10 @@ enum Command {
         /// Independent runs (default: [fit.posterior].runs, 4).
         #[arg(long, value_parser = clap::value_parser!(u64).range(2..=10_000))]
         runs: Option<u64>,
+        /// Record each finished sampler run in this file (JSON Lines, created if absent) and
+        /// take the runs it holds: an interrupted study run again with it resumes.
+        #[arg(long)]
+        checkpoint: Option<PathBuf>,
         /// Worker threads (default: all cores, or RAYON_NUM_THREADS).
         #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1024))]
         threads: Option<u64>,
@@ -138,15 +152,18 @@ fn main() -> ExitCode {
             out,
             json,
             seed,
+            checkpoint,
             threads,
         } => run(
             &config,
-            out.as_deref(),
+            (out.as_deref(), checkpoint.as_deref()),
             json,
             Some(seed),
             threads.map(|t| t as usize),
         ),
-        Command::Eval { config, out, json } => run(&config, out.as_deref(), json, None, None),
+        Command::Eval { config, out, json } => {
+            run(&config, (out.as_deref(), None), json, None, None)
+        }
         Command::Compare {
             config,
             json,
@@ -170,10 +187,11 @@ fn main() -> ExitCode {
             fit,
             particles,
             runs,
+            checkpoint,
             threads,
         } => posterior(
             &config,
-            out.as_deref(),
+            (out.as_deref(), checkpoint.as_deref()),
             json,
             (seed, fit.as_deref()),
             (particles.map(|p| p as usize), runs.map(|r| r as usize)),
@@ -185,14 +203,14 @@ fn main() -> ExitCode {
             first_seed,
             noise,
             fit,
+            checkpoint,
             json,
             threads,
         } => coverage_study(
             &config,
-            replicates,
-            first_seed,
-            noise,
-            fit.as_deref(),
+            first_seed..first_seed.saturating_add(replicates),
+            (noise, fit.as_deref()),
+            checkpoint.as_deref(),
             json,
             threads.map(|t| t as usize),
         ),
@@ -205,7 +223,7 @@ fn main() -> ExitCode {
 
 fn run(
     path: &Path,
-    out: Option<&Path>,
+    (out, checkpoint): (Option<&Path>, Option<&Path>),
     json: bool,
     seed: Option<u64>,
     threads: Option<usize>,
@@ -214,11 +232,13 @@ fn run(
     if let Some(dir) = out {
         outdir::prepare(dir)?;
     }
+    let checkpoint = open_checkpoint(checkpoint, "run")?;
     let bar = progress_bar(&config, json, seed);
     let tick = || bar.inc(1);
-    let work = || bwc_app::identify::fit_all(path, &config, seed, &tick);
+    let work = || bwc_app::identify::fit_all(path, &config, seed, &tick, checkpoint.as_ref());
     let (reports, loop_reports) = bwc_app::with_threads(threads, work)?;
     bar.finish_and_clear();
+    say_resumed(checkpoint.as_ref());
     warn(&reports, &loop_reports);
     let summary = bwc_app::identify::summary_of(&config, &reports, &loop_reports);
     // The results are printed before the files are written: a failed write loses nothing.
@@ -438,7 +458,7 @@ fn compare(
 /// `bwc-identify posterior`.
 fn posterior(
     path: &Path,
-    out: Option<&Path>,
+    (out, checkpoint): (Option<&Path>, Option<&Path>),
     json: bool,
     (seed, only): (u64, Option<&str>),
     sizes: (Option<usize>, Option<usize>),
@@ -448,8 +468,11 @@ fn posterior(
     if let Some(dir) = out {
         outdir::prepare(dir)?;
     }
-    let work = || bwc_app::identify::posterior_all(path, &config, seed, only, sizes);
+    let checkpoint = open_checkpoint(checkpoint, "posterior")?;
+    let work =
+        || bwc_app::identify::posterior_all(path, &config, seed, only, sizes, checkpoint.as_ref());
     let reports = bwc_app::with_threads(threads, work)?;
+    say_resumed(checkpoint.as_ref());
     for w in reports.iter().flat_map(|r| &r.warnings) {
         eprintln!("bwc-identify: warning: {w}");
     }
@@ -517,17 +540,19 @@ fn print_posterior(r: &bwc_app::identify::PosteriorReport) {
 /// `bwc-identify coverage`.
 fn coverage_study(
     path: &Path,
-    replicates: u64,
-    first_seed: u64,
-    noise: Option<f64>,
-    only: Option<&str>,
+    seeds: std::ops::Range<u64>,
+    (noise, only): (Option<f64>, Option<&str>),
+    checkpoint: Option<&Path>,
     json: bool,
     threads: Option<usize>,
 ) -> Result<(), AppError> {
     let config = Config::load(path)?;
-    let seeds = first_seed..first_seed.saturating_add(replicates);
-    let work = || bwc_app::identify::coverage_study(path, &config, noise, only, seeds);
+    let checkpoint = open_checkpoint(checkpoint, "coverage")?;
+    let work = || {
+        bwc_app::identify::coverage_study(path, &config, noise, only, seeds, checkpoint.as_ref())
+    };
     let reports = bwc_app::with_threads(threads, work)?;
+    say_resumed(checkpoint.as_ref());
     if json {
         let mut v = outdir::provenance("bwc-identify");
         v["coverage"] = bwc_app::identify::coverage_summary(&reports)["coverage"].take();
@@ -548,6 +573,18 @@ fn coverage_study(
         );
     }
     Ok(())
+}
+
+/// The checkpoint of `--checkpoint`, if given, for `command`.
+fn open_checkpoint(path: Option<&Path>, command: &str) -> Result<Option<Checkpoint>, AppError> {
+    path.map(|p| Checkpoint::open(p, command)).transpose()
+}
+
+/// What a study took from its checkpoint, on stderr.
+fn say_resumed(checkpoint: Option<&Checkpoint>) {
+    if let Some(s) = checkpoint.and_then(Checkpoint::summary) {
+        eprintln!("bwc-identify: {s}");
+    }
 }
 
 /// The agreement tolerance of the fit named `name`.

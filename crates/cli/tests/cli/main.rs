@@ -1,8 +1,9 @@
 //! The binaries run on good and bad scenes: `bwc-simulate` ([`simulate`]), `bwc-identify`
-//! ([`identify`]), impact sequences and drop tests ([`sequence`]), sweeps served by interpolants
+//! ([`identify`]), long studies resumed from their checkpoints ([`checkpoint`]), impact sequences and drop tests ([`sequence`]), sweeps served by interpolants
 //! ([`sweep`]), chains of bodies ([`chain`]), studies written as they are computed ([`study`]).
 
 mod chain;
+mod checkpoint;
 mod identify;
 mod sequence;
 mod simulate;

@@ -32,6 +32,9 @@ from ._native import Contact, Contacts, Step
 from ._results import Cor, Coverage, Fit, Identification, Params, Posterior, Posteriors, Result, Run
 from ._results import Simulation
 from ._results import samples_as_arrays as _samples_as_arrays, wrap as _wrap
+from ._checkpoint import chain_of_record as _chain_of_record, chain_record as _chain_record
+from ._checkpoint import checkpoint_path as _checkpoint_path, open_checkpoint as _open_checkpoint
+from ._native import scene_fingerprint as _scene_fingerprint
 
 __all__ = [
     "BwcError",
@@ -348,7 +351,7 @@ def simulate(scene, *, threads=None):
     return value
 
 
-def simulate_many(scenes, *, threads=None):
+def simulate_many(scenes, *, threads=None, checkpoint=None):
     """Runs many ``[chain]`` scenes (a parameter study) in parallel, as :func:`simulate` runs
     each: the list of results in the order of ``scenes``, identical on any number of threads.
 
@@ -358,6 +361,10 @@ def simulate_many(scenes, *, threads=None):
         Chain scene files, or dicts shaped like them.
     threads : int, optional
         Worker threads (default: all cores).
+    checkpoint : str or os.PathLike, optional
+        A file (JSON Lines, created if absent) in which the result of each scene is recorded
+        (the scenes then run a batch at a time: four per thread), and from which the results it
+        holds for these scenes are taken: an interrupted study run again with it resumes.
 
     Raises
     ------
@@ -378,13 +385,33 @@ def simulate_many(scenes, *, threads=None):
     sources = [_source(scene, "scene") for scene in scenes]
     paths = [s.get("path") for s in sources]
     texts = [s.get("scene_json") for s in sources]
-    results = []
-    for text, samples in _simulate_chains(paths, texts, threads=_threads(threads)):
-        value = _wrap(_json.loads(text), Simulation)
-        if samples is not None:
-            value["samples"] = Result(samples)
-        results.append(value)
+    threads = _threads(threads)
+    journal = _open_checkpoint(checkpoint, "simulate_many")
+    if journal is None:
+        return [_chain_value(text, samples)
+                for text, samples in _simulate_chains(paths, texts, threads=threads)]
+    prints = [_scene_fingerprint(**s) for s in sources]
+    records = [journal.get(str(i), prints[i]) for i in range(len(sources))]
+    results = [None if r is None else _chain_value(*_chain_of_record(r)) for r in records]
+    pending = [i for i, r in enumerate(results) if r is None]
+    batch = 4 * (threads or _os.cpu_count() or 1)
+    for start in range(0, len(pending), batch):
+        part = pending[start:start + batch]
+        outs = _simulate_chains([paths[i] for i in part], [texts[i] for i in part],
+                                threads=threads, indices=part)
+        for i, (text, samples) in zip(part, outs):
+            journal.record(str(i), prints[i], _chain_record(text, samples))
+            results[i] = _chain_value(text, samples)
     return results
+
+
+def _chain_value(text, samples):
+    """A chain's result as :class:`Simulation`, from its summary's JSON text and samples."""
+    value = _wrap(_json.loads(text), Simulation)
+    if samples is not None:
+        value["samples"] = Result(samples)
+    return value
+
 
 
 # What a fit's warning is about, by a phrase the tools' messages carry: one ``BwcWarning`` per
@@ -411,7 +438,7 @@ def _warn_fits(fits):
             _warnings.warn("; ".join(texts), BwcWarning, stacklevel=3)
 
 
-def identify(config, *, seed=None, threads=None):
+def identify(config, *, seed=None, threads=None, checkpoint=None):
     """Fits every ``[[fit]]`` of a config, as ``bwc-identify run --json`` does.
 
     Parameters
@@ -423,6 +450,11 @@ def identify(config, *, seed=None, threads=None):
         Base seed, combined with each fit's own (default 0, as on the command line).
     threads : int, optional
         Worker threads (default: all cores). Results do not depend on it.
+    checkpoint : str or os.PathLike, optional
+        A file (JSON Lines, created if absent) in which each finished fit's search is recorded,
+        and from which the searches it holds for the same fit, data and seed are taken: an
+        interrupted run of many fits run again with it resumes, to the result of an
+        uninterrupted run (as ``bwc-identify run --checkpoint``).
 
     Returns
     -------
@@ -458,13 +490,15 @@ def identify(config, *, seed=None, threads=None):
     0.762
     """
     seed = 0 if seed is None else _integer(seed, "seed", 0)
-    text = _identify(seed=seed, threads=_threads(threads), **_source(config, "config"))
+    text = _identify(seed=seed, threads=_threads(threads), checkpoint=_checkpoint_path(checkpoint),
+                     **_source(config, "config"))
     value = _wrap(_json.loads(text), Identification, {"fits": Fit})
     _warn_fits(value["fits"])
     return value
 
 
-def coverage(config, *, replicates=40, first_seed=1, noise=None, fit=None, threads=None):
+def coverage(config, *, replicates=40, first_seed=1, noise=None, fit=None, threads=None,
+             checkpoint=None):
     """The coverage study of the 95 % band of each CoR-only fit of a config, as
     ``bwc-identify coverage --json`` runs it.
 
@@ -483,6 +517,11 @@ def coverage(config, *, replicates=40, first_seed=1, noise=None, fit=None, threa
         Only the fit of this name.
     threads : int, optional
         Worker threads (default: all cores).
+    checkpoint : str or os.PathLike, optional
+        A file (JSON Lines, created if absent) in which each finished replicate is recorded,
+        and from which the replicates it holds for this design are taken: an interrupted study
+        run again with it resumes, to the result of an uninterrupted run (as
+        ``bwc-identify coverage --checkpoint``).
 
     Returns
     -------
@@ -503,14 +542,20 @@ def coverage(config, *, replicates=40, first_seed=1, noise=None, fit=None, threa
     >>> study.coverage[0].name, len(study.coverage[0].replicates)
     ('DSA NDBWSHCCM', 2)
     """
+    text = _coverage(replicates=_integer(replicates, "replicates", 1, 100_000),
+                     first_seed=_integer(first_seed, "first_seed", 0), noise=_noise(noise),
+                     fit=fit, threads=_threads(threads), checkpoint=_checkpoint_path(checkpoint),
+                     **_source(config, "config"))
+    return _wrap(_json.loads(text), Coverage)
+
+
+def _noise(noise):
+    """The ``noise`` argument of a coverage study: None or a finite standard deviation > 0."""
     if noise is not None and not (isinstance(noise, (int, float, _np.number))
                                   and _math.isfinite(noise) and noise > 0):
         raise BwcError("noise = %r is not admissible: a finite standard deviation in e, > 0 (or "
                        "None: the fit's residual scale)" % (noise,))
-    text = _coverage(replicates=_integer(replicates, "replicates", 1, 100_000),
-                     first_seed=_integer(first_seed, "first_seed", 0), noise=noise, fit=fit,
-                     threads=_threads(threads), **_source(config, "config"))
-    return _wrap(_json.loads(text), Coverage)
+    return noise
 
 
 def _posteriors(text):
@@ -523,7 +568,8 @@ def _posteriors(text):
     return value
 
 
-def posterior(config, *, fit=None, seed=0, particles=None, runs=None, threads=None):
+def posterior(config, *, fit=None, seed=0, particles=None, runs=None, threads=None,
+              checkpoint=None):
     """The posterior of each fit's searched quantities, as ``bwc-identify posterior --json``
     samples it: sequential Monte Carlo over the bounds (uniform on each quantity's search scale,
     or the priors of ``[fit.prior]``) with a Gaussian likelihood of the CoRs (and durations).
@@ -540,6 +586,11 @@ def posterior(config, *, fit=None, seed=0, particles=None, runs=None, threads=No
         Particles per run and independent runs (default: ``[fit.posterior]``, 500 and 4).
     threads : int, optional
         Worker threads (default: all cores).
+    checkpoint : str or os.PathLike, optional
+        A file (JSON Lines, created if absent) in which each finished sampler run is recorded,
+        and from which the runs it holds for this fit, seed and sampler are taken: an
+        interrupted study run again with it resumes, to the posterior of an uninterrupted run
+        (as ``bwc-identify posterior --checkpoint``).
 
     Returns
     -------
@@ -570,6 +621,6 @@ def posterior(config, *, fit=None, seed=0, particles=None, runs=None, threads=No
     particles = _integer(particles, "particles", 16, 1_000_000, none="[fit.posterior] or 500")
     runs = _integer(runs, "runs", 2, 10_000, none="[fit.posterior] or 4")
     text = _posterior(seed=_integer(seed, "seed", 0), fit=fit, particles=particles, runs=runs,
-                      threads=_threads(threads),
+                      threads=_threads(threads), checkpoint=_checkpoint_path(checkpoint),
                       **_source(config, "config"))
     return _posteriors(text)

@@ -32,12 +32,13 @@ def cor(
     threads: Optional[int] = None,
 ) -> Cor: ...
 def simulate(scene: Union[str, os.PathLike, Mapping[str, Any]], *, threads: Optional[int] = None) -> Simulation: ...
-def simulate_many(scenes: Iterable[Union[str, os.PathLike, Mapping[str, Any]]], *, threads: Optional[int] = None) -> list[Simulation]: ...
+def simulate_many(scenes: Iterable[Union[str, os.PathLike, Mapping[str, Any]]], *, threads: Optional[int] = None, checkpoint: Optional[Union[str, os.PathLike]] = None) -> list[Simulation]: ...
 def identify(
     config: Union[str, os.PathLike, Mapping[str, Any]],
     *,
     seed: Optional[int] = None,
     threads: Optional[int] = None,
+    checkpoint: Optional[Union[str, os.PathLike]] = None,
 ) -> Identification: ...
 def coverage(
     config: Union[str, os.PathLike, Mapping[str, Any]],
@@ -47,6 +48,7 @@ def coverage(
     noise: Optional[float] = None,
     fit: Optional[str] = None,
     threads: Optional[int] = None,
+    checkpoint: Optional[Union[str, os.PathLike]] = None,
 ) -> Coverage: ...
 def posterior(
     config: Union[str, os.PathLike, Mapping[str, Any]],
@@ -56,6 +58,7 @@ def posterior(
     particles: Optional[int] = None,
     runs: Optional[int] = None,
     threads: Optional[int] = None,
+    checkpoint: Optional[Union[str, os.PathLike]] = None,
 ) -> Posteriors: ...
 
 class Step:
