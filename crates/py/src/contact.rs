@@ -9,7 +9,7 @@ use bw_models::{
 };
 use numpy::PyArray1;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyString};
 
 const PHYSICAL: [&str; 8] = ["k", "c", "n", "p", "alpha", "beta", "gamma", "A"];
 const BASE: [&str; 8] = ["B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "U_b", "T_b"];
@@ -17,20 +17,43 @@ const BASE: [&str; 8] = ["B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "U_b", 
 /// The law of `model` from a dict of SI parameters (`k, c, n, p, alpha, beta, gamma, A`; an
 /// `m` is not the law's and is left alone) or of base parameters (`B_b, Gamma_b, kappa,
 /// sigma_b, n, p, U_b, T_b`, with `A = 1`), and the mass the base parameters imply.
-fn law(model: &str, params: &Bound<'_, PyDict>) -> PyResult<(PhysicalParams, Option<f64>)> {
-    let kind = match model {
-        "shccm" => ModelKind::Shccm,
-        "mcm" => ModelKind::Mcm,
-        other => {
+fn law(
+    model: &Bound<'_, PyAny>,
+    params: &Bound<'_, PyAny>,
+) -> PyResult<(PhysicalParams, Option<f64>)> {
+    let kind = match word(model, "model")?.as_deref() {
+        Some("shccm") => ModelKind::Shccm,
+        Some("mcm") => ModelKind::Mcm,
+        Some(other) => {
             return Err(BwcError::new_err(format!(
                 "model: \"{other}\" is not a model: \"shccm\" or \"mcm\""
             )))
         }
+        None => {
+            return Err(BwcError::new_err(format!(
+                "model = {} is not a model: the string \"shccm\" or \"mcm\"",
+                shown(model)
+            )))
+        }
     };
+    let params = params.downcast::<PyDict>().map_err(|_| {
+        BwcError::new_err(format!(
+            "params = {} is not admissible: a dict of the law's parameters ({}; or {})",
+            shown(params),
+            PHYSICAL.join(", "),
+            BASE.join(", ")
+        ))
+    })?;
     let base = params.contains("B_b")? || params.contains("sigma_b")?;
     let names: &[&str] = if base { &BASE } else { &PHYSICAL };
     for key in params.keys() {
-        let key: String = key.extract()?;
+        let Some(key) = word(&key, "params")? else {
+            return Err(BwcError::new_err(format!(
+                "params: the key {} is not a parameter of the law: {}",
+                shown(&key),
+                names.join(", ")
+            )));
+        };
         // An SI dict may carry the bodies' `m` (a scene's `[physical]` does); the law has none.
         let known = names.contains(&key.as_str()) || (key == "m" && !base);
         if !known {
@@ -85,26 +108,57 @@ fn law(model: &str, params: &Bound<'_, PyDict>) -> PyResult<(PhysicalParams, Opt
     }
 }
 
-fn settings(policy: &str, rtol: f64, atol: f64) -> PyResult<ElementSettings> {
+fn settings(policy: &Bound<'_, PyAny>, rtol: f64, atol: f64) -> PyResult<ElementSettings> {
     let mut s = ElementSettings::default();
     s.rtol = rtol;
     s.atol = atol;
-    s.policy = match policy {
-        "reset" => Policy::Reset,
-        "carry" => Policy::Carry,
-        other => {
+    s.policy = match word(policy, "policy")?.as_deref() {
+        Some("reset") => Policy::Reset,
+        Some("carry") => Policy::Carry,
+        Some(other) => {
             return Err(BwcError::new_err(format!(
                 "policy: \"{other}\" is not a policy: \"reset\" or \"carry\""
+            )))
+        }
+        None => {
+            return Err(BwcError::new_err(format!(
+                "policy = {} is not a policy: the string \"reset\" or \"carry\"",
+                shown(policy)
             )))
         }
     };
     Ok(s)
 }
 
+/// `value` as a Rust string if it is a Python `str` (`None` if it is not); an error naming
+/// `name` only for a string Python cannot give as UTF-8 (lone surrogates).
+fn word(value: &Bound<'_, PyAny>, name: &str) -> PyResult<Option<String>> {
+    let Ok(s) = value.downcast::<PyString>() else {
+        return Ok(None);
+    };
+    s.to_cow()
+        .map(|t| Some(t.into_owned()))
+        .map_err(|_| BwcError::new_err(format!("{name}: a string that is not valid UTF-8")))
+}
+
+/// A value as an error message shows it: its repr, cut to 60 characters.
+fn shown(value: &Bound<'_, PyAny>) -> String {
+    let repr = value
+        .repr()
+        .map_or_else(|_| "<unprintable>".to_owned(), |r| r.to_string());
+    match repr.char_indices().nth(60) {
+        Some((i, _)) => format!("{}...", &repr[..i]),
+        None => repr,
+    }
+}
+
+/// The contact element of `model` and `params` with `policy` and tolerances, and the mass the
+/// parameters imply (base parameters); every argument of the wrong type or value is an error
+/// naming it.
 pub(crate) fn element(
-    model: &str,
-    params: &Bound<'_, PyDict>,
-    policy: &str,
+    model: &Bound<'_, PyAny>,
+    params: &Bound<'_, PyAny>,
+    policy: &Bound<'_, PyAny>,
     rtol: f64,
     atol: f64,
 ) -> PyResult<(AnyContactElement, Option<f64>)> {
@@ -298,14 +352,16 @@ impl Contact {
 #[pymethods]
 impl Contact {
     #[new]
-    #[pyo3(signature = (model, params, *, policy="reset", rtol=1e-10, atol=1e-16))]
+    #[pyo3(signature = (model, params, *, policy=None, rtol=1e-10, atol=1e-16))]
     fn new(
-        model: &str,
-        params: &Bound<'_, PyDict>,
-        policy: &str,
+        model: &Bound<'_, PyAny>,
+        params: &Bound<'_, PyAny>,
+        policy: Option<&Bound<'_, PyAny>>,
         rtol: f64,
         atol: f64,
     ) -> PyResult<Self> {
+        let reset = PyString::new(model.py(), "reset");
+        let policy = policy.unwrap_or(reset.as_any());
         let (element, mass) = element(model, params, policy, rtol, atol)?;
         Ok(Self { element, mass })
     }

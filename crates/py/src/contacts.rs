@@ -73,8 +73,26 @@ pub struct Contacts {
     mass: Option<f64>,
 }
 
+/// An array argument as numpy gives it, else a [`BwcError`] naming it (not numpy's own
+/// ValueError for, say, a string among the numbers).
+fn array_of<'py, T>(
+    name: &str,
+    value: &Bound<'py, PyAny>,
+    what: &str,
+) -> PyResult<PyArrayLikeDyn<'py, T, AllowTypeChange>>
+where
+    T: numpy::Element + 'py,
+    Vec<T>: FromPyObject<'py>,
+{
+    value.extract().map_err(|e: PyErr| {
+        let why = e.value(value.py()).to_string();
+        BwcError::new_err(format!("{name}: {why}: give {what}"))
+    })
+}
+
 /// An input array's values, checked to have one per advanced contact.
-fn values(name: &str, array: &Floats<'_>, expected: usize) -> PyResult<Vec<f64>> {
+fn values(name: &str, value: &Bound<'_, PyAny>, expected: usize) -> PyResult<Vec<f64>> {
+    let array: Floats<'_> = array_of(name, value, "numbers, one per contact advanced")?;
     one_dimensional(name, array.shape())?;
     let values: Vec<f64> = array.as_array().iter().copied().collect();
     if values.len() != expected {
@@ -89,11 +107,12 @@ fn values(name: &str, array: &Floats<'_>, expected: usize) -> PyResult<Vec<f64>>
 impl Contacts {
     /// The contacts `index` names (all, in order, without one), checked: in range and each
     /// once.
-    fn selected(&self, index: Option<Indices<'_>>) -> PyResult<Vec<usize>> {
+    fn selected(&self, index: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<usize>> {
         let n = self.elements.len();
         let Some(index) = index else {
             return Ok((0..n).collect());
         };
+        let index: Indices<'_> = array_of("index", index, "integers, the contacts to advance")?;
         one_dimensional("index", index.shape())?;
         let mut seen = vec![false; n];
         let mut out = Vec::with_capacity(index.as_array().len());
@@ -200,16 +219,18 @@ fn contact_count(count: &Bound<'_, PyAny>) -> PyResult<usize> {
 #[pymethods]
 impl Contacts {
     #[new]
-    #[pyo3(signature = (model, params, count, *, policy="reset", rtol=1e-10, atol=1e-16))]
+    #[pyo3(signature = (model, params, count, *, policy=None, rtol=1e-10, atol=1e-16))]
     fn new(
-        model: &str,
-        params: &Bound<'_, PyDict>,
+        model: &Bound<'_, PyAny>,
+        params: &Bound<'_, PyAny>,
         count: &Bound<'_, PyAny>,
-        policy: &str,
+        policy: Option<&Bound<'_, PyAny>>,
         rtol: f64,
         atol: f64,
     ) -> PyResult<Self> {
         let count = contact_count(count)?;
+        let reset = pyo3::types::PyString::new(model.py(), "reset");
+        let policy = policy.unwrap_or(reset.as_any());
         let (one, mass) = element(model, params, policy, rtol, atol)?;
         let mut elements = Vec::new();
         elements.try_reserve_exact(count).map_err(|_| {
@@ -249,13 +270,13 @@ impl Contacts {
         &mut self,
         py: Python<'py>,
         dt: f64,
-        u_start: Floats<'py>,
-        u_end: Floats<'py>,
-        index: Option<Indices<'py>>,
+        u_start: &Bound<'py, PyAny>,
+        u_end: &Bound<'py, PyAny>,
+        index: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let chosen = self.selected(index)?;
-        let a = values("u_start", &u_start, chosen.len())?;
-        let b = values("u_end", &u_end, chosen.len())?;
+        let a = values("u_start", u_start, chosen.len())?;
+        let b = values("u_end", u_end, chosen.len())?;
         self.advance_with(py, "advance", &chosen, |e, k| e.advance(dt, a[k], b[k]))
     }
 
@@ -286,18 +307,18 @@ impl Contacts {
         &mut self,
         py: Python<'py>,
         dt: f64,
-        depth_start: Floats<'py>,
-        rate_start: Floats<'py>,
-        depth_end: Floats<'py>,
-        rate_end: Floats<'py>,
-        index: Option<Indices<'py>>,
+        depth_start: &Bound<'py, PyAny>,
+        rate_start: &Bound<'py, PyAny>,
+        depth_end: &Bound<'py, PyAny>,
+        rate_end: &Bound<'py, PyAny>,
+        index: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let chosen = self.selected(index)?;
         let n = chosen.len();
-        let d0 = values("depth_start", &depth_start, n)?;
-        let r0 = values("rate_start", &rate_start, n)?;
-        let d1 = values("depth_end", &depth_end, n)?;
-        let r1 = values("rate_end", &rate_end, n)?;
+        let d0 = values("depth_start", depth_start, n)?;
+        let r0 = values("rate_start", rate_start, n)?;
+        let d1 = values("depth_end", depth_end, n)?;
+        let r1 = values("rate_end", rate_end, n)?;
         self.advance_with(py, "advance_penetration", &chosen, |e, k| {
             let a = Penetration {
                 depth: d0[k],
@@ -313,7 +334,7 @@ impl Contacts {
 
     /// Resets the contacts (all, or those `index` names) to the law at rest.
     #[pyo3(signature = (index=None))]
-    fn reset(&mut self, index: Option<Indices<'_>>) -> PyResult<()> {
+    fn reset(&mut self, index: Option<&Bound<'_, PyAny>>) -> PyResult<()> {
         for i in self.selected(index)? {
             self.elements[i].reset();
         }

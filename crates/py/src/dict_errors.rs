@@ -34,9 +34,10 @@ pub(crate) fn explain(e: &AppError, toml: &str, root: Root) -> String {
         },
         AppError::Syntax { line, message, .. } => {
             let key = key_at(toml, *line);
+            let message = python_words(message, toml, *line);
             match key.and_then(|k| key_path(&k, toml, *line, root)) {
                 Some(path) => format!("{path}: {message}"),
-                None => message.clone(),
+                None => message,
             }
         }
         AppError::Simulation { run, source, .. } => format!("run {run}: {source}"),
@@ -44,10 +45,32 @@ pub(crate) fn explain(e: &AppError, toml: &str, root: Root) -> String {
     }
 }
 
-/// The key a line of generated TOML sets, with its table: `[base].kappa`.
+/// A parser's message about a value in Python's words: a dict where a value belongs (a table
+/// of the generated TOML, whose header the error points at) is "a dict", a list "a list".
+fn python_words(message: &str, toml: &str, line: usize) -> String {
+    let header = line
+        .checked_sub(1)
+        .and_then(|i| toml.lines().nth(i))
+        .is_some_and(|l| l.trim_start().starts_with('['));
+    // A number's span wrapper meets a dict's first key and says so in its own terms.
+    if header && message.contains("expected a borrowed string") {
+        return "a dict given where a value belongs".into();
+    }
+    message
+        .replace("invalid type: map,", "a dict given,")
+        .replace("invalid type: sequence,", "a list given,")
+        .replace("expected f64", "expected a number")
+}
+
+/// The key a line of generated TOML sets, with its table: `[base].kappa`; a table's header
+/// line names the table (`[solver.rtol]`: `solver.rtol`).
 fn key_at(toml: &str, line: usize) -> Option<String> {
     let lines: Vec<&str> = toml.lines().collect();
     let text = lines.get(line.checked_sub(1)?)?;
+    if let Some(name) = text.trim().strip_prefix('[') {
+        let name = name.trim_start_matches('[').trim_end_matches(']');
+        return Some(name.trim().to_string());
+    }
     let header = lines[..line]
         .iter()
         .rev()

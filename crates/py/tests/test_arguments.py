@@ -111,3 +111,23 @@ def test_arguments_of_the_wrong_type_are_named(call, message):
     # the JSON parser ("not a JSON-like dict: invalid number at line 1 column 12").
     with pytest.raises(bwc.BwcError, match=message):
         call()
+
+
+def test_a_dict_or_list_where_a_value_belongs_names_its_key():
+    """A dict given where a number or a string belongs names its key in the dict's terms (it
+    was the parser's "invalid type: map, expected f64", naming nothing)."""
+    hc = {"B": 0, "Gamma": 0, "kappa": 0.3, "sigma": 0.5, "n": 1.5, "p": 1.5}
+    base = {"B_b": 1, "Gamma_b": 0, "kappa": 0.5, "sigma_b": 0.1, "n": 1, "p": 1.5}
+    cases = [
+        (lambda: bwc.cor("shccm", hc, solver={"rtol": {"a": 1}}),
+         r'^solver\["rtol"\]: a dict given where a value belongs$'),
+        (lambda: bwc.cor("shccm", hc, input={"kind": "constant", "value": {"x": 1}}),
+         r'^input\["value"\]: a dict given, expected a number$'),
+        (lambda: bwc.simulate({"model": {"kind": "sine"}, "v0": [1.0], "base": base}),
+         r'^scene\["model"\]: a dict given, expected a string$'),
+        (lambda: bwc.simulate({"model": "shccm", "v0": [1.0], "base": {**base, "B_b": {"x": 1}}}),
+         r'^scene\["base"\]\["B_b"\]: a dict given, expected a number$'),
+    ]
+    for call, message in cases:
+        with pytest.raises(bwc.BwcError, match=message):
+            call()

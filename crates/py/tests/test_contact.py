@@ -160,6 +160,35 @@ def test_bad_input_is_named_and_changes_nothing():
             bwc.Contacts("shccm", LAW, count)
 
 
+def test_arguments_of_the_wrong_type_are_named_in_pythons_terms():
+    """A model, params, policy, key or array of the wrong type is a BwcError naming the
+    argument and what it may be (they were the binding's "cannot be converted to 'PyString'"
+    and numpy's ValueError)."""
+    cases = [
+        (lambda: bwc.Contact(3.5, LAW), r'^model = 3\.5 is not a model: the string "shccm" or "mcm"$'),
+        (lambda: bwc.Contact("shccm", [1, 2]), r"^params = \[1, 2\] is not admissible: a dict"),
+        (lambda: bwc.Contact("shccm", {**LAW, 7: 1.0}), r"^params: the key 7 is not a parameter"),
+        (lambda: bwc.Contact("shccm", LAW, policy=None), None),
+        (lambda: bwc.Contact("shccm", LAW, policy=["reset"]), r"^policy = \['reset'\] is not a policy"),
+        (lambda: bwc.Contacts(None, LAW, 2), r"^model = None is not a model"),
+        (lambda: bwc.Contacts("shccm", "k=1", 2), r"^params = 'k=1' is not admissible"),
+    ]
+    for call, message in cases:
+        if message is None:
+            assert call().policy == "reset"
+            continue
+        with pytest.raises(bwc.BwcError, match=message):
+            call()
+    many = bwc.Contacts("shccm", LAW, 2)
+    with pytest.raises(bwc.BwcError, match=r"^u_start: could not convert string to float: 'a': give numbers"):
+        many.advance(1e-5, [-1.0, "a"], [-1.0, -1.0])
+    with pytest.raises(bwc.BwcError, match=r"^index: .*'x'.*: give integers, the contacts to advance"):
+        many.advance(1e-5, [-1.0], [-1.0], index=["x"])
+    with pytest.raises(bwc.BwcError, match=r"^depth_end: .*: give numbers"):
+        many.advance_penetration(1e-5, [0.0, 0.0], [1.0, 1.0], [{}, 1e-5], [1.0, 1.0])
+    assert not np.any(many.in_contact)
+
+
 def test_base_parameters_give_the_law_and_its_mass():
     """A law from base parameters (A = 1) at the mass T_b / U_b rebounds as the nondimensional
     model at those base parameters."""
