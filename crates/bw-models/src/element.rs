@@ -304,6 +304,16 @@ impl<L: ContactLaw<N>, const N: usize> ContactElement<L, N> {
         motion: &Motion,
         onsets: bool,
     ) -> Result<ElementStep, ModelError> {
+        // A step so short that the motion's coefficients (differences over `dt`, `dt²`)
+        // overflow has no motion to integrate: say so, naming the step.
+        if !motion.c.iter().all(|c| c.is_finite()) {
+            return Err(invalid(
+                "dt",
+                dt,
+                "a step long enough for the velocities (and depths) at its ends: their \
+                 differences over dt overflow; a longer step, or ends that agree",
+            ));
+        }
         let (status, step) = self.step(dt, motion, onsets)?;
         self.status = status;
         Ok(step)
@@ -532,6 +542,41 @@ fn augmented<const N: usize>(state: &State<N>) -> Augmented {
 /// The law's state in an augmented state.
 fn law_state<const N: usize>(y: &Augmented) -> State<N> {
     State::<N>::from_fn(|i, _| y[i])
+}
+
+/// What a host can change when a step of an element failed in its integration, by how it
+/// failed; each host words it in its own names (the C ABI's `dt`, the FMU's
+/// `communicationStepSize`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Remedy {
+    /// The state overflowed: the velocities (or penetration rates) or the law's parameters are
+    /// beyond what the law can be integrated at.
+    CheckVelocities,
+    /// The solver took its most steps inside one host step: a shorter host step, or a looser
+    /// `rtol`.
+    ShorterStep,
+    /// The solver's step fell below the resolution of its time: a shorter host step (a long one
+    /// reaches times where the state is huge), looser `rtol` and `atol`, or a less stiff law.
+    LooserTolerances,
+}
+
+impl Remedy {
+    /// The remedy of a failed step's error, if its integration failed.
+    pub fn of(e: &ModelError) -> Option<Self> {
+        use bwc_ode::Error as Ode;
+        match e {
+            ModelError::Solver(bwc_events::Error::Solver(ode)) => match ode {
+                Ode::NonFiniteInitialValue { .. } | Ode::NonFiniteState { .. } => {
+                    Some(Self::CheckVelocities)
+                }
+                Ode::TooManySteps { .. } => Some(Self::ShorterStep),
+                Ode::StepSizeTooSmall { .. } => Some(Self::LooserTolerances),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
 }
 
 fn invalid(name: &'static str, value: f64, allowed: &'static str) -> ModelError {

@@ -5,7 +5,7 @@
 #[non_exhaustive]
 pub enum ModelError {
     /// A model parameter is outside its admissible set.
-    #[error("parameter `{name}` = {value} is not admissible: {allowed}")]
+    #[error("parameter `{name}` = {} is not admissible: {allowed}", Shown(*.value))]
     InvalidParameter {
         /// Parameter name as in the paper (`"kappa"`, `"B_b"`, ...).
         name: &'static str,
@@ -15,7 +15,7 @@ pub enum ModelError {
         allowed: &'static str,
     },
     /// A simulation setting is out of range.
-    #[error("setting `{name}` = {value} is not admissible: {allowed}")]
+    #[error("setting `{name}` = {} is not admissible: {allowed}", Shown(*.value))]
     InvalidSetting {
         /// Setting name as in [`Settings`](crate::Settings).
         name: &'static str,
@@ -47,7 +47,7 @@ pub enum ModelError {
         reason: &'static str,
     },
     /// A body, pair or wall of a chain is not admissible ([`crate::chain::Chain::new`]).
-    #[error("{part}: `{name}` = {value} is not admissible: {allowed}")]
+    #[error("{part}: `{name}` = {} is not admissible: {allowed}", Shown(*.value))]
     InvalidChain {
         /// Which body, pair or wall.
         part: ChainPart,
@@ -87,6 +87,21 @@ impl std::fmt::Display for ChainPart {
             ChainPart::Pair(j) => write!(f, "chain pair {j}"),
             ChainPart::LeftWall => write!(f, "chain left wall"),
             ChainPart::RightWall => write!(f, "chain right wall"),
+        }
+    }
+}
+
+/// A rejected value as a message shows it: in full where short, else with an exponent
+/// (`4e-306`, not 306 zeros; `1e308`, not 309 digits).
+struct Shown(f64);
+
+impl std::fmt::Display for Shown {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let x = self.0;
+        if x == 0.0 || !x.is_finite() || (1e-5..1e16).contains(&x.abs()) {
+            write!(f, "{x}")
+        } else {
+            write!(f, "{x:e}")
         }
     }
 }

@@ -74,7 +74,7 @@ pub mod sweep;
 pub use any_element::AnyContactElement;
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use cor::{impact, impact_at, impact_double_double};
-pub use element::{ContactElement, ElementSettings, ElementStep, Penetration};
+pub use element::{ContactElement, ElementSettings, ElementStep, Penetration, Remedy};
 pub use error::ModelError;
 pub use families::{family_impact, Family, FamilyParams, Ndkv, FAMILIES};
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};

@@ -43,27 +43,24 @@ impl Failure {
 impl From<bw_models::ModelError> for Failure {
     fn from(e: bw_models::ModelError) -> Self {
         use bw_models::ModelError as M;
-        use bwc_ode::Error as Ode;
         let status = match e {
             M::Solver(_) | M::NotApplicable { .. } => BwcStatus::Failed,
             _ => BwcStatus::InvalidArgument,
         };
         // What a host can change, by the integration's failure.
-        let hint = match &e {
-            M::Solver(bwc_events::Error::Solver(ode)) => match ode {
-                Ode::NonFiniteInitialValue { .. } | Ode::NonFiniteState { .. } => {
-                    "; the state overflowed: check the velocities (`u_start`, `u_end`, or the \
-                     penetration rates, m/s) and the law's parameters"
-                }
-                Ode::TooManySteps { .. } => {
-                    "; take a shorter host step `dt`, or loosen `rtol` in the element's settings"
-                }
-                Ode::StepSizeTooSmall { .. } => {
-                    "; loosen `rtol` and `atol` in the element's settings, or check the law's \
-                     parameters (a very stiff or large-exponent law)"
-                }
-                _ => "",
-            },
+        let hint = match bw_models::Remedy::of(&e) {
+            Some(bw_models::Remedy::CheckVelocities) => {
+                "; the state overflowed: check the velocities (`u_start`, `u_end`, or the \
+                 penetration rates, m/s) and the law's parameters"
+            }
+            Some(bw_models::Remedy::ShorterStep) => {
+                "; take a shorter host step `dt`, or loosen `rtol` in the element's settings"
+            }
+            Some(bw_models::Remedy::LooserTolerances) => {
+                "; take a shorter host step `dt`, loosen `rtol` and `atol` in the element's \
+                 settings, or check the velocities and the law's parameters (a very stiff or \
+                 large-exponent law)"
+            }
             _ => "",
         };
         Self::new(status, format!("{e}{hint}"))

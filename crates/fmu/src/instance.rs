@@ -292,15 +292,17 @@ impl Instance {
         self.expect(&[Phase::Stepping], "fmi2DoStep")?;
         if !(h > 0.0 && h.is_finite()) {
             return Err(format!(
-                "communicationStepSize = {h} is not admissible: > 0 (s), finite"
+                "communicationStepSize = {} is not admissible: > 0 (s), finite",
+                number(h)
             ));
         }
         let d = &mut self.dynamic;
         if (t - d.time).abs() > 1e-9 * d.time.abs().max(h) {
             return Err(format!(
-                "currentCommunicationPoint = {t} is not the FMU's time {}: step on from the last \
+                "currentCommunicationPoint = {} is not the FMU's time {}: step on from the last \
                  step's end (or restore an FMU state)",
-                d.time
+                number(t),
+                number(d.time)
             ));
         }
         let start = Penetration {
@@ -314,7 +316,7 @@ impl Instance {
         let element = d.element.as_mut().ok_or("the FMU is not initialized")?;
         let step = element
             .advance_penetration(h, start, end)
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| step_failure(&e, h))?;
         d.impulse = step.impulse;
         d.time = t + h;
         d.accel = 0.0;
@@ -364,4 +366,46 @@ fn element(p: &Params) -> Result<AnyContactElement, String> {
         Policy::Reset
     };
     AnyContactElement::new(&params, settings).map_err(|e| e.to_string())
+}
+
+/// A failed step's message in the FMU's names: the step is `communicationStepSize`, the
+/// motion `delta` and `delta_dot`, the tolerances the parameters `rtol` and `atol`.
+fn step_failure(e: &bw_models::ModelError, h: f64) -> String {
+    use bw_models::{ModelError, Remedy};
+    if let ModelError::InvalidSetting {
+        name: "dt",
+        allowed,
+        ..
+    } = e
+    {
+        return format!(
+            "communicationStepSize = {} is not admissible: {allowed}",
+            number(h)
+        );
+    }
+    let hint = match Remedy::of(e) {
+        Some(Remedy::CheckVelocities) => {
+            "; the state overflowed: check the inputs `delta`, `delta_dot` (and its derivative) \
+             and the law's parameters"
+        }
+        Some(Remedy::ShorterStep) => {
+            "; take a shorter communicationStepSize, or loosen the parameter `rtol`"
+        }
+        Some(Remedy::LooserTolerances) => {
+            "; take a shorter communicationStepSize, loosen the parameters `rtol` and `atol`, or \
+             check the inputs and the law's parameters (a very stiff or large-exponent law)"
+        }
+        _ => "",
+    };
+    format!("{e}{hint}")
+}
+
+/// A number as a message shows it: in full where short, else with an exponent (`4e-306`, not
+/// 306 zeros).
+fn number(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
 }

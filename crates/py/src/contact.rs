@@ -141,6 +141,24 @@ fn word(value: &Bound<'_, PyAny>, name: &str) -> PyResult<Option<String>> {
         .map_err(|_| BwcError::new_err(format!("{name}: a string that is not valid UTF-8")))
 }
 
+/// A failed step's error with what the caller can change, in the arguments' names.
+pub(crate) fn failed_step(e: &bw_models::ModelError) -> String {
+    use bw_models::Remedy;
+    let hint = match Remedy::of(e) {
+        Some(Remedy::CheckVelocities) => {
+            "; the state overflowed: check the velocities (or penetration rates, m/s) and the \
+             law's parameters"
+        }
+        Some(Remedy::ShorterStep) => "; take a shorter step dt, or a looser rtol",
+        Some(Remedy::LooserTolerances) => {
+            "; take a shorter step dt, a looser rtol and atol, or check the velocities and the \
+             law's parameters (a very stiff or large-exponent law)"
+        }
+        _ => "",
+    };
+    format!("{e}{hint}")
+}
+
 /// A value as an error message shows it: its repr, cut to 60 characters.
 fn shown(value: &Bound<'_, PyAny>) -> String {
     let repr = value
@@ -391,7 +409,7 @@ impl Contact {
         let e = &mut self.element;
         py.allow_threads(|| e.advance(dt, u_start, u_end))
             .map(Step::from)
-            .map_err(|e| BwcError::new_err(format!("advance: {e}")))
+            .map_err(|e| BwcError::new_err(format!("advance: {}", failed_step(&e))))
     }
 
     /// Advances the element over a host step with the penetration.
@@ -431,7 +449,7 @@ impl Contact {
         let e = &mut self.element;
         py.allow_threads(|| e.advance_penetration(dt, a, b))
             .map(Step::from)
-            .map_err(|e| BwcError::new_err(format!("advance_penetration: {e}")))
+            .map_err(|e| BwcError::new_err(format!("advance_penetration: {}", failed_step(&e))))
     }
 
     /// Back to the law at rest, out of contact, nothing absorbed.

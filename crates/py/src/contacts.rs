@@ -1,6 +1,6 @@
 //! `bwc.Contacts`: many contact elements of one law, advanced together in parallel.
 
-use crate::contact::{element, policy_name, Contact};
+use crate::contact::{element, failed_step, policy_name, Contact};
 use crate::BwcError;
 use bw_models::{AnyContactElement, ElementStep, ModelError, Penetration};
 use numpy::ndarray::Array2;
@@ -152,7 +152,8 @@ impl Contacts {
             steps.push(r.map_err(|e| {
                 BwcError::new_err(format!(
                     "{what}: contact {} (the {k}-th advanced): {}; no contact was advanced",
-                    chosen[k], e
+                    chosen[k],
+                    failed_step(&e)
                 ))
             })?);
         }

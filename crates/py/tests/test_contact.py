@@ -210,3 +210,14 @@ def test_base_parameters_give_the_law_and_its_mass():
         v, force = v1, step.force
     v_out = v + (v1 - v) * step.separated_at / dt
     assert v_out / v0 == pytest.approx(e_nd, rel=1e-5)
+
+
+def test_steps_the_law_cannot_be_integrated_over_say_what_helps():
+    """A step too long for the solver, or too short for its ends' velocities, names the setting
+    that helps (they were the solver's words alone, or 310 zeros)."""
+    contact = bwc.Contact("shccm", LAW)
+    with pytest.raises(bwc.BwcError, match=r"^advance: simulation failed: .*; take a shorter step dt"):
+        contact.advance(1e308, -1.0, -1.0)
+    with pytest.raises(bwc.BwcError, match=r"^advance: setting `dt` = 1e-310 is not admissible: a step long enough"):
+        contact.advance(1e-310, -1.0, 1.0)
+    assert not contact.in_contact and contact.contacts == 0

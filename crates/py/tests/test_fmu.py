@@ -141,9 +141,17 @@ def test_bad_input_is_refused_and_named_through_the_logger(fmu):
     assert "parameter `k` is fixed once initialized" in messages[-1]
     with pytest.raises(Exception):
         slave.doStep(0.0, -1e-6)
-    assert "communicationStepSize = -0.000001 is not admissible" in messages[-1]
+    assert "communicationStepSize = -1e-6 is not admissible" in messages[-1]
     slave.setReal([vr["delta"], vr["delta_dot"]], [1e-5, 1.0])
     slave.doStep(0.0, 1e-6)
     assert slave.getReal([vr["force"]])[0] > 0
+    # Steps the law cannot be integrated over say which setting helps (they named nothing: the
+    # solver's "step size too small", "initial value not finite").
+    with pytest.raises(Exception):
+        slave.doStep(1e-6, 1e308)
+    assert "take a shorter communicationStepSize" in messages[-1]
+    with pytest.raises(Exception):
+        slave.doStep(1e-6, 4e-306)
+    assert messages[-1].startswith("fmi2DoStep: communicationStepSize = 4e-306 is not admissible: a step long enough")
     slave.terminate()
     slave.freeInstance()

@@ -169,6 +169,7 @@ fn policies_and_bad_steps() {
         (-1e-5, -1.0, -1.0, "dt"),
         (1e-5, f64::NAN, -1.0, "u_start"),
         (1e-5, -1.0, f64::INFINITY, "u_end"),
+        (1e-310, -1.0, 1.0, "dt"),
     ] {
         let err = carry.advance(dt, u0, u1).unwrap_err();
         assert!(
@@ -183,6 +184,9 @@ fn policies_and_bad_steps() {
         (1e-5, at(0.0, f64::INFINITY), at(1e-5, 1.0), "rate_start"),
         (1e-5, at(0.0, 1.0), at(f64::NEG_INFINITY, 1.0), "depth_end"),
         (1e-5, at(0.0, 1.0), at(1e-5, f64::NAN), "rate_end"),
+        // So short that the cubic's coefficients overflow (it was the solver's "initial value
+        // not finite", naming nothing).
+        (4e-306, at(-1e-6, 1.0), at(-1e-6, 1.0), "dt"),
     ] {
         let err = carry.advance_penetration(dt, a, b).unwrap_err();
         assert!(
