@@ -46,18 +46,18 @@ def chain_of_record(record):
     return value["summary"], samples
 
 
-def gather_recording(futures, checkpoint, keys, prints, encode):
-    """The results of ``futures`` (a dict: piece index -> future), each recorded in
-    ``checkpoint`` under ``keys[i]`` with ``prints[i]`` as it arrives (``encode`` makes its
-    text), so that a study stopped part way keeps every piece that finished. The first failure
-    is raised after the pieces finished before it are recorded."""
+def run_recorded(client, checkpoint, keys, prints, task, arguments):
+    """The texts of tasks ``i``: from ``checkpoint`` where it holds ``keys[i]`` with
+    ``prints[i]``, else ``task(*arguments[i])`` on ``client``, each recorded as it arrives, so
+    that a study stopped part way keeps every task that finished. The first failure is raised
+    after the tasks finished before it are recorded."""
     from distributed import as_completed
 
-    index = {f.key: i for i, f in futures.items()}
-    results = {}
-    for future, value in as_completed(list(futures.values()), with_results=True):
-        i = index[future.key]
-        checkpoint.record(keys[i], prints[i], encode(value))
-        results[i] = value
-    return results
-
+    texts = {i: checkpoint.get(k, p) for i, (k, p) in enumerate(zip(keys, prints))}
+    futures = {client.submit(task, *arguments[i], pure=False): i
+               for i, text in texts.items() if text is None}
+    for future, text in as_completed(list(futures), with_results=True):
+        i = futures[future]
+        checkpoint.record(keys[i], prints[i], text)
+        texts[i] = text
+    return [texts[i] for i in range(len(keys))]

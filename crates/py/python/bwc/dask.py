@@ -16,7 +16,7 @@ import json
 import warnings
 
 import bwc
-from bwc._checkpoint import chain_of_record, chain_record, gather_recording, open_checkpoint
+from bwc._checkpoint import chain_of_record, chain_record, open_checkpoint, run_recorded
 
 
 def _cor_task(model, params, v0, input, solver, sweep):
@@ -49,11 +49,9 @@ def simulate_many(scenes, client, *, checkpoint=None):
         return [bwc._chain_value(*chain_of_record(r)) for r in records]
     prints = [bwc._scene_fingerprint(**bwc._source(s, "scene")) for s in scenes]
     keys = [str(i) for i in range(len(scenes))]
-    records = {i: journal.get(keys[i], prints[i]) for i in range(len(scenes))}
-    futures = {i: client.submit(_chain_record_task, scenes[i], pure=False)
-               for i, r in records.items() if r is None}
-    records.update(gather_recording(futures, journal, keys, prints, lambda r: r))
-    return [bwc._chain_value(*chain_of_record(records[i])) for i in range(len(scenes))]
+    records = run_recorded(client, journal, keys, prints, _chain_record_task,
+                           [(s,) for s in scenes])
+    return [bwc._chain_value(*chain_of_record(r)) for r in records]
 
 
 def _identify_task(config, seed):
@@ -96,11 +94,8 @@ def identify_many(configs, client, seeds=None, *, checkpoint=None):
         prints = [bwc._native.config_fingerprint(json.dumps({"seed": seed}),
                                                  **bwc._source(config, "config"))
                   for config, seed in zip(configs, seeds)]
-        done = {i: journal.get(keys[i], prints[i]) for i in range(len(configs))}
-        futures = {i: client.submit(_identify_task, configs[i], seeds[i], pure=False)
-                   for i, t in done.items() if t is None}
-        done.update(gather_recording(futures, journal, keys, prints, lambda t: t))
-        texts = [done[i] for i in range(len(configs))]
+        texts = run_recorded(client, journal, keys, prints, _identify_task,
+                             list(zip(configs, seeds)))
     results = []
     for text in texts:
         value = bwc._wrap(json.loads(text), bwc.Identification, {"fits": bwc.Fit})
@@ -133,16 +128,12 @@ def coverage(config, client, *, replicates=40, first_seed=1, chunk=5, noise=None
                              pure=False)
         texts = client.gather(futures)
     else:
-        print_ = bwc._native.config_fingerprint(json.dumps({"noise": noise}), fit=fit,
-                                                **bwc._source(config, "config"))
+        study = bwc._native.config_fingerprint(json.dumps({"noise": noise}), fit=fit,
+                                               **bwc._source(config, "config"))
         keys = ["%d+%d" % (s, k) for s, k in zip(starts, sizes)]
-        prints = [print_] * n
-        done = {i: journal.get(keys[i], print_) for i in range(n)}
-        futures = {i: client.submit(_coverage_task, config, starts[i], sizes[i], noise, fit,
-                                    pure=False)
-                   for i, t in done.items() if t is None}
-        done.update(gather_recording(futures, journal, keys, prints, lambda t: t))
-        texts = [done[i] for i in range(n)]
+        prints = [study] * n
+        texts = run_recorded(client, journal, keys, prints, _coverage_task,
+                             [(config, s, k, noise, fit) for s, k in zip(starts, sizes)])
     parts = [bwc._wrap(json.loads(t), bwc.Coverage) for t in texts]
     merged = parts[0]
     for study_index, study in enumerate(merged["coverage"]):
@@ -189,12 +180,8 @@ def posterior(config, client, *, fit=None, seed=0, particles=None, runs=None, th
                     for name in names}
         prints = [print_of[name] for name, _ in tasks]
         keys = ["%s/%d" % t for t in tasks]
-        done = {i: journal.get(keys[i], prints[i]) for i in range(len(tasks))}
-        futures = {i: client.submit(_posterior_run_task, config, tasks[i][0], tasks[i][1],
-                                    int(seed), particles, runs, pure=False)
-                   for i, t in done.items() if t is None}
-        done.update(gather_recording(futures, journal, keys, prints, lambda t: t))
-        texts = [done[i] for i in range(len(tasks))]
+        texts = run_recorded(client, journal, keys, prints, _posterior_run_task,
+                             [(config, name, k, int(seed), particles, runs) for name, k in tasks])
     grouped, start = [], 0
     for count in counts:
         grouped.append(texts[start:start + count])
