@@ -52,6 +52,14 @@ fn python_words(message: &str, toml: &str, line: usize) -> String {
         .checked_sub(1)
         .and_then(|i| toml.lines().nth(i))
         .is_some_and(|l| l.trim_start().starts_with('['));
+    // The library names a table where a value belongs: "`[solver].rtol` expects a number, not
+    // a table"; the dict's key is named before this.
+    if let Some(expected) = message
+        .strip_suffix(", not a table")
+        .and_then(|m| m.split_once("` expects "))
+    {
+        return format!("a dict given where {} belongs", expected.1);
+    }
     // A number's span wrapper meets a dict's first key and says so in its own terms.
     if header && message.contains("expected a borrowed string") {
         return "a dict given where a value belongs".into();

@@ -122,11 +122,11 @@ def test_a_dict_or_list_where_a_value_belongs_names_its_key():
         (lambda: bwc.cor("shccm", hc, solver={"rtol": {"a": 1}}),
          r'^solver\["rtol"\]: a dict given where a value belongs$'),
         (lambda: bwc.cor("shccm", hc, input={"kind": "constant", "value": {"x": 1}}),
-         r'^input\["value"\]: a dict given, expected a number$'),
+         r'^input\["value"\]: a dict given where a number belongs$'),
         (lambda: bwc.simulate({"model": {"kind": "sine"}, "v0": [1.0], "base": base}),
-         r'^scene\["model"\]: a dict given, expected a string$'),
+         r'^scene\["model"\]: a dict given where a string in quotes belongs$'),
         (lambda: bwc.simulate({"model": "shccm", "v0": [1.0], "base": {**base, "B_b": {"x": 1}}}),
-         r'^scene\["base"\]\["B_b"\]: a dict given, expected a number$'),
+         r'^scene\["base"\]\["B_b"\]: a dict given where a number belongs$'),
     ]
     for call, message in cases:
         with pytest.raises(bwc.BwcError, match=message):

@@ -67,9 +67,17 @@ pub(crate) fn read_text(path: &Path) -> Result<String, AppError> {
 /// key admits.
 pub(crate) fn syntax_error(ctx: &Ctx, e: &toml::de::Error) -> AppError {
     let src = ctx.src;
-    let at = e.span().map_or(0, |s| s.start.min(src.len()));
-    let line_start = src[..at].rfind('\n').map_or(0, |i| i + 1);
+    let mut at = e.span().map_or(0, |s| s.start.min(src.len()));
     let mut message = e.message().trim().replace('\n', " ");
+    if let Some((header, key)) = table_for_value(src, at, &message) {
+        let expected = match expected_in_words(&message).as_str() {
+            "a borrowed string" => "a value".to_string(),
+            words => words.to_string(),
+        };
+        message = format!("`{key}` expects {expected}, not a table");
+        at = header;
+    }
+    let line_start = src[..at].rfind('\n').map_or(0, |i| i + 1);
     if message.starts_with("invalid type") {
         if let Some(key) = key_at(src, at) {
             let expected = match key.rsplit('.').next() {
@@ -92,6 +100,50 @@ pub(crate) fn syntax_error(ctx: &Ctx, e: &toml::de::Error) -> AppError {
         column: src[line_start..at].chars().count() + 1,
         message,
     }
+}
+
+/// Where a table stands for a value (`[solver.rtol]` as a table): the byte of its header and
+/// its key (`[solver].rtol`). The parser points at the header, or, for a number kept with its
+/// span, names the table's key in its own words ("invalid type: string \"rtol\", expected a
+/// borrowed string") somewhere inside it.
+fn table_for_value(src: &str, at: usize, message: &str) -> Option<(usize, String)> {
+    let line_start = src[..at].rfind('\n').map_or(0, |i| i + 1);
+    let line = src[line_start..].lines().next().unwrap_or("");
+    if message.starts_with("invalid type") {
+        if let Some(key) = header_key(line) {
+            return Some((line_start, key));
+        }
+    }
+    let name = message
+        .strip_prefix("invalid type: string \"")?
+        .split_once("\", expected a borrowed string")?
+        .0;
+    let mut offset = 0;
+    for l in src.split('\n') {
+        if let Some(key) = header_key(l).filter(|k| k == name || k.ends_with(&format!("].{name}")))
+        {
+            return Some((offset, key));
+        }
+        offset += l.len() + 1;
+    }
+    None
+}
+
+/// The key a table header names, with its parent table: `[solver.rtol]` is `[solver].rtol`;
+/// `None` for a line that is not a header or an array of tables.
+fn header_key(line: &str) -> Option<String> {
+    let line = line.split('#').next()?.trim();
+    let inner = line.strip_prefix('[')?.strip_suffix(']')?;
+    if inner.starts_with('[') {
+        return None;
+    }
+    let parts: Vec<&str> = inner.split('.').map(str::trim).collect();
+    let (name, parent) = parts.split_last()?;
+    Some(if parent.is_empty() {
+        (*name).to_string()
+    } else {
+        format!("[{}].{name}", parent.join("."))
+    })
 }
 
 /// The key of the `key = value` on 1-based `line`, with its table.

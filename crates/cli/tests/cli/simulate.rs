@@ -363,6 +363,24 @@ fn bad_scenes_are_clear_errors() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/scene.toml"));
 }
 
+/// A table where a number belongs names its key at its header (it was serde's "invalid type:
+/// map, expected f64", or "expected a borrowed string" at a column inside the table).
+#[test]
+fn a_table_where_a_value_belongs_is_named_at_its_header() {
+    rejects(
+        "table-for-k",
+        &GOOD_PHYSICAL.replace("k = 117080063.0\n", "[physical.k]\nvalue = 1.0\n"),
+        Some(5),
+        &["`[physical].k` expects a number, not a table"],
+    );
+    rejects(
+        "table-for-rtol",
+        &format!("{GOOD_PHYSICAL}[solver.rtol]\nx = 1\n"),
+        Some(13),
+        &["`[solver].rtol` expects a value, not a table"],
+    );
+}
+
 #[test]
 fn several_mistakes_are_reported_at_once_in_file_order() {
     rejects(
