@@ -34,7 +34,7 @@ pub(crate) fn explain(e: &AppError, toml: &str, root: Root) -> String {
         },
         AppError::Syntax { line, message, .. } => {
             let key = key_at(toml, *line);
-            let message = python_words(message, toml, *line);
+            let message = python_words(message);
             match key.and_then(|k| key_path(&k, toml, *line, root)) {
                 Some(path) => format!("{path}: {message}"),
                 None => message,
@@ -45,28 +45,19 @@ pub(crate) fn explain(e: &AppError, toml: &str, root: Root) -> String {
     }
 }
 
-/// A parser's message about a value in Python's words: a dict where a value belongs (a table
-/// of the generated TOML, whose header the error points at) is "a dict", a list "a list".
-fn python_words(message: &str, toml: &str, line: usize) -> String {
-    let header = line
-        .checked_sub(1)
-        .and_then(|i| toml.lines().nth(i))
-        .is_some_and(|l| l.trim_start().starts_with('['));
-    // The library names a table where a value belongs: "`[solver].rtol` expects a number, not
-    // a table"; the dict's key is named before this.
-    if let Some(expected) = message
+/// A library message about a value in Python's words: a table where a value belongs (the
+/// library's "`[solver].rtol` expects a number, not a table") is a dict given there, serde's
+/// "map" and "sequence" a dict and a list.
+fn python_words(message: &str) -> String {
+    if let Some((_, expected)) = message
         .strip_suffix(", not a table")
         .and_then(|m| m.split_once("` expects "))
     {
-        return format!("a dict given where {} belongs", expected.1);
-    }
-    // A number's span wrapper meets a dict's first key and says so in its own terms.
-    if header && message.contains("expected a borrowed string") {
-        return "a dict given where a value belongs".into();
+        return format!("a dict given where {expected} belongs");
     }
     message
-        .replace("invalid type: map,", "a dict given,")
-        .replace("invalid type: sequence,", "a list given,")
+        .replace("invalid type: map", "a dict given")
+        .replace("invalid type: sequence", "a list given")
         .replace("expected f64", "expected a number")
 }
 

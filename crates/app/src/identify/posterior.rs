@@ -181,7 +181,7 @@ pub fn run_posterior(
     if runs.iter().any(Option::is_none) || kept_reference.is_none() {
         let (r, optimum) = reference(config, f, &p, seed)?;
         evaluations = optimum.evaluations;
-        if let Some(c) = checkpoint {
+        if let Some(c) = checkpoint.filter(|_| kept_reference.is_none()) {
             c.record(&reference_key, &print, json!({"evaluations": evaluations}))?;
         }
         runs.par_iter_mut()
