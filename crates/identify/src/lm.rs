@@ -693,9 +693,11 @@ mod tests {
         let starts: Vec<Vec<f64>> = (0..16)
             .map(|_| (0..6).map(|_| rng.random::<f64>()).collect())
             .collect();
-        let reached = |phases: &dyn Fn(&[f64], f64) -> Option<Polished>| {
+        // The 32 polishes are independent: run them side by side.
+        let reached = |phases: &(dyn Fn(&[f64], f64) -> Option<Polished> + Sync)| {
+            use rayon::prelude::*;
             starts
-                .iter()
+                .par_iter()
                 .filter(|s| {
                     let end = phases(s, objective.cost_at(s)).unwrap();
                     end.cost <= 1.02 * 4.4302e-6

@@ -39,15 +39,17 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::{Path, PathBuf};
 
+// Their module is the package's, where users import them from: so they print as
+// `bwc.BwcError` and pickle (Dask workers and pytest-xdist carry them between processes).
 create_exception!(
-    _native,
+    bwc,
     BwcError,
     PyValueError,
     "A bad description or a failed run."
 );
 
 create_exception!(
-    _native,
+    bwc,
     BwcWarning,
     PyUserWarning,
     "What the command-line tools warn of on stderr about finished runs: a horizon before \

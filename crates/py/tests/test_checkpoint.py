@@ -3,15 +3,12 @@ study, a posterior and many chains, each cut part way (a partial last line inclu
 while writing leaves it) and run again with the same file."""
 
 import json
-import pathlib
 
 import numpy as np
 import pytest
 
 import bwc
 
-FIXTURES = pathlib.Path(__file__).resolve().parents[3] / "fixtures"
-KHARAZ = str(FIXTURES / "kharaz.toml")
 FIT = "DSA NDBWSHCCM"
 
 
@@ -27,22 +24,23 @@ def entries(path):
     return len(pathlib.Path(path).read_text().splitlines()) - 1
 
 
-def test_a_coverage_study_resumes_to_the_uninterrupted_study(tmp_path):
-    whole = bwc.coverage(KHARAZ, replicates=5, fit=FIT)
+def test_a_coverage_study_resumes_to_the_uninterrupted_study(tmp_path, quick):
+    kharaz = quick("kharaz.toml")
+    whole = bwc.coverage(kharaz, replicates=5, fit=FIT)
     checkpoint = tmp_path / "coverage.jsonl"
-    first = bwc.coverage(KHARAZ, replicates=5, fit=FIT, checkpoint=checkpoint)
+    first = bwc.coverage(kharaz, replicates=5, fit=FIT, checkpoint=checkpoint)
     assert first.coverage == whole.coverage
     assert cut(checkpoint, 2) == 5
-    resumed = bwc.coverage(KHARAZ, replicates=5, fit=FIT, checkpoint=str(checkpoint))
+    resumed = bwc.coverage(kharaz, replicates=5, fit=FIT, checkpoint=str(checkpoint))
     assert resumed.coverage == whole.coverage
     assert entries(checkpoint) == 5
     # The head names the command: a posterior cannot take this file.
     head = json.loads(checkpoint.read_text().splitlines()[0])
     assert head["command"] == "coverage" and head["version"] == bwc.__version__
     with pytest.raises(bwc.BwcError, match=r"a checkpoint of `coverage`, not of `posterior`"):
-        bwc.posterior(KHARAZ, fit=FIT, checkpoint=checkpoint)
+        bwc.posterior(kharaz, fit=FIT, checkpoint=checkpoint)
     with pytest.raises(bwc.BwcError, match=r"checkpoint = 3 is not admissible: a file path"):
-        bwc.coverage(KHARAZ, replicates=1, fit=FIT, checkpoint=3)
+        bwc.coverage(kharaz, replicates=1, fit=FIT, checkpoint=3)
 
 
 def posterior_equal(a, b):
@@ -53,14 +51,15 @@ def posterior_equal(a, b):
         assert np.array_equal(a.samples[k], b.samples[k]), k
 
 
-def test_a_posterior_resumes_to_the_uninterrupted_posterior(tmp_path, recwarn):
+def test_a_posterior_resumes_to_the_uninterrupted_posterior(tmp_path, quick, recwarn):
+    kharaz = quick("kharaz.toml")
     sizes = {"fit": FIT, "particles": 32, "runs": 3}
-    whole = bwc.posterior(KHARAZ, **sizes)
+    whole = bwc.posterior(kharaz, **sizes)
     checkpoint = tmp_path / "posterior.jsonl"
-    bwc.posterior(KHARAZ, **sizes, checkpoint=checkpoint)
+    bwc.posterior(kharaz, **sizes, checkpoint=checkpoint)
     # The reference search and three runs.
     assert cut(checkpoint, 2) == 4
-    posterior_equal(bwc.posterior(KHARAZ, **sizes, checkpoint=checkpoint), whole)
+    posterior_equal(bwc.posterior(kharaz, **sizes, checkpoint=checkpoint), whole)
 
 
 def chain_scenes(count):
@@ -100,12 +99,13 @@ def test_many_chains_resume_to_the_uninterrupted_study(tmp_path):
     assert entries(checkpoint) == 10
 
 
-def test_many_fits_resume_to_the_uninterrupted_fits(tmp_path, recwarn):
-    whole = bwc.identify(KHARAZ, seed=2)
+def test_many_fits_resume_to_the_uninterrupted_fits(tmp_path, quick, recwarn):
+    kharaz = quick("kharaz.toml")
+    whole = bwc.identify(kharaz, seed=2)
     checkpoint = tmp_path / "run.jsonl"
-    bwc.identify(KHARAZ, seed=2, checkpoint=checkpoint)
+    bwc.identify(kharaz, seed=2, checkpoint=checkpoint)
     assert cut(checkpoint, 1) == 4
-    resumed = bwc.identify(KHARAZ, seed=2, checkpoint=checkpoint)
+    resumed = bwc.identify(kharaz, seed=2, checkpoint=checkpoint)
     for a, b in zip(whole.fits, resumed.fits):
         a.pop("wall_s"), b.pop("wall_s")
         assert a == b

@@ -76,10 +76,10 @@ def cut(path, keep):
     pathlib.Path(path).write_text("".join(lines[:1 + keep]) + lines[1 + keep][:30])
 
 
-def test_studies_on_workers_resume_from_their_checkpoints(client, tmp_path):
+def test_studies_on_workers_resume_from_their_checkpoints(client, tmp_path, quick):
     import bwc.dask
 
-    config = str(FIXTURES / "golf.toml")
+    config = quick("golf.toml")
     fit = "Golf NDBWSHCCM"
     local = bwc.coverage(config, replicates=6, fit=fit)
     checkpoint = tmp_path / "coverage.jsonl"
@@ -139,7 +139,7 @@ if __name__ == "__main__":
 """
 
 
-def test_a_coverage_study_whose_client_is_killed_resumes_on_workers(client, tmp_path):
+def test_a_coverage_study_whose_client_is_killed_resumes_on_workers(client, tmp_path, quick):
     import os
     import signal
     import subprocess
@@ -148,7 +148,7 @@ def test_a_coverage_study_whose_client_is_killed_resumes_on_workers(client, tmp_
 
     import bwc.dask
 
-    config = str(FIXTURES / "golf.toml")
+    config = quick("golf.toml")
     fit = "Golf NDBWSHCCM"
     checkpoint = tmp_path / "coverage.jsonl"
     script = tmp_path / "study.py"

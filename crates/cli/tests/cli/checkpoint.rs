@@ -8,8 +8,20 @@ use std::process::Stdio;
 
 const FIT: &str = "DSA NDBWSHCCM";
 
-fn kharaz() -> String {
-    fixtures().join("kharaz.toml").to_str().unwrap().to_owned()
+/// `fixtures/kharaz.toml` in `dir` with two starts per fit: what is checked is how a study
+/// resumes, which does not depend on the search's budget (a quarter of the default's time).
+fn kharaz(dir: &Path) -> String {
+    let data = fixtures().join("data");
+    let text = std::fs::read_to_string(fixtures().join("kharaz.toml"))
+        .unwrap()
+        .replace("data = \"data/", &format!("data = \"{}/", data.display()))
+        .replace(
+            "[fit.bounds]",
+            "[fit.optimizer]\nstarts = 2\nmax_starts = 2\n\n[fit.bounds]",
+        );
+    let path = dir.join("kharaz.toml");
+    std::fs::write(&path, text).unwrap();
+    path.to_str().unwrap().to_owned()
 }
 
 /// The checkpoint at `path` as a kill while writing leaves it: its head, `keep` entries and
@@ -42,7 +54,7 @@ fn entries(path: &Path) -> usize {
 fn a_killed_coverage_study_resumes_to_the_uninterrupted_result() {
     let dir = scratch("checkpoint-coverage");
     let checkpoint = dir.join("coverage.jsonl");
-    let config = kharaz();
+    let config = kharaz(&dir);
     let args = [
         "coverage",
         &config,
@@ -113,7 +125,7 @@ fn timeless(out: &Output, key: &str) -> serde_json::Value {
 fn a_posterior_resumed_from_some_runs_is_the_uninterrupted_posterior() {
     let dir = scratch("checkpoint-posterior");
     let checkpoint = dir.join("posterior.jsonl");
-    let config = kharaz();
+    let config = kharaz(&dir);
     let args = [
         "posterior",
         &config,
@@ -144,7 +156,7 @@ fn a_posterior_resumed_from_some_runs_is_the_uninterrupted_posterior() {
 fn a_checkpoint_of_another_command_or_version_is_refused() {
     let dir = scratch("checkpoint-refused");
     let checkpoint = dir.join("c.jsonl");
-    let config = kharaz();
+    let config = kharaz(&dir);
     let path = checkpoint.to_str().unwrap();
     let coverage = [
         "coverage",
@@ -185,7 +197,7 @@ fn a_checkpoint_of_another_command_or_version_is_refused() {
 fn a_run_of_many_fits_resumes_to_the_uninterrupted_fits() {
     let dir = scratch("checkpoint-run");
     let checkpoint = dir.join("run.jsonl");
-    let config = kharaz();
+    let config = kharaz(&dir);
     let plain = ["run", &config, "--json", "--seed", "4"];
     let args = [&plain[..], &["--checkpoint", checkpoint.to_str().unwrap()]].concat();
     let whole = timeless(&identify(&plain), "fits");
