@@ -1,7 +1,11 @@
-//! The application layer: the contact element of scenes ([`element`]) and generated scenes and
-//! configs ([`fuzz`]).
+//! The application layer: the contact element of scenes ([`element`]), generated scenes and
+//! configs ([`fuzz`]), scene files, output folders, summaries and charts.
 //!
 //! One binary: each test binary compiles the generic solver anew.
 
 mod element;
 mod fuzz;
+mod outdir;
+mod output;
+mod plot;
+mod scene;

@@ -76,8 +76,9 @@ pub use identifiability::{analyse, Identifiability, WEAK};
 pub use loops::{loop_cost, Curve, LawSpace, Loop, LoopObjective, LAW_NAMES};
 pub use objective::{predict, Costs, Objective, Prediction, TermOrder, Weights, FAILED};
 pub use posterior::{
-    band as posterior_band, marginals, run_spread, Marginal, NoiseScale, PosteriorBandPoint,
-    PosteriorProblem, PosteriorSpec, Prior, RunSpread, REFERENCE_SD, RUN_SPREAD,
+    band as posterior_band, disagreement, marginals, run_spread, Marginal, NoiseScale,
+    PosteriorBandPoint, PosteriorProblem, PosteriorSpec, Prior, RunSpread, REFERENCE_SD,
+    RUN_SPREAD,
 };
 pub use problem::CubeProblem;
 pub use smc::{

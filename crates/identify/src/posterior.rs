@@ -488,6 +488,33 @@ pub struct RunSpread {
 /// 16.
 pub const RUN_SPREAD: f64 = 0.05;
 
+/// The warning that the runs of the posterior of fit `name` disagree on the marginals whose
+/// [`RunSpread::error`] exceeds [`RUN_SPREAD`], naming each with its runs' medians and the error
+/// in percent; `None` if they agree on all.
+pub fn disagreement(name: &str, runs: usize, spread: &[RunSpread]) -> Option<String> {
+    let apart: Vec<String> = spread
+        .iter()
+        .filter(|r| r.error > RUN_SPREAD)
+        .map(|r| {
+            format!(
+                "{} (medians {:.4e} to {:.4e}; the pooled median's Monte Carlo error {:.0} % of \
+                 its 95 % interval)",
+                r.name,
+                r.medians[0],
+                r.medians[1],
+                100.0 * r.error
+            )
+        })
+        .collect();
+    (!apart.is_empty()).then(|| {
+        format!(
+            "\"{name}\": the {runs} runs disagree on {}: the posterior has regions each run \
+             weighs differently, and the pooled marginals carry that Monte Carlo error; raise runs",
+            apart.join(", ")
+        )
+    })
+}
+
 /// The [`RunSpread`] of every coordinate of a pooled sample (empty for a single run).
 pub fn run_spread<I: Input + Sync>(
     problem: &PosteriorProblem<'_, I>,

@@ -8,8 +8,8 @@ use band_design::task;
 use bw_models::input::Zero;
 use bw_models::Settings;
 use bwc_identify::{
-    run_spread, sample, Dataset, PosteriorProblem, PosteriorSpec, SmcReference, SmcSettings,
-    Weights, RUN_SPREAD,
+    disagreement, run_spread, sample, Dataset, PosteriorProblem, PosteriorSpec, RunSpread,
+    SmcReference, SmcSettings, Weights, RUN_SPREAD,
 };
 
 /// A posterior with one region (κ and σ_b of the synthetic design, the CoRs of the truth to four
@@ -44,4 +44,23 @@ fn runs_of_a_posterior_with_one_region_agree_on_its_marginals() {
         );
         assert!(r.error < RUN_SPREAD / 2.0, "{r:?}");
     }
+}
+
+fn spread(name: &'static str, error: f64) -> RunSpread {
+    RunSpread {
+        name,
+        medians: [1.0, 2.0],
+        error,
+    }
+}
+
+/// Only the quantities whose pooled median's Monte Carlo error exceeds the threshold are
+/// named, in one warning; none (an error at the threshold included), no warning.
+#[test]
+fn the_runs_disagreement_names_only_the_quantities_it_concerns() {
+    let w = disagreement("F", 4, &[spread("B_b", 0.17), spread("kappa", 0.01)]).unwrap();
+    assert!(w.starts_with("\"F\": the 4 runs disagree on B_b (medians 1.0000e0 to 2.0000e0;"));
+    assert!(w.contains("error 17 % of its 95 % interval") && !w.contains("kappa"));
+    assert!(w.ends_with("raise runs"), "{w}");
+    assert_eq!(disagreement("F", 4, &[spread("kappa", RUN_SPREAD)]), None);
 }

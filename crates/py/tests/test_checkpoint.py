@@ -3,6 +3,7 @@ study, a posterior and many chains, each cut part way (a partial last line inclu
 while writing leaves it) and run again with the same file."""
 
 import json
+import pathlib
 
 import numpy as np
 import pytest

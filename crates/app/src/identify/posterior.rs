@@ -11,9 +11,9 @@ use crate::config::{Config, FitConfig};
 use crate::corner::CornerColumn;
 use crate::AppError;
 use bwc_identify::{
-    fit, marginals, pool, posterior_band, run_spread, smc_run, FitResult, Marginal, NoiseScale,
-    Objective, PosteriorBandPoint, PosteriorProblem, PosteriorSpec, Prior, RunSpread, SmcReference,
-    SmcRun, SmcSettings, Stage, RUN_SPREAD,
+    disagreement, fit, marginals, pool, posterior_band, run_spread, smc_run, FitResult, Marginal,
+    NoiseScale, Objective, PosteriorBandPoint, PosteriorProblem, PosteriorSpec, Prior,
+    SmcReference, SmcRun, SmcSettings, Stage,
 };
 use rayon::prelude::*;
 use serde_json::{json, Value};
@@ -280,31 +280,6 @@ pub fn posterior_from_runs(
         curve,
         uses: (f.weights.j1 > 0.0, f.weights.j2 > 0.0),
         warnings,
-    })
-}
-
-/// The warning that the runs disagree on some marginals ([`RUN_SPREAD`]), if they do.
-fn disagreement(name: &str, runs: usize, spread: &[RunSpread]) -> Option<String> {
-    let apart: Vec<String> = spread
-        .iter()
-        .filter(|r| r.error > RUN_SPREAD)
-        .map(|r| {
-            format!(
-                "{} (medians {:.4e} to {:.4e}; the pooled median's Monte Carlo error {:.0} % of \
-                 its 95 % interval)",
-                r.name,
-                r.medians[0],
-                r.medians[1],
-                100.0 * r.error
-            )
-        })
-        .collect();
-    (!apart.is_empty()).then(|| {
-        format!(
-            "\"{name}\": the {runs} runs disagree on {}: the posterior has regions each run \
-             weighs differently, and the pooled marginals carry that Monte Carlo error; raise runs",
-            apart.join(", ")
-        )
     })
 }
 
@@ -744,27 +719,3 @@ pub const BAND_COLUMNS: [&str; 11] = [
     "t_d_new_lo",
     "t_d_new_hi",
 ];
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn spread(name: &'static str, error: f64) -> RunSpread {
-        RunSpread {
-            name,
-            medians: [1.0, 2.0],
-            error,
-        }
-    }
-
-    /// Only the quantities whose pooled median's Monte Carlo error exceeds the threshold are
-    /// named, in one warning; none, no warning.
-    #[test]
-    fn the_runs_disagreement_names_only_the_quantities_it_concerns() {
-        let w = disagreement("F", 4, &[spread("B_b", 0.17), spread("kappa", 0.01)]).unwrap();
-        assert!(w.starts_with("\"F\": the 4 runs disagree on B_b (medians 1.0000e0 to 2.0000e0;"));
-        assert!(w.contains("error 17 % of its 95 % interval") && !w.contains("kappa"));
-        assert!(w.ends_with("raise runs"), "{w}");
-        assert_eq!(disagreement("F", 4, &[spread("kappa", RUN_SPREAD)]), None);
-    }
-}

@@ -1,0 +1,38 @@
+//! Scene files: speed ranges and arrays of base parameters.
+
+use bw_models::ModelKind;
+use bwc_app::scene::Scene;
+use std::path::Path;
+
+const BASE: &str = "model = \"shccm\"\n[[base]]\nB_b = 1\nGamma_b = 0\nkappa = 0.5\nsigma_b = 0.1\nn = 1\np = 1\n[[base]]\nname = \"second\"\nmodel = \"mcm\"\nB_b = 1\nGamma_b = 0\nkappa = 0.5\nsigma_b = 0.1\nn = 1\np = 1\n";
+
+#[test]
+fn speed_ranges_and_base_arrays() {
+    let log = Scene::parse(
+        Path::new("s.toml"),
+        &format!("v0 = {{ from = 0.1, to = 10.0, count = 3, spacing = \"log\" }}\n{BASE}"),
+    )
+    .unwrap();
+    assert_eq!(log.speeds.len(), 3);
+    assert!(
+        (log.speeds[1] - 1.0).abs() < 1e-15
+            && log.speeds[0] == 0.1
+            && (log.speeds[2] - 10.0).abs() < 1e-14
+    );
+    let lin = Scene::parse(
+        Path::new("s.toml"),
+        &format!("v0 = {{ from = 1, to = 3, count = 3 }}\n{BASE}"),
+    )
+    .unwrap();
+    assert_eq!(lin.speeds, vec![1.0, 2.0, 3.0]);
+    assert_eq!(lin.systems.len(), 2);
+    assert_eq!(lin.systems[0].kind, ModelKind::Shccm);
+    assert_eq!(lin.systems[1].kind, ModelKind::Mcm);
+    assert_eq!(lin.systems[1].name.as_deref(), Some("second"));
+    let e = Scene::parse(
+        Path::new("s.toml"),
+        &format!("v0 = {{ from = 1, to = 3, count = 0 }}\n{BASE}"),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("v0.count"), "{e}");
+}
