@@ -182,6 +182,9 @@ pub mod cor {
 }
 
 pub mod stress;
+#[cfg(test)]
+mod stress_sample;
+
 /// The truths of the coverage studies on the baseball design (`fixtures/baseball_wood.toml`):
 /// the default fits of the NDBWSHCCM and the NDBWMCM to the measured data (BENCHMARKS.md) and
 /// their residual standard deviations, `u = 0`.
@@ -206,4 +209,28 @@ pub fn baseball_truths() -> [(bw_models::BaseParams, f64); 2] {
             0.0222,
         ),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::Cell;
+
+    #[test]
+    fn side_by_side_times_every_closure_in_every_round() {
+        // A cheap and a dearer closure: each is called once to size its batch, then in seven
+        // rounds of batches; the medians come back in the closures' order.
+        let (cheap, dear) = (Cell::new(0u64), Cell::new(0u64));
+        let times = side_by_side(&mut [
+            Box::new(|| cheap.set(cheap.get() + 1)),
+            Box::new(|| {
+                dear.set(dear.get() + 1);
+                std::thread::sleep(std::time::Duration::from_millis(2));
+            }),
+        ]);
+        assert_eq!(times.len(), 2);
+        assert!(dear.get() >= 8 && cheap.get() > dear.get());
+        // The sleeping closure takes at least its 2 ms per call.
+        assert!(times[1] >= 2e-3 && times[0] > 0.0 && times[0] < times[1]);
+    }
 }

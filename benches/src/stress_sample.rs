@@ -1,10 +1,7 @@
-//! A small sample of the stress sweep, as tests (the full one runs by hand: see STABILITY.md),
-//! and the side-by-side timer of the reports.
+//! A small sample of the stress sweep, as tests (the full one runs by hand: see STABILITY.md).
 
+use crate::stress::{run_with, sample, settings, sweep, Class, Outcome};
 use bw_models::{Settings, Stiffness};
-use bwc_benches::side_by_side;
-use bwc_benches::stress::{run_with, sample, settings, sweep, Class, Outcome};
-use std::cell::Cell;
 use std::sync::OnceLock;
 
 /// The sample both tests read, seed 7's first 300 cases with the default settings, computed once.
@@ -66,7 +63,7 @@ fn stress_sample_is_classified() {
 /// sweep).
 #[test]
 fn stress_sample_with_the_series_path() {
-    use bwc_benches::stress::sweep_with;
+    use crate::stress::sweep_with;
     let series = seed_seven();
     let plain = sweep_with(
         7,
@@ -99,28 +96,10 @@ fn stress_sample_with_the_series_path() {
 /// scan an empty interval forever. It now ends in a class (here: the step size underflows).
 #[test]
 fn a_boundary_scan_at_the_end_of_a_step_terminates() {
-    let o = bwc_benches::stress::run(&sample(1, 69494));
+    let o = crate::stress::run(&sample(1, 69494));
     assert!(
         !matches!(o.class, Class::EnergyCreated(_) | Class::Other(_)),
         "{:?}",
         o.class
     );
-}
-
-#[test]
-fn side_by_side_times_every_closure_in_every_round() {
-    // A cheap and a dearer closure: each is called once to size its batch, then in seven
-    // rounds of batches; the medians come back in the closures' order.
-    let (cheap, dear) = (Cell::new(0u64), Cell::new(0u64));
-    let times = side_by_side(&mut [
-        Box::new(|| cheap.set(cheap.get() + 1)),
-        Box::new(|| {
-            dear.set(dear.get() + 1);
-            std::thread::sleep(std::time::Duration::from_millis(2));
-        }),
-    ]);
-    assert_eq!(times.len(), 2);
-    assert!(dear.get() >= 8 && cheap.get() > dear.get());
-    // The sleeping closure takes at least its 2 ms per call.
-    assert!(times[1] >= 2e-3 && times[0] > 0.0 && times[0] < times[1]);
 }
