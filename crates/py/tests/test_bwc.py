@@ -370,3 +370,17 @@ def test_unit_slips_warn_from_python():
         bwc.cor("shccm", law, [2150.0, 3030.0])
     with pytest.warns(bwc.BwcWarning, match=r"if grams were meant"):
         bwc.cor("shccm", dict(law, m=145.0), [2.0])
+
+
+def test_errors_and_warnings_are_the_packages_and_pickle():
+    """BwcError and BwcWarning live in module ``bwc``, where they are imported from: they print
+    as ``bwc.BwcError`` and cross processes (Dask workers, pytest-xdist) by pickle."""
+    import pickle
+
+    assert bwc.BwcError.__module__ == "bwc" and bwc.BwcWarning.__module__ == "bwc"
+    for cls in (bwc.BwcError, bwc.BwcWarning):
+        back = pickle.loads(pickle.dumps(cls("what went wrong")))
+        assert type(back) is cls and back.args == ("what went wrong",)
+    with pytest.raises(bwc.BwcError) as caught:
+        bwc.cor({"model": "shccm"}, 1.0)
+    assert pickle.loads(pickle.dumps(caught.value)).args == caught.value.args
