@@ -401,7 +401,9 @@ pub(crate) fn si_states(scene: &Scene) -> bool {
 }
 
 /// The unit of every JSON key of a run and of every CSV column (`"1"`: dimensionless; the
-/// nondimensional quantities are in the scales of Table 1).
+/// nondimensional quantities are in the scales of Table 1). A unit given for an object holds for
+/// all its entries (`nondimensional`); the map under an array's key is that of each element
+/// (`bounces`).
 /// `time_unit`: that of `t_s` of every run ([`crate::simulate::Tally::time_unit`]; `None`
 /// without runs: s).
 pub fn units(scene: &Scene, time_unit: Option<&str>) -> serde_json::Value {
@@ -409,6 +411,9 @@ pub fn units(scene: &Scene, time_unit: Option<&str>) -> serde_json::Value {
     let t = time_unit.unwrap_or("s");
     let si = si_states(scene);
     let (m, ms, n) = if si { ("m", "m/s", "N") } else { (nd, nd, nd) };
+    let bounces = serde_json::json!({"n": "count", "t_contact": "s", "v_in": "m/s",
+        "v_out": "m/s", "e": "1", "t_s": "s", "apex": "m", "interval": "s", "x_s": "m",
+        "outcome": "text"});
     serde_json::json!({
         "runs": {"v0": "m/s", "e": "1", "t_s": t, "t_d": "s", "T_c": "s", "stiff_from": t,
             "rest": {"t": t, "x": m, "F": n, "u": n}, "nondimensional": "1",
@@ -417,15 +422,17 @@ pub fn units(scene: &Scene, time_unit: Option<&str>) -> serde_json::Value {
             "rtol": "1", "e_error": "1", "t_s_error": t, "check": "text",
             "tighter_failed": {"rtol": "1", "out_of_steps": "true/false"}, "arithmetic": "text",
             "double_double_declined": "text", "phase": "true/false",
-            "interpolation": {"degree": "count", "estimate": "1", "from": "m/s", "to": "m/s"}},
+            "interpolation": {"degree": "count", "estimate": "1", "from": "m/s", "to": "m/s"},
+            "name": "text", "model": "text", "outcome": "text", "separated": "true/false",
+            "error": "text", "sweep_gave_up": "text", "time_unit": "text",
+            "bounces": bounces},
         "sweep.csv": {"v_0": "m/s", "e": "1", "t_d": "s", "t_s": t, "separated": "true/false",
             "name": "text", "outcome": "text", "source": "text"},
         "trajectory.csv": {"v_0": "m/s", "name": "text", "t": t, "x": m, "v": ms, "u": n,
             "F": n, "z": m, "r": m, "y": m, "x_m_1": "m", "x_m_2": "m", "x_m": "m",
             "v_m_1": "m/s", "v_m_2": "m/s", "v_m": "m/s", "u_1": "N", "u_2": "N"},
         "loop.csv": {"v_0": "m/s", "x": m, "F": n, "name": "text"},
-        "bounces.csv": {"n": "count", "t_contact": "s", "v_in": "m/s", "v_out": "m/s", "e": "1",
-            "t_s": "s", "apex": "m", "interval": "s", "x_s": "m", "outcome": "text"},
+        "bounces.csv": bounces,
     })
 }
 
