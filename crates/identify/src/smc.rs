@@ -467,7 +467,10 @@ fn moves_for(a: f64, max: usize) -> usize {
     ((0.01f64.ln() / (1.0 - a).ln()).ceil() as usize).clamp(2, max)
 }
 
-/// Runs SMC run `index` of `seed` on `target`, tempering from `reference`.
+/// Runs SMC run `index` of `seed` on `target`, tempering from `reference`: drawn from the
+/// reference ([`Tempering::init`]), then stage by stage the next inverse temperature and the
+/// evidence's factor ([`Tempering::reweight`]), until `beta = 1` ends the run
+/// ([`Tempering::finish`]), else resampling and Metropolis moves ([`Tempering::mutate`]).
 ///
 /// # Errors
 /// [`IdentifyError::Posterior`] for inadmissible settings, a prior sample with no admissible
@@ -480,104 +483,164 @@ pub fn run<T: Target>(
     index: usize,
 ) -> Result<SmcRun, IdentifyError> {
     settings.validate()?;
-    let (n, d) = (settings.particles, target.dim());
-    reference.validate(d)?;
-    let counter = AtomicU64::new(0);
-    let run = index as u64;
-    let mut x: Vec<Vec<f64>> = (0..n)
-        .map(|i| reference.draw(d, &mut stream(seed, [run, 0, 0, i as u64])))
-        .collect();
-    let mut t: Vec<f64> = x
-        .par_iter()
-        .map(|s| tempered(target, s, reference.log_density(s), &counter))
-        .collect();
-    let admissible = t.iter().filter(|v| **v > f64::NEG_INFINITY).count();
-    if admissible < 2 {
-        return Err(IdentifyError::Posterior {
-            reason: format!(
-                "{admissible} of {n} points drawn from the prior have a finite likelihood: \
-                 widen the bounds, or check the data and the input"
-            ),
-        });
-    }
-    let (mut beta, mut log_z, mut scale) = (0.0, 0.0, 2.38 / (d.max(1) as f64).sqrt());
-    let mut stages = Vec::new();
+    reference.validate(target.dim())?;
+    let mut run = Tempering::init(target, settings, reference, (seed, index))?;
     loop {
-        if stages.len() >= settings.max_stages {
+        let w = run.reweight()?;
+        if run.beta >= 1.0 {
+            return Ok(run.finish(w));
+        }
+        run.mutate(&w);
+    }
+}
+
+/// A run between stages: its particles and their tempered log densities, the inverse
+/// temperature, the log evidence so far and the proposal's scale.
+struct Tempering<'a, T> {
+    target: &'a T,
+    settings: &'a SmcSettings,
+    reference: &'a SmcReference,
+    /// The study's seed and the run's index, which name every random stream of the run.
+    seed: u64,
+    index: usize,
+    x: Vec<Vec<f64>>,
+    t: Vec<f64>,
+    beta: f64,
+    log_z: f64,
+    scale: f64,
+    stages: Vec<Stage>,
+    counter: AtomicU64,
+}
+
+impl<'a, T: Target> Tempering<'a, T> {
+    /// The particles drawn from the reference, at `beta = 0`.
+    fn init(
+        target: &'a T,
+        settings: &'a SmcSettings,
+        reference: &'a SmcReference,
+        (seed, index): (u64, usize),
+    ) -> Result<Self, IdentifyError> {
+        let (n, d) = (settings.particles, target.dim());
+        let counter = AtomicU64::new(0);
+        let x: Vec<Vec<f64>> = (0..n)
+            .map(|i| reference.draw(d, &mut stream(seed, [index as u64, 0, 0, i as u64])))
+            .collect();
+        let t: Vec<f64> = x
+            .par_iter()
+            .map(|s| tempered(target, s, reference.log_density(s), &counter))
+            .collect();
+        let admissible = t.iter().filter(|v| **v > f64::NEG_INFINITY).count();
+        if admissible < 2 {
             return Err(IdentifyError::Posterior {
                 reason: format!(
-                    "the tempering reached beta = {beta:.3e} after max_stages = {} stages: \
-                     raise max_stages or particles, or give the noise a larger scale",
-                    settings.max_stages
+                    "{admissible} of {n} points drawn from the prior have a finite likelihood: \
+                     widen the bounds, or check the data and the input"
                 ),
             });
         }
-        let live = t.iter().filter(|v| **v > f64::NEG_INFINITY).count() as f64;
-        let delta = next_step(&t, beta, settings.ess * live);
-        let logw: Vec<f64> = t.iter().map(|v| delta * v).collect();
+        Ok(Tempering {
+            target,
+            settings,
+            reference,
+            seed,
+            index,
+            x,
+            t,
+            beta: 0.0,
+            log_z: 0.0,
+            scale: 2.38 / (d.max(1) as f64).sqrt(),
+            stages: Vec::new(),
+            counter,
+        })
+    }
+
+    /// The next stage's inverse temperature (the step that keeps the effective sample size at
+    /// `ess` of the live particles, or what is left to 1) and the evidence's factor over it;
+    /// the particles' normalised weights at the new temperature.
+    fn reweight(&mut self) -> Result<Vec<f64>, IdentifyError> {
+        if self.stages.len() >= self.settings.max_stages {
+            return Err(IdentifyError::Posterior {
+                reason: format!(
+                    "the tempering reached beta = {:.3e} after max_stages = {} stages: \
+                     raise max_stages or particles, or give the noise a larger scale",
+                    self.beta, self.settings.max_stages
+                ),
+            });
+        }
+        let live = self.t.iter().filter(|v| **v > f64::NEG_INFINITY).count() as f64;
+        let delta = next_step(&self.t, self.beta, self.settings.ess * live);
+        let logw: Vec<f64> = self.t.iter().map(|v| delta * v).collect();
         let total = log_sum_exp(logw.iter().copied());
-        log_z += total - (n as f64).ln();
-        beta = if delta >= 1.0 - beta {
+        self.log_z += total - (self.t.len() as f64).ln();
+        self.beta = if delta >= 1.0 - self.beta {
             1.0
         } else {
-            beta + delta
+            self.beta + delta
         };
-        let w: Vec<f64> = logw.iter().map(|v| (v - total).exp()).collect();
-        if beta >= 1.0 {
-            stages.push(Stage {
-                beta,
-                acceptance: f64::NAN,
-                moves: 0,
-            });
-            return Ok(SmcRun {
-                index,
-                particles: x,
-                weights: w,
-                log_likelihood: Vec::new(),
-                log_evidence: log_z,
-                stages,
-                evaluations: counter.load(Ordering::Relaxed),
-            }
-            .with_likelihoods(target));
+        Ok(logw.iter().map(|v| (v - total).exp()).collect())
+    }
+
+    /// The run at `beta = 1`: its weighted particles, evidence and stages.
+    fn finish(mut self, weights: Vec<f64>) -> SmcRun {
+        self.stages.push(Stage {
+            beta: self.beta,
+            acceptance: f64::NAN,
+            moves: 0,
+        });
+        SmcRun {
+            index: self.index,
+            particles: self.x,
+            weights,
+            log_likelihood: Vec::new(),
+            log_evidence: self.log_z,
+            stages: self.stages,
+            evaluations: self.counter.load(Ordering::Relaxed),
         }
-        let cov = covariance(&x, &w);
-        let stage = stages.len() as u64 + 1;
+        .with_likelihoods(self.target)
+    }
+
+    /// One stage's resampling (systematic, on the weights `w`) and Metropolis passes, with
+    /// proposals shaped by the weighted population's covariance: as many passes as a particle
+    /// needs to move once with probability 0.99 at the first pass's acceptance.
+    fn mutate(&mut self, w: &[f64]) {
+        let (n, seed, run) = (self.t.len(), self.seed, self.index as u64);
+        let cov = covariance(&self.x, w);
+        let stage = self.stages.len() as u64 + 1;
         let u: f64 = stream(seed, [run, stage, u64::MAX, 0]).random();
-        let picks = systematic(&w, n, u);
-        x = picks.iter().map(|&i| x[i].clone()).collect();
-        t = picks.iter().map(|&i| t[i]).collect();
-        let (mut moves, mut accepted, mut k) = (settings.max_moves, 0, 0);
+        let picks = systematic(w, n, u);
+        self.x = picks.iter().map(|&i| self.x[i].clone()).collect();
+        self.t = picks.iter().map(|&i| self.t[i]).collect();
+        let (mut moves, mut accepted, mut k) = (self.settings.max_moves, 0, 0);
         while k < moves {
-            let l = scaled(&cov, scale);
-            let snapshot = x.clone();
+            let l = scaled(&cov, self.scale);
+            let snapshot = self.x.clone();
             let proposal = Proposal {
                 l: &l,
                 snapshot: &snapshot,
-                gamma: scale / 2f64.sqrt(),
+                gamma: self.scale / 2f64.sqrt(),
             };
             let rng_of = |i: usize| stream(seed, [run, stage, k as u64, i as u64]);
             let now = metropolis(
-                (target, reference),
-                (&mut x, &mut t),
+                (self.target, self.reference),
+                (&mut self.x, &mut self.t),
                 &proposal,
-                beta,
+                self.beta,
                 rng_of,
-                &counter,
+                &self.counter,
             );
             let a = now as f64 / n as f64;
             if k == 0 {
-                moves = moves_for(a, settings.max_moves);
+                moves = moves_for(a, self.settings.max_moves);
             }
             accepted += now;
             // Towards an acceptance of about 0.25 (Roberts & Rosenthal's 0.234), pass by pass:
             // the population's acceptance, not a particle's history, sets the next pass.
-            scale = (scale * (a - 0.25).exp()).clamp(1e-4, 3.0);
+            self.scale = (self.scale * (a - 0.25).exp()).clamp(1e-4, 3.0);
             k += 1;
         }
-        let acceptance = accepted as f64 / (n * moves) as f64;
-        stages.push(Stage {
-            beta,
-            acceptance,
+        self.stages.push(Stage {
+            beta: self.beta,
+            acceptance: accepted as f64 / (n * moves) as f64,
             moves,
         });
     }
