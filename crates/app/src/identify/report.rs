@@ -109,13 +109,14 @@ pub(crate) fn search_warnings(
         ));
     }
     let values = f.space.quantities(s);
-    let free = f.space.free_names();
-    for name in at_bound {
-        let i = bwc_identify::NAMES
-            .iter()
-            .position(|n| n == name)
-            .unwrap_or(0);
-        let j = free.iter().position(|n| n == name).unwrap_or(0);
+    // A searched quantity by its position in the search (`j`) and among the quantities (`i`):
+    // a comparison law's parameters have names of their own in a Bouc-Wen slot.
+    let names = f.space.free_names();
+    for (j, &i) in f.space.free_indices().iter().enumerate() {
+        let name = names[j];
+        if !at_bound.contains(&name) {
+            continue;
+        }
         let (lo, hi) = f.space.bounds(i).unwrap_or((f64::NAN, f64::NAN));
         let value = values[i];
         let upper = s[j] >= 0.5;

@@ -498,6 +498,36 @@ fn identify_warns_about_data_and_bounds() {
     assert_eq!(f["warnings"].as_array().unwrap().len(), 2, "{f}");
 }
 
+/// A comparison law's parameter on a bound is named with its own value and bound (its slot
+/// among the Bouc-Wen quantities is not `B_b`'s): the tennis data want more damping than
+/// Hunt-Crossley's `alpha <= 0.01 s/m`.
+#[test]
+fn a_comparison_law_on_a_bound_is_reported_with_its_own_value() {
+    let dir = scratch("identify-family-bound");
+    let config = dir.join("fit.toml");
+    let data = fixtures().join("data/real/tennis_v0_e.csv");
+    std::fs::write(
+        &config,
+        format!(
+            "[[fit]]\nname = \"HC\"\nmodel = \"hunt-crossley\"\ndata = \"{}\"\n\
+             [fit.bounds]\nalpha = [0.0, 0.01]\n",
+            data.display()
+        ),
+    )
+    .unwrap();
+    let out = identify(&["run", config.to_str().unwrap(), "--json"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr
+            .contains("\"HC\": alpha = 0.01 is on its upper bound 0.01: widen [fit.bounds].alpha"),
+        "{stderr}"
+    );
+    assert_eq!(
+        json(&out)["fits"][0]["at_bound"],
+        serde_json::json!(["alpha"])
+    );
+}
+
 /// A coverage study is a set of independent replicates: the same on any thread count, and a
 /// study split into shards (`--first-seed`, `--replicates`) gives the same replicates.
 #[test]
