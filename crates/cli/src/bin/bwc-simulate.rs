@@ -80,23 +80,11 @@ fn run(
         }
         None => None,
     };
-    let total = (scene.systems.len() * scene.speeds.len().max(1)) as u64;
-    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} impacts, eta {eta}")
-            .expect("valid template"),
+    let progress = Progress::new(
+        (scene.systems.len() * scene.speeds.len().max(1)) as u64,
+        json,
     );
-    let start = Instant::now();
-    let shown = AtomicBool::new(false);
-    // Shown only for runs longer than about a second, and never with --json (indicatif stays
-    // silent when stderr is not a terminal).
-    let tick = || {
-        bar.inc(1);
-        if !json && !shown.load(Ordering::Relaxed) && start.elapsed() > Duration::from_secs(1) {
-            shown.store(true, Ordering::Relaxed);
-            bar.set_draw_target(ProgressDrawTarget::stderr());
-        }
-    };
+    let tick = || progress.tick();
     let mut tally = simulate::Tally::default();
     let mut table = Table::default();
     let mut printed = match json {
@@ -127,7 +115,7 @@ fn run(
             Ok(())
         })
     })?;
-    bar.finish_and_clear();
+    progress.bar.finish_and_clear();
     notes(&scene, &tally);
     table.finish();
     if let Some(w) = printed {
@@ -140,28 +128,75 @@ fn run(
         return Err(e);
     }
     if let Some(study) = study {
-        let written = study.finish(&tally)?;
-        if scene.runs_listed_apart() {
-            eprintln!(
-                "bwc-simulate: the {} runs are in {}, one JSON object per line, not in {}: \
-                 more than [output].summary_runs = {}",
-                tally.runs,
-                output::RUNS_FILE,
-                outdir::SUMMARY,
-                scene.output.summary_runs
-            );
-        }
-        if !json {
-            for p in written {
-                eprintln!("wrote {}", p.display());
-            }
-        }
+        finish_study(study, &scene, &tally, json)?;
     }
     Ok(if tally.failed > 0 {
         exit::SOME_FAILED
     } else {
         exit::OK
     })
+}
+
+/// The progress bar of a scene's impacts: drawn only for runs longer than about a second, and
+/// never with --json (indicatif stays silent when stderr is not a terminal).
+struct Progress {
+    bar: ProgressBar,
+    start: Instant,
+    shown: AtomicBool,
+    json: bool,
+}
+
+impl Progress {
+    fn new(total: u64, json: bool) -> Self {
+        let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
+        bar.set_style(
+            ProgressStyle::with_template("{bar:40} {pos}/{len} impacts, eta {eta}")
+                .expect("valid template"),
+        );
+        Progress {
+            bar,
+            start: Instant::now(),
+            shown: AtomicBool::new(false),
+            json,
+        }
+    }
+
+    /// One impact done.
+    fn tick(&self) {
+        self.bar.inc(1);
+        let late = self.start.elapsed() > Duration::from_secs(1);
+        if !self.json && late && !self.shown.load(Ordering::Relaxed) {
+            self.shown.store(true, Ordering::Relaxed);
+            self.bar.set_draw_target(ProgressDrawTarget::stderr());
+        }
+    }
+}
+
+/// Completes the output folder: its summary and the list of files written (on stderr without
+/// --json), and where the runs went if they are listed apart from the summary.
+fn finish_study(
+    study: output::Study,
+    scene: &Scene,
+    tally: &simulate::Tally,
+    json: bool,
+) -> Result<(), AppError> {
+    let written = study.finish(tally)?;
+    if scene.runs_listed_apart() {
+        eprintln!(
+            "bwc-simulate: the {} runs are in {}, one JSON object per line, not in {}: \
+             more than [output].summary_runs = {}",
+            tally.runs,
+            output::RUNS_FILE,
+            outdir::SUMMARY,
+            scene.output.summary_runs
+        );
+    }
+    if !json {
+        for p in written {
+            eprintln!("wrote {}", p.display());
+        }
+    }
+    Ok(())
 }
 
 /// Standard output that ignores errors such as a closed pipe (`bwc-simulate ... | head` must
