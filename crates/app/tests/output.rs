@@ -53,6 +53,21 @@ fn provenance_json_is_the_tree_as_text() {
     assert!(outcomes[0].1 >= 2, "{outcomes:?}");
 }
 
+/// The runs of each of [`SCENES`] as JSON, with the scene's `"units"`.
+fn runs_and_units() -> Vec<(Value, Value)> {
+    SCENES
+        .iter()
+        .map(|text| {
+            let scene = Scene::parse(std::path::Path::new("test.toml"), text).unwrap();
+            let runs = bwc_app::simulate::run(&scene, None);
+            let summary = Summary::new(&runs, scene.sequence.is_some());
+            let unit = bwc_app::simulate::Tally::of(&scene, &runs).time_unit();
+            let json = serde_json::to_value(&summary.runs).unwrap();
+            (json, units(&scene, unit))
+        })
+        .collect()
+}
+
 /// The key paths of `v`'s objects, `prefix` first: an array's paths are its elements'.
 fn paths(v: &Value, prefix: &str, into: &mut BTreeSet<String>) {
     match v {
@@ -73,13 +88,9 @@ fn paths(v: &Value, prefix: &str, into: &mut BTreeSet<String>) {
 #[test]
 fn every_key_of_a_run_has_its_unit_and_every_unit_its_key() {
     let (mut keys, mut unit_keys, mut covering) = (BTreeSet::new(), BTreeSet::new(), Vec::new());
-    for text in SCENES {
-        let scene = Scene::parse(std::path::Path::new("test.toml"), text).unwrap();
-        let runs = bwc_app::simulate::run(&scene, None);
-        let summary = Summary::new(&runs, scene.sequence.is_some());
-        paths(&serde_json::to_value(&summary.runs).unwrap(), "", &mut keys);
-        let unit = bwc_app::simulate::Tally::of(&scene, &runs).time_unit();
-        let map = &units(&scene, unit)["runs"];
+    for (runs, units) in runs_and_units() {
+        paths(&runs, "", &mut keys);
+        let map = &units["runs"];
         paths(map, "", &mut unit_keys);
         for (k, v) in map.as_object().unwrap() {
             if v.is_string() {
@@ -121,15 +132,8 @@ fn the_reference_lists_every_key_of_a_run() {
         .flat_map(|cell| cell.split('`').skip(1).step_by(2).map(String::from))
         .collect();
     let mut keys = BTreeSet::new();
-    for text in SCENES {
-        let scene = Scene::parse(std::path::Path::new("test.toml"), text).unwrap();
-        let runs = bwc_app::simulate::run(&scene, None);
-        let summary = Summary::new(&runs, scene.sequence.is_some());
-        for run in serde_json::to_value(&summary.runs)
-            .unwrap()
-            .as_array()
-            .unwrap()
-        {
+    for (runs, _) in runs_and_units() {
+        for run in runs.as_array().unwrap() {
             keys.extend(run.as_object().unwrap().keys().cloned());
         }
     }
