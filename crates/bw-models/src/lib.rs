@@ -76,7 +76,9 @@ pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use cor::{impact, impact_at, impact_double_double};
 pub use element::{ContactElement, ElementSettings, ElementStep, Penetration, Remedy};
 pub use error::ModelError;
-pub use families::{family_impact, Family, FamilyParams, Ndkv, FAMILIES};
+pub use families::{
+    family_impact, Family, FamilyParams, FamilySpec, Ndkv, Ndthornton, ParamSpec, FAMILIES,
+};
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};
 pub use models::{
     Bwmcm, BwmcmEarlier, Bwshccm, CollisionModel, Ndbwmcm, NdbwmcmEarlier, Ndbwshccm,

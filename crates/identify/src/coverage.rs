@@ -100,6 +100,8 @@ pub fn replicate(task: &CoverageTask, seed: u64) -> Result<Replicate, IdentifyEr
     let exact = Objective::new(&task.space, &data, &Zero, settings, weights)?;
     let j1 = result.costs.j1.unwrap_or(f64::NAN);
     let points = task.speeds.len();
+    let names = task.space.free_names();
+    let on_bound: Vec<&'static str> = result.at_bound.iter().map(|&j| names[j]).collect();
     let band = uncertainty(&exact, &result.point, &result.at_bound)
         .and_then(|u| u.band(&exact, &task.speeds));
     Ok(match band {
@@ -113,7 +115,7 @@ pub fn replicate(task: &CoverageTask, seed: u64) -> Result<Replicate, IdentifyEr
             points,
             halfwidth: band.iter().map(|b| (b.e[2] - b.e[1]) / 2.0).sum::<f64>() / points as f64,
             j1,
-            at_bound: result.at_bound.clone(),
+            at_bound: on_bound.clone(),
             evaluations: result.evaluations,
             error: None,
         },
@@ -123,7 +125,7 @@ pub fn replicate(task: &CoverageTask, seed: u64) -> Result<Replicate, IdentifyEr
             points,
             halfwidth: f64::NAN,
             j1,
-            at_bound: result.at_bound.clone(),
+            at_bound: on_bound,
             evaluations: result.evaluations,
             error: Some(e.to_string()),
         },

@@ -176,8 +176,9 @@ pub struct FitResult {
     pub wall_s: f64,
     /// How the search ended.
     pub convergence: Convergence,
-    /// Free quantities on a bound of the search (see [`at_bound`]).
-    pub at_bound: Vec<&'static str>,
+    /// The coordinates of [`FitResult::point`] on a bound of the search (positions in
+    /// [`crate::Space::free_indices`]; see [`at_bound`]).
+    pub at_bound: Vec<usize>,
 }
 
 fn optimizer_error(e: argmin::core::Error) -> IdentifyError {
@@ -597,14 +598,11 @@ fn snap_to_bounds<P: CubeProblem>(problem: &P, mut x: Vec<f64>, mut cost: f64) -
     (x, cost)
 }
 
-/// The free quantities whose value lies within 1e-6 (relative to the searched interval, on
-/// its scale) of a bound of a unit-cube point.
-pub fn at_bound(names: &[&'static str], point: &[f64]) -> Vec<&'static str> {
-    names
-        .iter()
-        .zip(point)
-        .filter(|(_, s)| **s <= 1e-6 || **s >= 1.0 - 1e-6)
-        .map(|(n, _)| *n)
+/// The coordinates of a unit-cube point that lie within 1e-6 (relative to the searched
+/// interval, on its scale) of a bound, in search order.
+pub fn at_bound(point: &[f64]) -> Vec<usize> {
+    (0..point.len())
+        .filter(|&j| point[j] <= 1e-6 || point[j] >= 1.0 - 1e-6)
         .collect()
 }
 
@@ -622,7 +620,7 @@ pub fn fit<I: Input + Sync>(
     let m = minimize(objective, budget, seed, start)?;
     let (predictions, costs) = objective.evaluate(&m.point)?;
     Ok(FitResult {
-        at_bound: at_bound(&objective.space().free_names(), &m.point),
+        at_bound: at_bound(&m.point),
         params: objective.space().decode(&m.point),
         point: m.point,
         costs,

@@ -175,6 +175,12 @@ impl LawSpace {
         self.free.iter().map(|&i| LAW_NAMES[i]).collect()
     }
 
+    /// Names of the free quantities at search coordinates `coords` (as
+    /// [`crate::at_bound`] gives them).
+    pub fn names_at(&self, coords: &[usize]) -> Vec<&'static str> {
+        coords.iter().map(|&j| LAW_NAMES[self.free[j]]).collect()
+    }
+
     /// The contact law at a point of the unit cube.
     pub fn decode(&self, s: &[f64]) -> Physical {
         let v = values_at(&self.params, &self.free, s);

@@ -48,8 +48,9 @@ pub struct Space {
     params: [Param; 8],
     known: Option<KnownMassStiffness>,
     free: Vec<usize>,
-    /// A contact-law family in place of the Bouc-Wen models: its damping parameter takes the
-    /// slot of `sigma_b`, its `T_b` that of `T_b`; the other slots are fixed.
+    /// A contact-law family in place of the Bouc-Wen models: its parameter is searched in the
+    /// slot of `sigma_b`, its `T_b` in that of `T_b`; the other slots are fixed. Only
+    /// [`Space::name`] and [`Space::map`] read the slot.
     family: Option<Family>,
 }
 
@@ -89,14 +90,6 @@ impl FitModel {
             FitModel::BoucWen(map) => map.time_scale(v0),
             FitModel::Family(p) => p.time_scale(v0),
         }
-    }
-}
-
-/// An admissible damping of `family` (for checking `T_b` alone).
-fn family_default_damping(family: Family) -> f64 {
-    match family {
-        Family::HuntCrossley | Family::KelvinVoigt => 0.0,
-        _ => 1.0,
     }
 }
 
@@ -273,14 +266,14 @@ impl Space {
         Ok(space)
     }
 
-    /// The space of a contact-law family: its damping parameter ([`Family::damping_name`]) and
+    /// The space of a contact-law family: its parameter ([`Family::param_name`]) and
     /// `T_b` (s), each searched or fixed.
     ///
     /// # Errors
     /// [`IdentifyError::Bounds`] naming the parameter for bounds it does not admit, `lo > hi`,
     /// or a log scale with `lo <= 0`.
-    pub fn family(family: Family, damping: Param, t_b: Param) -> Result<Self, IdentifyError> {
-        let name = family.damping_name();
+    pub fn family(family: Family, param: Param, t_b: Param) -> Result<Self, IdentifyError> {
+        let name = family.param_name();
         let check = |name: &'static str, p: Param, test: &dyn Fn(f64) -> Result<(), ModelError>| {
             let (lo, hi, log) = match p {
                 Param::Fixed(v) => (v, v, false),
@@ -306,21 +299,14 @@ impl Space {
             }
             Ok(())
         };
-        let with = |damping, t_b| {
-            FamilyParams {
-                family,
-                damping,
-                t_b,
-            }
-            .validate()
-        };
-        check(name, damping, &|v| with(v, 1.0))?;
-        check("T_b", t_b, &|v| with(family_default_damping(family), v))?;
+        let with = |param, t_b| FamilyParams { family, param, t_b }.validate();
+        check(name, param, &|v| with(v, 1.0))?;
+        check("T_b", t_b, &|v| with(family.spec().param.neutral, v))?;
         let params = [
             Param::Fixed(0.0),
             Param::Fixed(0.0),
             Param::Fixed(0.5),
-            damping,
+            param,
             Param::Fixed(1.0),
             Param::Fixed(family.exponent()),
             Param::Fixed(1.0),
@@ -338,16 +324,26 @@ impl Space {
         })
     }
 
+    /// The law of a family's space at `p` (its parameter from the slot of `sigma_b`, `T_b`
+    /// from that of `T_b`), not validated; `None` for a Bouc-Wen space.
+    pub fn family_params(&self, p: &BaseParams) -> Option<FamilyParams> {
+        self.family.map(|family| FamilyParams {
+            family,
+            param: p.sigma_b,
+            t_b: p.t_b,
+        })
+    }
+
     /// The contact-law family, if the space is one's.
     pub fn family_of(&self) -> Option<Family> {
         self.family
     }
 
-    /// The name of quantity `i` (index into [`NAMES`]) in this space: a family's damping
-    /// parameter in the slot of `sigma_b`.
+    /// The name of quantity `i` (index into [`NAMES`]) in this space: a family's parameter in
+    /// the slot of `sigma_b`.
     pub fn name(&self, i: usize) -> &'static str {
         match self.family {
-            Some(f) if i == 3 => f.damping_name(),
+            Some(f) if i == 3 => f.param_name(),
             _ => NAMES[i],
         }
     }
@@ -370,6 +366,12 @@ impl Space {
     /// Names of the free quantities, in search order.
     pub fn free_names(&self) -> Vec<&'static str> {
         self.free.iter().map(|&i| self.name(i)).collect()
+    }
+
+    /// Names of the free quantities at search coordinates `coords` (positions in
+    /// [`Space::free_indices`], as [`crate::at_bound`] gives them).
+    pub fn names_at(&self, coords: &[usize]) -> Vec<&'static str> {
+        coords.iter().map(|&j| self.name(self.free[j])).collect()
     }
 
     /// Where `bound`, a bound of quantity `i` (index into [`NAMES`]) of a Bouc-Wen space, is the
@@ -501,19 +503,14 @@ impl Space {
         }
     }
 
-    /// The model `p` describes: the base map of `p`, or a family's law (damping `p.sigma_b`,
+    /// The model `p` describes: the base map of `p`, or a family's law (its parameter `p.sigma_b`,
     /// `T_b = p.t_b`).
     ///
     /// # Errors
     /// [`IdentifyError::Model`] if `p` is not admissible for the model.
     pub fn map(&self, p: &BaseParams) -> Result<FitModel, IdentifyError> {
-        match self.family {
-            Some(family) => {
-                let law = FamilyParams {
-                    family,
-                    damping: p.sigma_b,
-                    t_b: p.t_b,
-                };
+        match self.family_params(p) {
+            Some(law) => {
                 law.validate()?;
                 Ok(FitModel::Family(law))
             }

@@ -100,7 +100,7 @@ fn columns(s: &[f64], free: &[usize], f: &VectorFn) -> Result<Vec<Vec<f64>>, Ide
 }
 
 /// Linearised intervals at the optimum `s` of `objective` (evaluated with its settings).
-/// `at_bound` names the free quantities held on a bound.
+/// `at_bound` holds the coordinates held on a bound (positions in the search order).
 ///
 /// # Errors
 /// [`IdentifyError::Model`] when a simulation fails; [`IdentifyError::Objectives`] when there
@@ -109,13 +109,11 @@ fn columns(s: &[f64], free: &[usize], f: &VectorFn) -> Result<Vec<Vec<f64>>, Ide
 pub fn uncertainty<I: Input + Sync>(
     objective: &Objective<'_, I>,
     s: &[f64],
-    at_bound: &[&'static str],
+    at_bound: &[usize],
 ) -> Result<Uncertainty, IdentifyError> {
     let space = objective.space();
     let names = space.free_names();
-    let free: Vec<usize> = (0..s.len())
-        .filter(|&j| !at_bound.contains(&names[j]))
-        .collect();
+    let free: Vec<usize> = (0..s.len()).filter(|j| !at_bound.contains(j)).collect();
     let (predictions, _) = objective.evaluate(s)?;
     let r = objective.weighted_residuals(&predictions);
     let residuals = |x: &[f64]| -> Result<Vec<f64>, IdentifyError> {
@@ -247,12 +245,12 @@ impl Uncertainty {
         &mut self,
         objective: &Objective<'_, I>,
         names: &[&'static str],
-        at_bound: &[&'static str],
+        at_bound: &[usize],
     ) {
         let space = objective.space();
         let s = self.point.clone();
         for (j, name) in names.iter().enumerate() {
-            if at_bound.contains(name) {
+            if at_bound.contains(&j) {
                 self.params.push((base_name(name), None));
                 continue;
             }

@@ -653,7 +653,7 @@ fn optimum_on_a_bound_is_reported() {
         None,
     )
     .unwrap();
-    assert_eq!(r.at_bound, vec!["sigma_b"]);
+    assert_eq!(space.names_at(&r.at_bound), vec!["sigma_b"]);
     assert_eq!(r.params.sigma_b, 0.04);
     assert!(
         r.convergence.agreeing >= 2 && r.convergence.starts >= 2,

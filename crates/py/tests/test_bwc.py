@@ -342,7 +342,8 @@ def test_errors_from_dicts_name_the_dict_key():
     lines = str(caught.value).splitlines()
     assert lines == [
         'config["fit"][1]["model"]: "shcm" is not a model: use "shccm" or "mcm" (the Bouc-Wen '
-        'models), or a contact-law family: "hunt-crossley", "kelvin-voigt", "hertz-ln", "hertz-flores"',
+        'models), or a contact-law family: "hunt-crossley", "kelvin-voigt", "hertz-ln", "hertz-flores", '
+        '"thornton"',
         'config["fit"][1]["bounds"]["n"]: [6, 1] is not admissible: lower bound <= upper bound',
     ], lines
 

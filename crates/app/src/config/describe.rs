@@ -67,7 +67,7 @@ fn fit_quantities(f: &FitConfig) -> Value {
     }
     let mut v = quantities(&names, f.space.params());
     if let (Some(family), Some(m)) = (f.family, v.as_object_mut()) {
-        m.retain(|k, _| k == family.damping_name() || k == "T_b");
+        m.retain(|k, _| k == family.param_name() || k == "T_b");
     }
     v
 }

@@ -1,7 +1,8 @@
-//! A `[[fit]]` of a contact-law family (`model = "hunt-crossley"`, `"kelvin-voigt"`,
-//! `"hertz-ln"`, `"hertz-flores"`): its damping parameter (`alpha` in s/m, `zeta`, `e_r`) and
-//! `T_b` (s, for durations), each in `[fit.bounds]` or `[fit.fixed]`; the Bouc-Wen quantities,
-//! an input, a known mass and drop-test data do not apply.
+//! A `[[fit]]` of a contact-law family (`model = "hunt-crossley"` or another of
+//! [`bw_models::FAMILIES`]): its parameter ([`Family::param_name`]: `alpha` in s/m, `zeta`,
+//! `e_r`, `v_y` in m/s) and `T_b` (s, for durations), each in `[fit.bounds]` or
+//! `[fit.fixed]`; the Bouc-Wen quantities, an input, a known mass and drop-test data do not
+//! apply.
 //!
 //! ```toml
 //! [[fit]]
@@ -9,7 +10,7 @@
 //! model = "hunt-crossley"
 //! data = "data/real/tennis_v0_e.csv"
 //! [fit.bounds]
-//! alpha = [0.0, 2.0]        # s/m; default bounds for each family's damping otherwise
+//! alpha = [0.0, 2.0]        # s/m; each family's default bounds otherwise
 //! ```
 
 use super::search::param_of;
@@ -20,15 +21,15 @@ use bw_models::Family;
 use bwc_identify::{IdentifyError, Param, Space};
 use std::ops::Range;
 
-/// The default bounds of a family's damping parameter: `alpha` in `[0, 5]` s/m (a CoR of 1 to
-/// about 0 at 0.1-2 m/s), `zeta` in `[0, 0.99]`, `e_r` in `[0.05, 1]`.
-pub(super) fn default_damping(family: Family) -> Param {
-    let (lo, hi) = match family {
-        Family::HuntCrossley => (0.0, 5.0),
-        Family::KelvinVoigt => (0.0, 0.99),
-        _ => (0.05, 1.0),
-    };
-    Param::Free { lo, hi, log: false }
+/// The default bounds of a family's parameter ([`bw_models::ParamSpec::default_bounds`]).
+pub(super) fn default_param(family: Family) -> Param {
+    let spec = family.spec().param;
+    let (lo, hi) = spec.default_bounds;
+    Param::Free {
+        lo,
+        hi,
+        log: spec.default_log,
+    }
 }
 
 /// The search space of a family's fit; `durations` whether `T_b` matters (a duration
@@ -52,7 +53,7 @@ pub(super) fn family_space(
             format!("{what} does not apply to model \"{model}\""),
         )
     };
-    let own = [family.damping_name(), "T_b"];
+    let own = [family.param_name(), "T_b"];
     if let Some((table, key, span)) = r
         .given_quantities()
         .into_iter()
@@ -61,7 +62,7 @@ pub(super) fn family_space(
         return Err(not_here(
             span,
             &format!("[fit.{table}].{key}"),
-            &format!("{key}: {model} takes {} and T_b", family.damping_name()),
+            &format!("{key}: {model} takes {} and T_b", family.param_name()),
         ));
     }
     let tables = [
@@ -99,16 +100,16 @@ pub(super) fn family_space(
     if let Some((Some(span), key, what)) = tables.into_iter().find(|x| x.0.is_some()) {
         return Err(not_here(span, key, what));
     }
-    let (log_damping, log_t) = log_flags(ctx, r, family)?;
-    let name = family.damping_name();
+    let (log_param, log_t) = log_flags(ctx, r, family)?;
+    let name = family.param_name();
     let b = r.bounds.as_ref().map(|b| b.get_ref());
     let v = r.fixed.as_ref().map(|v| v.get_ref());
-    let bound_d = b.and_then(|b| b.family_entry(name).clone());
-    let fixed_d = v.and_then(|v| v.family_entry(name).clone());
-    let damping = param_of(ctx, "fit", name, &bound_d, &fixed_d, log_damping)?
-        .unwrap_or_else(|| default_damping(family));
-    let bound_t = b.and_then(|b| b.t_b.clone());
-    let fixed_t = v.and_then(|v| v.t_b.clone());
+    let bound_p = b.and_then(|b| b.family_entry(name).cloned());
+    let fixed_p = v.and_then(|v| v.family_entry(name).cloned());
+    let param = param_of(ctx, "fit", name, &bound_p, &fixed_p, log_param)?
+        .unwrap_or_else(|| default_param(family));
+    let bound_t = b.and_then(|b| b.t_b().clone());
+    let fixed_t = v.and_then(|v| v.t_b().clone());
     let t_b = param_of(ctx, "fit", "T_b", &bound_t, &fixed_t, log_t)?;
     let t_b = match t_b {
         Some(p) => p,
@@ -121,7 +122,7 @@ pub(super) fn family_space(
             ))
         }
     };
-    Space::family(family, damping, t_b).map_err(|e| match e {
+    Space::family(family, param, t_b).map_err(|e| match e {
         IdentifyError::Bounds {
             name,
             lo,
@@ -136,12 +137,12 @@ pub(super) fn family_space(
     })
 }
 
-/// `log = [...]` of a family: its damping parameter and `T_b`.
+/// `log = [...]` of a family: its parameter and `T_b`.
 fn log_flags(ctx: &Ctx, r: &RawFit, family: Family) -> Result<(bool, bool), AppError> {
-    let (mut damping, mut t_b) = (false, false);
+    let (mut param, mut t_b) = (false, false);
     for item in r.log.as_ref().map_or(&[][..], |l| l.get_ref()) {
         match item.get_ref().as_str() {
-            n if n == family.damping_name() => damping = true,
+            n if n == family.param_name() => param = true,
             "T_b" => t_b = true,
             other => {
                 return Err(ctx.invalid(
@@ -150,11 +151,11 @@ fn log_flags(ctx: &Ctx, r: &RawFit, family: Family) -> Result<(bool, bool), AppE
                     format!(
                         "\"{other}\" is not a parameter of \"{}\": use {} or T_b",
                         family.name(),
-                        family.damping_name()
+                        family.param_name()
                     ),
                 ))
             }
         }
     }
-    Ok((damping, t_b))
+    Ok((param, t_b))
 }

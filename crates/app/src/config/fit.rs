@@ -219,9 +219,18 @@ fn parse_family_fit(
     })
 }
 
+/// The families' config names, quoted: `"hunt-crossley", "kelvin-voigt", ...`.
+fn family_list() -> String {
+    let names: Vec<String> = bw_models::FAMILIES
+        .iter()
+        .map(|f| format!("\"{}\"", f.name()))
+        .collect();
+    names.join(", ")
+}
+
 /// A Bouc-Wen fit names no family parameter.
 fn family_keys_absent(ctx: &Ctx, r: &RawFit) -> Result<(), AppError> {
-    let family = ["alpha", "zeta", "e_r"];
+    let family = Family::param_names();
     match r
         .given_quantities()
         .into_iter()
@@ -231,8 +240,9 @@ fn family_keys_absent(ctx: &Ctx, r: &RawFit) -> Result<(), AppError> {
             &span,
             format!("[fit.{table}].{key}"),
             format!(
-                "{key} is a parameter of the contact-law families (model = \"hunt-crossley\", \
-                 \"kelvin-voigt\", \"hertz-ln\", \"hertz-flores\"), not of the Bouc-Wen models"
+                "{key} is a parameter of the contact-law families (model = {}), not of the \
+                 Bouc-Wen models",
+                family_list()
             ),
         )),
         None => Ok(()),
@@ -300,29 +310,28 @@ fn head(
         .name
         .as_ref()
         .map_or_else(|| format!("fit {}", index + 1), |n| n.get_ref().clone());
-    let kind =
-        match &r.model {
-            Some(m) if Family::parse(m.get_ref()).is_some() => ModelKind::Shccm,
-            Some(m) => model_kind(ctx, m, "[[fit]].model").map_err(|_| {
-                ctx.invalid(
-                    &m.span(),
-                    "[[fit]].model",
-                    format!(
+    let kind = match &r.model {
+        Some(m) if Family::parse(m.get_ref()).is_some() => ModelKind::Shccm,
+        Some(m) => model_kind(ctx, m, "[[fit]].model").map_err(|_| {
+            ctx.invalid(
+                &m.span(),
+                "[[fit]].model",
+                format!(
                     "\"{}\" is not a model: use \"shccm\" or \"mcm\" (the Bouc-Wen models), or \
                      a contact-law family: {}",
                     m.get_ref(),
-                    bw_models::FAMILIES.map(|f| format!("\"{}\"", f.name())).join(", ")
+                    family_list()
                 ),
-                )
-            })?,
-            None => {
-                return Err(ctx.invalid(
-                    t,
-                    "[[fit]].model",
-                    "missing required key: \"shccm\" or \"mcm\"",
-                ))
-            }
-        };
+            )
+        })?,
+        None => {
+            return Err(ctx.invalid(
+                t,
+                "[[fit]].model",
+                "missing required key: \"shccm\" or \"mcm\"",
+            ))
+        }
+    };
     let data = r.data.as_ref().ok_or_else(|| {
         ctx.invalid(
             t,

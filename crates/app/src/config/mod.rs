@@ -34,10 +34,11 @@ pub use posterior::PosteriorConfig;
 use crate::signal::Signal;
 use crate::tables::{Ctx, Num, RawInput, RawSolver};
 use crate::AppError;
-use bw_models::{BaseParams, ModelKind, Settings};
-use bwc_identify::{Budget, Dataset, Space, Weights};
+use bw_models::{BaseParams, Family, ModelKind, Settings};
+use bwc_identify::{Budget, Dataset, Space, Weights, NAMES};
 use search::{Pair, RawOptimizer};
 use serde::Deserialize;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
 
@@ -89,86 +90,82 @@ struct RawObjectives {
     j2: Option<Num>,
 }
 
-/// Searchable base quantities (`g = Gamma_b / B_b`): bounds (`T = Pair`) or fixed values.
+/// Searchable base quantities (`g = Gamma_b / B_b`) and the families' parameters
+/// ([`Family::param_names`]): bounds (`T = Pair`) or fixed values. Any other key is an error
+/// that lists the admissible ones.
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(
+    try_from = "BTreeMap<String, T>",
+    bound(deserialize = "T: Deserialize<'de>")
+)]
 struct RawQuantities<T> {
-    #[serde(rename = "B_b")]
-    b_b: Option<T>,
-    g: Option<T>,
-    kappa: Option<T>,
-    sigma_b: Option<T>,
-    n: Option<T>,
-    p: Option<T>,
-    #[serde(rename = "U_b")]
-    u_b: Option<T>,
-    #[serde(rename = "T_b")]
-    t_b: Option<T>,
-    /// Hunt-Crossley's damping (s/m).
-    alpha: Option<T>,
-    /// Kelvin-Voigt's damping ratio.
-    zeta: Option<T>,
-    /// The restitution parameter of the Lankarani-Nikravesh and Flores dampings.
-    e_r: Option<T>,
+    /// The Bouc-Wen quantities, in the order of [`NAMES`].
+    base: [Option<T>; 8],
+    /// The families' parameters by name.
+    family: BTreeMap<&'static str, T>,
 }
 
 impl<T> Default for RawQuantities<T> {
     fn default() -> Self {
         Self {
-            b_b: None,
-            g: None,
-            kappa: None,
-            sigma_b: None,
-            n: None,
-            p: None,
-            u_b: None,
-            t_b: None,
-            alpha: None,
-            zeta: None,
-            e_r: None,
+            base: std::array::from_fn(|_| None),
+            family: BTreeMap::new(),
         }
     }
 }
 
-impl<T> RawQuantities<T> {
-    /// A family's damping parameter by name (`alpha`, `zeta`, `e_r`).
-    fn family_entry(&self, name: &str) -> &Option<T> {
-        match name {
-            "alpha" => &self.alpha,
-            "zeta" => &self.zeta,
-            _ => &self.e_r,
+impl<T> TryFrom<BTreeMap<String, T>> for RawQuantities<T> {
+    type Error = String;
+
+    fn try_from(map: BTreeMap<String, T>) -> Result<Self, String> {
+        let mut q = Self::default();
+        let family = Family::param_names();
+        for (key, value) in map {
+            if let Some(i) = NAMES.iter().position(|n| *n == key) {
+                q.base[i] = Some(value);
+            } else if let Some(n) = family.iter().find(|n| **n == key) {
+                q.family.insert(n, value);
+            } else {
+                let known: Vec<String> = NAMES
+                    .iter()
+                    .chain(&family)
+                    .map(|n| format!("`{n}`"))
+                    .collect();
+                return Err(format!(
+                    "unknown field `{key}`, expected one of {}",
+                    known.join(", ")
+                ));
+            }
         }
+        Ok(q)
+    }
+}
+
+impl<T> RawQuantities<T> {
+    /// A family's parameter by name ([`Family::param_name`]).
+    fn family_entry(&self, name: &str) -> Option<&T> {
+        self.family.get(name)
     }
 
     /// The names of every quantity given (Bouc-Wen and family parameters alike).
     fn given(&self) -> Vec<&'static str> {
-        let family = [
-            ("alpha", &self.alpha),
-            ("zeta", &self.zeta),
-            ("e_r", &self.e_r),
-        ];
-        bwc_identify::NAMES
+        NAMES
             .iter()
-            .copied()
-            .zip(self.by_name())
-            .chain(family)
+            .zip(&self.base)
             .filter(|(_, v)| v.is_some())
-            .map(|(n, _)| n)
+            .map(|(n, _)| *n)
+            .chain(self.family.keys().copied())
             .collect()
     }
 
     /// The entries in the order of [`NAMES`].
     fn by_name(&self) -> [&Option<T>; 8] {
-        [
-            &self.b_b,
-            &self.g,
-            &self.kappa,
-            &self.sigma_b,
-            &self.n,
-            &self.p,
-            &self.u_b,
-            &self.t_b,
-        ]
+        std::array::from_fn(|i| &self.base[i])
+    }
+
+    /// `T_b`, given for a family's fit.
+    fn t_b(&self) -> &Option<T> {
+        &self.base[7]
     }
 }
 

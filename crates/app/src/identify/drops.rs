@@ -31,6 +31,7 @@ fn report(f: &FitConfig, params: bw_models::BaseParams, drop: DropOutcome) -> Fi
     FitReport {
         name: f.name.clone(),
         model: f.model_name(),
+        family: f.space.family_params(&params),
         params,
         uses_input_scales: f.uses_input_scales,
         costs: Costs { j1: None, j2: None },
@@ -67,7 +68,7 @@ pub fn run_drop_fit(
         .map_err(&err)?
         .with_progress(progress);
     let m = minimize(&objective, &f.budget, seed ^ f.seed, f.start.as_deref()).map_err(&err)?;
-    let bound = at_bound(&f.space.free_names(), &m.point);
+    let bound = at_bound(&m.point);
     let mut r = report(
         f,
         f.space.decode(&m.point),
@@ -81,7 +82,7 @@ pub fn run_drop_fit(
     r.uncertainty = Some(Err(NO_INTERVALS.into()));
     r.evaluations = m.evaluations;
     r.convergence = Some(m.convergence);
-    r.at_bound = bound;
+    r.at_bound = f.space.names_at(&bound);
     r.wall_s = clock.elapsed().as_secs_f64();
     Ok(r)
 }

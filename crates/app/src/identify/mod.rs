@@ -136,6 +136,7 @@ pub fn run_fit(
     Ok(FitReport {
         name: f.name.clone(),
         model: f.model_name(),
+        family: f.space.family_params(&result.params),
         params: result.params,
         uses_input_scales: f.uses_input_scales,
         costs,
@@ -144,7 +145,7 @@ pub fn run_fit(
         predictions,
         identifiability,
         convergence: Some(result.convergence),
-        at_bound: result.at_bound,
+        at_bound: f.space.names_at(&result.at_bound),
         pareto,
         uncertainty: Some(unc),
         curve,
@@ -229,6 +230,7 @@ fn pareto_front(
             w,
             j1: c.j1.unwrap_or(f64::NAN),
             j2: c.j2.unwrap_or(f64::NAN),
+            family: f.space.family_params(&r.params),
             params: r.params,
         });
     }
@@ -256,6 +258,7 @@ pub fn eval_fit(config: &Path, f: &FitConfig) -> Result<FitReport, AppError> {
     Ok(FitReport {
         name: f.name.clone(),
         model: f.model_name(),
+        family: f.space.family_params(&params),
         params,
         uses_input_scales: f.uses_input_scales,
         costs,
@@ -303,7 +306,7 @@ pub fn run_loop_fit(
         evaluations: min.evaluations,
         wall_s: clock.elapsed().as_secs_f64(),
         curves,
-        at_bound: bwc_identify::at_bound(&f.space.free_names(), &min.point),
+        at_bound: f.space.names_at(&bwc_identify::at_bound(&min.point)),
         convergence: Some(min.convergence),
     })
 }

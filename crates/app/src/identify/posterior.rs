@@ -287,7 +287,7 @@ pub fn posterior_from_runs(
 /// scales among `names`.
 fn sample_columns(f: &FitConfig, names: &[&'static str]) -> Vec<&'static str> {
     let head: Vec<&'static str> = match f.family {
-        Some(family) => vec![family.damping_name(), "T_b"],
+        Some(family) => vec![family.param_name(), "T_b"],
         None => SAMPLE_COLUMNS.to_vec(),
     };
     head.into_iter()

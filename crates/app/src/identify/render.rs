@@ -5,16 +5,16 @@ use super::report::{DropOutcome, FitReport, LoopReport};
 use crate::config::{FitConfig, LoopFitConfig};
 use crate::plot::{self, Axis, Series, Style};
 use crate::AppError;
-use bw_models::BaseParams;
+use bw_models::{BaseParams, FamilyParams};
 use bwc_identify::{BandPoint, Uncertainty};
 use serde_json::{json, Value};
 use std::path::Path;
 
-fn params_json(model: &str, p: &BaseParams, input_scales: bool) -> Value {
-    if let Some(f) = bw_models::Family::parse(model) {
-        // A family's law: its damping parameter (in the slot of sigma_b) and T_b.
-        let mut v = json!({ "T_b": input_scales.then_some(p.t_b) });
-        v[f.damping_name()] = json!(p.sigma_b);
+/// A law's parameters: `P*`, or a family's parameter and `T_b` under their own names.
+fn params_json(p: &BaseParams, family: Option<&FamilyParams>, input_scales: bool) -> Value {
+    if let Some(law) = family {
+        let mut v = json!({ "T_b": input_scales.then_some(law.t_b) });
+        v[law.family.param_name()] = json!(law.param);
         return v;
     }
     json!({
@@ -29,7 +29,7 @@ pub fn summary(reports: &[FitReport]) -> Value {
         .iter()
         .map(|r| {
             let mut v = json!({
-                "name": r.name, "model": r.model, "params": params_json(r.model, &r.params, r.uses_input_scales),
+                "name": r.name, "model": r.model, "params": params_json(&r.params, r.family.as_ref(), r.uses_input_scales),
                 "J1": r.costs.j1, "J2": r.costs.j2, "evaluations": r.evaluations, "wall_s": r.wall_s,
             });
             if let Some(id) = &r.identifiability {
@@ -69,7 +69,7 @@ pub fn summary(reports: &[FitReport]) -> Value {
             }
             v["warnings"] = json!(r.warnings);
             if !r.pareto.is_empty() {
-                v["pareto"] = r.pareto.iter().map(|p| json!({"w": p.w, "J1": p.j1, "J2": p.j2, "params": params_json(r.model, &p.params, r.uses_input_scales)})).collect();
+                v["pareto"] = r.pareto.iter().map(|p| json!({"w": p.w, "J1": p.j1, "J2": p.j2, "params": params_json(&p.params, p.family.as_ref(), r.uses_input_scales)})).collect();
             }
             v
         })
@@ -81,7 +81,7 @@ pub fn summary(reports: &[FitReport]) -> Value {
 fn reference_json(rf: &ReferenceReport, input_scales: bool) -> Value {
     json!({
         "label": rf.label,
-        "params": params_json("shccm", &rf.params, input_scales),
+        "params": params_json(&rf.params, None, input_scales),
         "J1": rf.costs.j1,
         "J2": rf.costs.j2,
         "cost_ratio": rf.cost_ratio,

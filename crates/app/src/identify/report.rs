@@ -34,6 +34,8 @@ pub struct ParetoPoint {
     pub j2: f64,
     /// The optimum.
     pub params: BaseParams,
+    /// A contact-law family's optimum, under its own names.
+    pub family: Option<bw_models::FamilyParams>,
 }
 
 /// The result of one fit (or one evaluation).
@@ -43,8 +45,10 @@ pub struct FitReport {
     pub name: String,
     /// `"shccm"` or `"mcm"`.
     pub model: &'static str,
-    /// Base parameters.
+    /// Base parameters (of a family's fit, the search's slots: see `family`).
     pub params: BaseParams,
+    /// A contact-law family's fitted law, under its own names.
+    pub family: Option<bw_models::FamilyParams>,
     /// Whether `U_b`, `T_b` are meaningful (otherwise reported as null).
     pub uses_input_scales: bool,
     /// Costs at the default (accurate) solver settings.
@@ -92,7 +96,7 @@ pub(crate) fn missing_params(config: &Path, table: &str, name: &str) -> AppError
 pub(crate) fn search_warnings(
     f: &FitConfig,
     c: &Convergence,
-    at_bound: &[&str],
+    at_bound: &[usize],
     s: &[f64],
 ) -> Vec<String> {
     let mut w = Vec::new();
@@ -114,7 +118,7 @@ pub(crate) fn search_warnings(
     let names = f.space.free_names();
     for (j, &i) in f.space.free_indices().iter().enumerate() {
         let name = names[j];
-        if !at_bound.contains(&name) {
+        if !at_bound.contains(&j) {
             continue;
         }
         let (lo, hi) = f.space.bounds(i).unwrap_or((f64::NAN, f64::NAN));

@@ -23,8 +23,8 @@ pub(super) struct Searched {
     pub evaluations: u64,
     /// How the search ended.
     pub convergence: Convergence,
-    /// Free quantities on a bound of the search.
-    pub at_bound: Vec<&'static str>,
+    /// The coordinates of `point` on a bound of the search.
+    pub at_bound: Vec<usize>,
 }
 
 /// Searches fit `f` from its bounds with `seed` (combined with the fit's own), or takes the
@@ -55,7 +55,7 @@ pub(super) fn search<I: Input + Sync>(
     };
     let space = objective.space();
     Ok(Searched {
-        at_bound: at_bound(&space.free_names(), &minimum.point),
+        at_bound: at_bound(&minimum.point),
         params: space.decode(&minimum.point),
         point: minimum.point,
         evaluations: minimum.evaluations,

@@ -315,9 +315,8 @@ fn print_fit(config: &Config, r: &FitReport) {
         r.evaluations,
         r.wall_s
     );
-    if let Some(f) = bw_models::Family::parse(r.model) {
-        // A family's law: its damping parameter sits in the slot of sigma_b.
-        bwc_app::outp!("    {} = {:.6e}", f.damping_name(), p.sigma_b);
+    if let Some(law) = &r.family {
+        bwc_app::outp!("    {} = {:.6e}", law.family.param_name(), law.param);
     } else {
         bwc_app::outp!(
             "    B_b = {:.6}, Gamma_b = {:.6}, kappa = {:.6}, sigma_b = {:.6e}, n = {:.6}, p = {:.6}",
@@ -329,8 +328,8 @@ fn print_fit(config: &Config, r: &FitReport) {
             p.p
         );
     }
-    if r.uses_input_scales && bw_models::Family::parse(r.model).is_some() {
-        bwc_app::outp!(", T_b = {:.6e} s", p.t_b);
+    if let Some(law) = r.family.as_ref().filter(|_| r.uses_input_scales) {
+        bwc_app::outp!(", T_b = {:.6e} s", law.t_b);
     } else if r.uses_input_scales {
         bwc_app::outp!(", U_b = {:.6e}, T_b = {:.6e}", p.u_b, p.t_b);
     }

@@ -700,7 +700,7 @@ fn compare_names_the_law_that_made_the_data() {
     let dir = scratch("compare");
     let law = FamilyParams {
         family: Family::HuntCrossley,
-        damping: 0.3,
+        param: 0.3,
         t_b: 1.0,
     };
     let mut csv = String::from("v_0,e,e_std\n");
@@ -793,7 +793,7 @@ fn family_fits_recover_their_damping_and_name_wrong_keys() {
     use bw_models::{family_impact, Family, FamilyParams, Settings};
     let law = FamilyParams {
         family: Family::HertzFlores,
-        damping: 0.7,
+        param: 0.7,
         t_b: 1.0,
     };
     let e = family_impact(&law, 1.0, &Settings::default()).unwrap().e;
@@ -808,6 +808,51 @@ fn family_fits_recover_their_damping_and_name_wrong_keys() {
     let e_r = v["fits"][0]["params"]["e_r"].as_f64().unwrap();
     assert!((e_r - 0.7).abs() < 1e-6, "e_r {e_r}");
     assert_eq!(v["fits"][0]["model"], "hertz-flores");
+}
+
+/// A Thornton fit of CoRs and durations its own law made (yield speed 0.2 m/s, `T_b` of a
+/// 10 g body on 1e9 N/m^1.5) gives both back, each under its own name in the JSON, and the
+/// printed report names `v_y`; its default bounds are searched on a log scale.
+#[test]
+fn a_thornton_fit_recovers_its_yield_speed_and_time_scale() {
+    use bw_models::{family_impact, Family, FamilyParams, Settings};
+    let dir = scratch("thornton");
+    let law = FamilyParams {
+        family: Family::Thornton,
+        param: 0.2,
+        t_b: (0.01f64 / 1e9).powf(0.4),
+    };
+    let mut csv = String::from("v_0,e,t_d\n");
+    for v0 in [0.5, 1.0, 2.0, 4.0] {
+        let out = family_impact(&law, v0, &Settings::default()).unwrap();
+        let t_d = out.t_s.unwrap() * law.time_scale(v0);
+        csv += &format!("{v0},{},{t_d}\n", out.e);
+    }
+    std::fs::write(dir.join("t.csv"), csv).unwrap();
+    let path = dir.join("thornton.toml");
+    std::fs::write(
+        &path,
+        "[[fit]]\nname = \"t\"\nmodel = \"thornton\"\ndata = \"t.csv\"\n\
+         [fit.objectives]\nJ1 = 1.0\nJ2 = 1.0\n[fit.bounds]\nT_b = [1e-5, 1e-3]\n",
+    )
+    .unwrap();
+    let v = json(&identify(&["run", path.to_str().unwrap(), "--json"]));
+    let p = &v["fits"][0]["params"];
+    let v_y = p["v_y"].as_f64().unwrap();
+    let t_b = p["T_b"].as_f64().unwrap();
+    assert!((v_y - 0.2).abs() < 1e-5, "v_y {v_y}");
+    assert!(
+        (t_b / law.t_b - 1.0).abs() < 1e-5,
+        "T_b {t_b} vs {}",
+        law.t_b
+    );
+    assert!(p.get("sigma_b").is_none(), "{p}");
+    let out = identify(&["run", path.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success() && text.contains("v_y = 2.0000"),
+        "{text}"
+    );
 }
 
 /// A fit's reported noise level is the residual standard deviation of its own CSV:

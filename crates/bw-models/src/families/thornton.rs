@@ -1,0 +1,203 @@
+//! Thornton's (1997) elastic-perfectly-plastic sphere: Hertz loading `F = k δ^(3/2)` up to
+//! the penetration `δ_y` at which the contact pressure reaches the yield pressure, then the
+//! line `F = F_y + π R p_y (δ - δ_y)`; unloading from `(δ_m, F_m)` is Hertzian for the
+//! flattened radius `R_p = 4 E* a_m³ / (3 F_m)`, `F = (4/3) E* √R_p (δ - δ_f)^(3/2)`, down to
+//! the residual indentation `δ_f`.
+//!
+//! The facts used, with `k = (4/3) E* √R` and Hertz's `a = √(R δ)`, `p_0 = 2 E* a / (π R)`:
+//! the plastic line's slope `π R p_y = 2 E* a_y = (3/2) k √δ_y` is the Hertz tangent at `δ_y`;
+//! the unloading stiffness is `k_p = k √(k δ_m^(3/2) / F_m)`; continuity at `F_m` gives
+//! `δ_m - δ_f = F_m / (k √δ_m)`; and the yield speed `v_y`, at which all the kinetic energy is
+//! stored elastically at `δ_y`, gives `(5/4) m v_y² = k δ_y^(5/2)`. So the law needs only `k`,
+//! the mass and `v_y`: nondimensionally (`δ* = (m v0² / k)^(2/5)`) its one parameter is
+//! `δ_y / δ* = ((5/4) (v_y / v0)²)^(2/5)`. Below `v_y` the impact is Hertz's and `e = 1`.
+
+use super::{FamilySpec, ParamSpec};
+use crate::cor::impact;
+use crate::models::CollisionModel;
+use bwc_ode::{State, System};
+
+pub(super) const SPEC: FamilySpec = FamilySpec {
+    name: "thornton",
+    title: "Thornton elastic-perfectly-plastic",
+    force: "k δ^(3/2) to δ_y, then its tangent; k_p (δ - δ_f)^(3/2) unloading",
+    exponent: 1.5,
+    param: ParamSpec {
+        name: "v_y",
+        unit: "m/s",
+        allowed: "v_y > 0 (m/s)",
+        admits: |v| v > 0.0 && v.is_finite(),
+        default_bounds: (1e-3, 10.0),
+        default_log: true,
+        neutral: 1.0,
+    },
+    impact: |v_y, v0, settings| impact(&Ndthornton::at(v_y, v0), settings).map(|i| i.cor()),
+    closed_form: Some(closed_form),
+};
+
+/// Thornton's CoR (1997) at `r = v_y / v0 <= 1`:
+/// `e = (6√3/5)^(1/2) (1 - r²/6)^(1/2) (r / (r + 2 √(6/5 - r²/5)))^(1/4)`, and 1 below yield.
+fn closed_form(v_y: f64, v0: f64) -> f64 {
+    let r = v_y / v0;
+    if r >= 1.0 {
+        return 1.0;
+    }
+    let first = (6.0 * 3f64.sqrt() / 5.0).sqrt() * (1.0 - r * r / 6.0).sqrt();
+    first * (r / (r + 2.0 * (1.2 - 0.2 * r * r).sqrt())).powf(0.25)
+}
+
+/// The nondimensional Thornton impact, states `(X, V, M)`: `X' = V`, `V' = F`, and `M` the
+/// deepest `X` so far (`M' = min(V, 0)`); `X < 0` in compression, `V(0) = -1`. The force is
+/// the loading curve while `V < 0` and the unloading curve from `δ_m = -M` after.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ndthornton {
+    /// The yield penetration `δ_y / δ*`.
+    pub x_y: f64,
+}
+
+impl Ndthornton {
+    /// The impact at `v0` of a law of yield speed `v_y` (both m/s).
+    pub fn at(v_y: f64, v0: f64) -> Self {
+        let r = v_y / v0;
+        Self {
+            x_y: (1.25 * r * r).powf(0.4),
+        }
+    }
+
+    /// The loading force at penetration `d`: Hertz to `x_y`, its tangent beyond.
+    pub fn loading(&self, d: f64) -> f64 {
+        let y = self.x_y;
+        if d <= 0.0 {
+            0.0
+        } else if d <= y {
+            d * d.sqrt()
+        } else {
+            y * y.sqrt() + 1.5 * y.sqrt() * (d - y)
+        }
+    }
+
+    /// The residual penetration `δ_f` and the stiffness `k_p` of the unloading from the
+    /// deepest penetration `dm`: `δ_f = δ_m - F_m / √δ_m`, `k_p = δ_m^(3/4) / √F_m`.
+    pub fn unloading(&self, dm: f64) -> (f64, f64) {
+        if dm <= 0.0 {
+            return (0.0, 1.0);
+        }
+        let fm = self.loading(dm);
+        (dm - fm / dm.sqrt(), dm.powf(0.75) / fm.sqrt())
+    }
+
+    /// Whether the contact is loading, the penetration, and the deepest penetration.
+    fn phase(y: &State<3>) -> (bool, f64, f64) {
+        let d = -y[0];
+        (y[1] < 0.0, d, (-y[2]).max(d))
+    }
+}
+
+impl System<3> for Ndthornton {
+    fn rhs(&self, _t: f64, y: &State<3>) -> State<3> {
+        State::<3>::new(y[1], self.force(y), y[1].min(0.0))
+    }
+}
+
+impl CollisionModel<3> for Ndthornton {
+    fn initial_state(&self) -> State<3> {
+        State::<3>::new(0.0, -1.0, 0.0)
+    }
+    fn force(&self, y: &State<3>) -> f64 {
+        let (loading, d, dm) = Self::phase(y);
+        if loading {
+            return self.loading(d);
+        }
+        let (df, kp) = self.unloading(dm);
+        let s = (d - df).max(0.0);
+        kp * s * s.sqrt()
+    }
+    fn displacement(&self, y: &State<3>) -> f64 {
+        y[0]
+    }
+    fn velocity(&self, y: &State<3>) -> f64 {
+        y[1]
+    }
+    fn input(&self, _t: f64) -> f64 {
+        0.0
+    }
+    fn input_constant_after(&self) -> Option<f64> {
+        Some(f64::NEG_INFINITY)
+    }
+    fn impact_speed(&self) -> f64 {
+        1.0
+    }
+    fn state_scale(&self) -> State<3> {
+        State::<3>::repeat(1.0)
+    }
+    fn time_scale(&self) -> f64 {
+        1.0
+    }
+    /// The turn from loading to unloading (`V = 0`) and the yield onset while loading
+    /// (`δ = δ_y`), the end of the unloading curve after (`δ = δ_f`).
+    fn kinks(&self, _t: f64, y: &State<3>) -> [f64; 2] {
+        let (loading, d, dm) = Self::phase(y);
+        let edge = if loading {
+            d - self.x_y
+        } else {
+            d - self.unloading(dm).0
+        };
+        [y[1], edge]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{family_impact, Family, FamilyParams};
+    use super::*;
+    use crate::settings::Settings;
+
+    fn law(v_y: f64) -> FamilyParams {
+        FamilyParams {
+            family: Family::Thornton,
+            param: v_y,
+            t_b: 1.0,
+        }
+    }
+
+    #[test]
+    fn the_cor_is_thorntons_closed_form_and_one_below_yield() {
+        let s = Settings::default();
+        for (v_y, v0) in [(2.0, 1.0), (1.0, 1.0), (0.5, 1.0), (0.1, 2.0), (0.01, 3.0)] {
+            let e = family_impact(&law(v_y), v0, &s).unwrap().e;
+            let want = law(v_y).closed_form_cor(v0).unwrap();
+            assert!((e - want).abs() < 1e-7, "v_y {v_y} v0 {v0}: {e} vs {want}");
+        }
+        assert_eq!(law(2.0).closed_form_cor(1.0), Some(1.0));
+    }
+
+    /// Thornton's high-speed limit `e ≈ 1.185 (v_y / v0)^(1/4)` (1997), and the
+    /// continuity of his formula at yield.
+    #[test]
+    fn the_closed_form_has_thorntons_published_limits() {
+        let r: f64 = 1e-4;
+        let e = closed_form(r, 1.0);
+        assert!(
+            (e / r.powf(0.25) - 1.185).abs() < 1e-3,
+            "{}",
+            e / r.powf(0.25)
+        );
+        assert!((closed_form(1.0 - 1e-12, 1.0) - 1.0).abs() < 1e-9);
+    }
+
+    /// The loading line is the Hertz tangent at yield, and the unloading curve starts at the
+    /// peak force and ends at `δ_f` with zero force.
+    #[test]
+    fn loading_and_unloading_meet_where_they_should() {
+        let m = Ndthornton::at(0.2, 1.0);
+        let y = m.x_y;
+        let h = 1e-7 * y;
+        assert!((m.loading(y + h) - m.loading(y - h)) / (2.0 * h) - 1.5 * y.sqrt() < 1e-6);
+        let dm = 3.0 * y;
+        let (df, kp) = m.unloading(dm);
+        assert!((kp * (dm - df).powf(1.5) - m.loading(dm)).abs() < 1e-12);
+        assert!(df > 0.0 && df < dm);
+        let (df0, kp0) = m.unloading(0.5 * y);
+        assert!(df0.abs() < 1e-15 && (kp0 - 1.0).abs() < 1e-12);
+    }
+}
