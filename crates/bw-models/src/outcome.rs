@@ -7,52 +7,28 @@ use bwc_ode::{State, Stats};
 /// The outcome of one impact of a model with `N` states, in the model's units: seconds and SI
 /// states for [`crate::Bwshccm`] (`x, z, v`) and [`crate::Bwmcm`] (`r, y, z, v`),
 /// nondimensional for the ND models. `e = v(t_s) / v0 >= 0` with the relative velocity `v`
-/// positive as the bodies part.
+/// positive as the bodies part. Its outcome is a [`Cor`], which it holds and derefs to
+/// (`impact.e`, `impact.t_s`), and the state it ended in.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct Impact<const N: usize> {
-    /// Separation time `t_s` in the model's time unit (s for SI models), `None` when the bodies
-    /// had not separated by the horizon.
-    pub t_s: Option<f64>,
-    /// Coefficient of restitution `e = v(t_s) / v0` (0 without separation).
-    pub e: f64,
+    /// The outcome: `e`, `t_s`, their error estimates and how they were found.
+    pub cor: Cor,
     /// State at separation (at the horizon, or where the contact settled, without separation).
     pub state: State<N>,
-    /// Without separation: the time at which the contact had settled (at rest with the force
-    /// balancing a constant input, an equilibrium), if the simulation stopped there early.
-    pub settled_at: Option<f64>,
-    /// When the run switched to RODAS4 because it had become stiff ([`Stiffness::Switch`](crate::Stiffness::Switch)).
-    pub stiff_from: Option<f64>,
-    /// Steps taken by Taylor series ([`Settings::series`](crate::Settings::series); 0 on the Runge-Kutta path, and
-    /// counted also where the series handed the impact over to it). The statistics count them
-    /// as accepted steps, and the RHS evaluations of the start steps.
-    pub series_steps: u64,
-    /// Solver statistics (of every run under [`Settings::e_tol`](crate::Settings::e_tol)).
-    pub stats: Stats,
-    /// The relative tolerance of the reported run: [`Settings::rtol`](crate::Settings::rtol), or tighter where
-    /// [`Settings::e_tol`](crate::Settings::e_tol) asked for it.
-    pub rtol: f64,
-    /// Under [`Settings::e_tol`](crate::Settings::e_tol): the estimate of the error in `e`, the difference from the
-    /// check run at 100 times `rtol` (about a hundred times this run's own error where the
-    /// error falls in proportion to rtol). `None` for a single run.
-    pub e_error: Option<f64>,
-    /// As `e_error`, for `t_s` (model time units), where both runs separated.
-    pub t_s_error: Option<f64>,
-    /// What the check under [`Settings::e_tol`](crate::Settings::e_tol) found.
-    pub check: Check,
-    /// Under [`Settings::e_tol`](crate::Settings::e_tol): the tighter run that failed, where one did (the check stopped
-    /// there and `e` is the run before it).
-    pub tighter_failed: Option<FailedRun>,
-    /// Whether the reported run is the double-double one ([`Settings::double_double`](crate::Settings::double_double)); its
-    /// `rtol` is then the double-double run's.
-    pub double_double: bool,
-    /// Where the check stayed [`Check::Unmet`] under [`Settings::double_double`](crate::Settings::double_double): why the
-    /// double-double retry reported nothing (`e` is then the double-precision one). `None`
-    /// otherwise.
-    pub double_double_declined: Option<DdDeclined>,
-    /// Whether the result is the phase path's ([`Settings::phase`](crate::Settings::phase)): no time steps, so `stats`
-    /// count no work and `rtol` is the setting's; `e_error` is the phase path's own estimate.
-    pub phase: bool,
+}
+
+impl<const N: usize> std::ops::Deref for Impact<N> {
+    type Target = Cor;
+    fn deref(&self) -> &Cor {
+        &self.cor
+    }
+}
+
+impl<const N: usize> std::ops::DerefMut for Impact<N> {
+    fn deref_mut(&mut self) -> &mut Cor {
+        &mut self.cor
+    }
 }
 
 impl<const N: usize> Impact<N> {
@@ -65,10 +41,9 @@ impl<const N: usize> Impact<N> {
         stats: Stats,
         rtol: f64,
     ) -> Self {
-        Impact {
+        let cor = Cor {
             t_s,
             e,
-            state,
             settled_at: None,
             stiff_from: None,
             series_steps: 0,
@@ -81,28 +56,19 @@ impl<const N: usize> Impact<N> {
             double_double: false,
             double_double_declined: None,
             phase: false,
-        }
+        };
+        Impact { cor, state }
+    }
+
+    /// The impact with what differs from [`Impact::unchecked`] set on its outcome by `set`.
+    pub(crate) fn with(mut self, set: impl FnOnce(&mut Cor)) -> Self {
+        set(&mut self.cor);
+        self
     }
 
     /// The outcome `cor` ending in `state`.
     pub(crate) fn from_cor(cor: Cor, state: State<N>) -> Self {
-        Impact {
-            t_s: cor.t_s,
-            e: cor.e,
-            state,
-            settled_at: cor.settled_at,
-            stiff_from: cor.stiff_from,
-            series_steps: cor.series_steps,
-            stats: cor.stats,
-            rtol: cor.rtol,
-            e_error: cor.e_error,
-            t_s_error: cor.t_s_error,
-            check: cor.check,
-            tighter_failed: cor.tighter_failed,
-            double_double: cor.double_double,
-            double_double_declined: cor.double_double_declined,
-            phase: cor.phase,
-        }
+        Impact { cor, state }
     }
 
     /// The impact of a model's nondimensional form in the units of the model: each time (`t_s`,
@@ -110,44 +76,33 @@ impl<const N: usize> Impact<N> {
     /// times its scale in `scale` (Table 1); `e = V(T_s) = v(t_s) / v0` and its error are the
     /// same both ways.
     pub(crate) fn in_units(self, scale: &State<N>, t_c: f64) -> Self {
+        let c = self.cor;
+        let cor = Cor {
+            t_s: c.t_s.map(|t| t * t_c),
+            t_s_error: c.t_s_error.map(|t| t * t_c),
+            settled_at: c.settled_at.map(|t| t * t_c),
+            stiff_from: c.stiff_from.map(|t| t * t_c),
+            ..c
+        };
         Impact {
-            t_s: self.t_s.map(|t| t * t_c),
-            t_s_error: self.t_s_error.map(|t| t * t_c),
-            settled_at: self.settled_at.map(|t| t * t_c),
-            stiff_from: self.stiff_from.map(|t| t * t_c),
+            cor,
             state: self.state.component_mul(scale),
-            ..self
         }
     }
 
     /// Whether the bodies separated.
     pub fn separated(&self) -> bool {
-        self.t_s.is_some()
+        self.cor.t_s.is_some()
     }
 
     /// Contact duration `t_d = t_s - t_0 = t_s`.
     pub fn duration(&self) -> Option<f64> {
-        self.t_s
+        self.cor.t_s
     }
 
     /// The outcome without the state.
     pub fn cor(&self) -> Cor {
-        Cor {
-            t_s: self.t_s,
-            e: self.e,
-            settled_at: self.settled_at,
-            stiff_from: self.stiff_from,
-            series_steps: self.series_steps,
-            stats: self.stats,
-            rtol: self.rtol,
-            e_error: self.e_error,
-            t_s_error: self.t_s_error,
-            check: self.check,
-            tighter_failed: self.tighter_failed,
-            double_double: self.double_double,
-            double_double_declined: self.double_double_declined,
-            phase: self.phase,
-        }
+        self.cor
     }
 }
 

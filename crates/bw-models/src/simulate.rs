@@ -142,12 +142,11 @@ fn by_runge_kutta<M: CollisionModel<N>, const N: usize>(
         let e = t_s.map_or(0.0, |_| {
             model.velocity(&state).max(0.0) / model.impact_speed()
         });
-        Impact {
-            settled_at,
-            stiff_from: it.switched_at(),
-            series_steps: start.series_steps,
-            ..Impact::unchecked((t_s, e, state), stats, settings.rtol)
-        }
+        Impact::unchecked((t_s, e, state), stats, settings.rtol).with(|c| {
+            c.settled_at = settled_at;
+            c.stiff_from = it.switched_at();
+            c.series_steps = start.series_steps;
+        })
     };
     let mut locator = Locator::new(
         Separation(|_t: f64, y: &State<N>| (model.force(y), model.velocity(y))),

@@ -119,10 +119,8 @@ impl Runs<3> for Failing {
                 accepted,
                 ..Default::default()
             };
-            Impact {
-                double_double: true,
-                ..Impact::unchecked((Some(1.0), e, State::<3>::zeros()), stats, rtol)
-            }
+            Impact::unchecked((Some(1.0), e, State::<3>::zeros()), stats, rtol)
+                .with(|c| c.double_double = true)
         }))
     }
 }

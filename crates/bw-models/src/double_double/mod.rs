@@ -246,10 +246,7 @@ pub(crate) fn run_model<I: Input + ?Sized, const N: usize>(
                 r.y[3].hi().max(0.0),
                 state_of(r.y.map(|v| v.hi())),
             );
-            Impact {
-                double_double: true,
-                ..Impact::unchecked(end, stats, ext.rtol)
-            }
+            Impact::unchecked(end, stats, ext.rtol).with(|c| c.double_double = true)
         }),
     )
 }

@@ -200,16 +200,14 @@ pub(crate) fn impact_of<const N: usize>(
     settings: &crate::Settings,
 ) -> crate::Impact<N> {
     let stats = bwc_ode::Stats::default();
-    crate::Impact {
-        e_error: cor.e_error,
-        t_s_error: cor.t_s_error,
-        check: match cor.tolerance_met {
-            Some(true) => crate::Check::Met,
-            _ => crate::Check::Off,
-        },
-        phase: true,
-        ..crate::Impact::unchecked((cor.t_s, cor.e, state), stats, settings.rtol)
-    }
+    crate::Impact::unchecked((cor.t_s, cor.e, state), stats, settings.rtol).with(|c| {
+        c.e_error = cor.e_error;
+        c.t_s_error = cor.t_s_error;
+        if cor.tolerance_met == Some(true) {
+            c.check = crate::Check::Met;
+        }
+        c.phase = true;
+    })
 }
 
 /// Results on the rungs from `first` up until two changes in a row are small: the last at most

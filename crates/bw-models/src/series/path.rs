@@ -216,10 +216,11 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
             // The separation, reached at the end of the last step or at its event.
             self.stats.events += 1;
             let e = velocity.max(0.0) / model.impact_speed();
-            return Err(SeriesRun::Done(Impact {
-                series_steps: self.series_steps,
-                ..Impact::unchecked((Some(self.t), e, self.y), self.stats, settings.rtol)
-            }));
+            let steps = self.series_steps;
+            return Err(SeriesRun::Done(
+                Impact::unchecked((Some(self.t), e, self.y), self.stats, settings.rtol)
+                    .with(|c| c.series_steps = steps),
+            ));
         }
         let limit = self.series_steps >= MAX_SERIES_STEPS
             || self.stats.accepted >= settings.max_steps
@@ -314,11 +315,13 @@ impl<'a, M: Expand<N>, const N: usize> SeriesPath<'a, M, N> {
         // At rest under the constant input: an equilibrium, the contact has settled.
         let rate_of_change = State::<N>::from_fn(|i, _| self.jet.state[i][1]);
         if at_rest(model, &rate_of_change, settings.atol) {
-            return Next::Finish(SeriesRun::Done(Impact {
-                settled_at: Some(self.t),
-                series_steps: self.series_steps,
-                ..Impact::unchecked((None, 0.0, self.y), self.stats, settings.rtol)
-            }));
+            let (t, steps) = (self.t, self.series_steps);
+            return Next::Finish(SeriesRun::Done(
+                Impact::unchecked((None, 0.0, self.y), self.stats, settings.rtol).with(|c| {
+                    c.settled_at = Some(t);
+                    c.series_steps = steps;
+                }),
+            ));
         }
         self.series_steps += 1;
         self.stats.accepted += 1;
