@@ -5,10 +5,8 @@ use crate::scene::{System, SystemSpec};
 use bw_models::sequence::Bounce;
 use bw_models::sweep::GaveUp;
 use bw_models::{
-    nondimensionalize, BodyMotion, Check, DdDeclined, FailedRun, ModelError, ModelKind, Nondim,
-    PhysicalParams, Settings,
+    nondimensionalize, BodyMotion, Cor, ModelError, ModelKind, Nondim, PhysicalParams, Settings,
 };
-use bwc_ode::Stats;
 
 /// One simulated impact.
 #[derive(Debug, Clone, PartialEq)]
@@ -39,28 +37,11 @@ pub struct Run {
     pub t_d: Option<f64>,
     /// Unit of `t_s` and of the trajectory's `t`: `"s"` or `"nondimensional"`.
     pub time_unit: &'static str,
-    /// Solver statistics.
-    pub stats: Stats,
-    /// When the run switched to RODAS4 because it had become stiff (in the unit of `t_s`).
-    pub stiff_from: Option<f64>,
-    /// Steps taken by Taylor series (`bw_models::Settings::series`).
-    pub series_steps: u64,
-    /// The relative tolerance of the reported run; `None` where nothing was simulated.
-    pub rtol: Option<f64>,
-    /// A checked CoR's estimate of its error in `e` (`bw_models::Settings::e_tol`).
-    pub e_error: Option<f64>,
-    /// As `e_error`, for `t_s` (in the unit of `t_s`).
-    pub t_s_error: Option<f64>,
-    /// What the check under `e_tol` found; `None` where nothing was simulated.
-    pub check: Option<Check>,
-    /// The tighter run under `e_tol` that failed, where one did.
-    pub tighter_failed: Option<FailedRun>,
-    /// Whether the reported run is the double-double one (`bw_models::Settings::double_double`).
-    pub double_double: bool,
-    /// Why the double-double retry of an unmet check reported nothing, where it was due.
-    pub double_double_declined: Option<DdDeclined>,
-    /// Whether `e` and `t_s` came from the phase path (`bw_models::Settings::phase`).
-    pub phase: bool,
+    /// How the impact was computed: the CoR evaluation's outcome (statistics, tolerance, the
+    /// check under `e_tol` and its error estimates, the path that served it), its times in
+    /// the unit of `t_s`; `None` where nothing was simulated (a failed run, an interpolated
+    /// row, a sequence, whose contacts are in `bounces`).
+    pub solver: Option<Cor>,
     /// Sampled trajectory (only when an output asks for it).
     pub trajectory: Vec<Sample>,
     /// The contacts of a `[sequence]` scene with the displacement (m) at each separation.
@@ -160,17 +141,7 @@ impl Run {
             nondimensional: None,
             t_d: None,
             time_unit,
-            stats: Stats::default(),
-            stiff_from: None,
-            series_steps: 0,
-            rtol: None,
-            e_error: None,
-            t_s_error: None,
-            check: None,
-            tighter_failed: None,
-            double_double: false,
-            double_double_declined: None,
-            phase: false,
+            solver: None,
             trajectory: Vec::new(),
             bounces: Vec::new(),
             interpolation: None,

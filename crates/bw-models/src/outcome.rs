@@ -76,16 +76,8 @@ impl<const N: usize> Impact<N> {
     /// times its scale in `scale` (Table 1); `e = V(T_s) = v(t_s) / v0` and its error are the
     /// same both ways.
     pub(crate) fn in_units(self, scale: &State<N>, t_c: f64) -> Self {
-        let c = self.cor;
-        let cor = Cor {
-            t_s: c.t_s.map(|t| t * t_c),
-            t_s_error: c.t_s_error.map(|t| t * t_c),
-            settled_at: c.settled_at.map(|t| t * t_c),
-            stiff_from: c.stiff_from.map(|t| t * t_c),
-            ..c
-        };
         Impact {
-            cor,
+            cor: self.cor.in_time_unit(t_c),
             state: self.state.component_mul(scale),
         }
     }
@@ -107,38 +99,64 @@ impl<const N: usize> Impact<N> {
 }
 
 /// An impact's outcome without its state: what a CoR evaluation of either model gives
-/// ([`crate::impact_at`]). Fields as in [`Impact`].
+/// ([`crate::impact_at`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct Cor {
-    /// Separation time in the model's time unit, `None` without separation.
+    /// Separation time `t_s` in the model's time unit (s for SI models), `None` when the bodies
+    /// had not separated by the horizon.
     pub t_s: Option<f64>,
-    /// Coefficient of restitution (0 without separation).
+    /// Coefficient of restitution `e = v(t_s) / v0` (0 without separation).
     pub e: f64,
-    /// Where the contact settled, if it did.
+    /// Without separation: the time at which the contact had settled (at rest with the force
+    /// balancing a constant input, an equilibrium), if the simulation stopped there early.
     pub settled_at: Option<f64>,
-    /// When the run switched to RODAS4.
+    /// When the run switched to RODAS4 because it had become stiff ([`Stiffness::Switch`](crate::Stiffness::Switch)).
     pub stiff_from: Option<f64>,
-    /// Steps taken by Taylor series.
+    /// Steps taken by Taylor series ([`Settings::series`](crate::Settings::series); 0 on the Runge-Kutta path, and
+    /// counted also where the series handed the impact over to it). The statistics count them
+    /// as accepted steps, and the RHS evaluations of the start steps.
     pub series_steps: u64,
-    /// Solver statistics.
+    /// Solver statistics (of every run under [`Settings::e_tol`](crate::Settings::e_tol)).
     pub stats: Stats,
-    /// The relative tolerance of the reported run.
+    /// The relative tolerance of the reported run: [`Settings::rtol`](crate::Settings::rtol), or tighter where
+    /// [`Settings::e_tol`](crate::Settings::e_tol) asked for it.
     pub rtol: f64,
-    /// Estimate of the error in `e` under [`Settings::e_tol`](crate::Settings::e_tol).
+    /// Under [`Settings::e_tol`](crate::Settings::e_tol): the estimate of the error in `e`, the difference from the
+    /// check run at 100 times `rtol` (about a hundred times this run's own error where the
+    /// error falls in proportion to rtol). `None` for a single run.
     pub e_error: Option<f64>,
-    /// Estimate of the error in `t_s` under [`Settings::e_tol`](crate::Settings::e_tol).
+    /// As `e_error`, for `t_s` (model time units), where both runs separated.
     pub t_s_error: Option<f64>,
     /// What the check under [`Settings::e_tol`](crate::Settings::e_tol) found.
     pub check: Check,
-    /// The tighter run under [`Settings::e_tol`](crate::Settings::e_tol) that failed, where one did.
+    /// Under [`Settings::e_tol`](crate::Settings::e_tol): the tighter run that failed, where one did (the check stopped
+    /// there and `e` is the run before it).
     pub tighter_failed: Option<FailedRun>,
-    /// Whether the reported run is the double-double one.
+    /// Whether the reported run is the double-double one ([`Settings::double_double`](crate::Settings::double_double)); its
+    /// `rtol` is then the double-double run's.
     pub double_double: bool,
-    /// Why the double-double retry reported nothing, where it was due.
+    /// Where the check stayed [`Check::Unmet`] under [`Settings::double_double`](crate::Settings::double_double): why the
+    /// double-double retry reported nothing (`e` is then the double-precision one). `None`
+    /// otherwise.
     pub double_double_declined: Option<DdDeclined>,
-    /// Whether the result is the phase path's ([`Settings::phase`](crate::Settings::phase)).
+    /// Whether the result is the phase path's ([`Settings::phase`](crate::Settings::phase)): no time steps, so `stats`
+    /// count no work and `rtol` is the setting's; `e_error` is the phase path's own estimate.
     pub phase: bool,
+}
+
+impl Cor {
+    /// The outcome with its times (`t_s`, its error, `settled_at`, `stiff_from`) multiplied by
+    /// `scale`: in seconds for a nondimensional impact with `scale` its time scale (s).
+    pub fn in_time_unit(self, scale: f64) -> Cor {
+        Cor {
+            t_s: self.t_s.map(|t| t * scale),
+            t_s_error: self.t_s_error.map(|t| t * scale),
+            settled_at: self.settled_at.map(|t| t * scale),
+            stiff_from: self.stiff_from.map(|t| t * scale),
+            ..self
+        }
+    }
 }
 
 impl Cor {

@@ -27,7 +27,7 @@ mod dict_errors;
 use bw_models::Check;
 use bwc_app::chain::ChainScene;
 use bwc_app::config::Config;
-use bwc_app::runs::Outcome;
+use bwc_app::runs::{Outcome, Run};
 use bwc_app::scene::Scene;
 use bwc_app::simulate;
 use bwc_app::AppError;
@@ -73,7 +73,11 @@ fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[bwc_app::runs::Run]) -> PyR
         ));
     }
     let (k, labels) = labels_of(runs, |r| {
-        r.outcome == Outcome::Separated && matches!(r.check, Some(Check::Unmet | Check::Unverified))
+        r.outcome == Outcome::Separated
+            && matches!(
+                r.solver.map(|c| c.check),
+                Some(Check::Unmet | Check::Unverified)
+            )
     });
     if k > 0 {
         notes.push(format!(
@@ -194,65 +198,62 @@ fn cor<'py>(
         )));
     }
     warn_notes(py, &scene, &runs)?;
-    let column = |f: &dyn Fn(&bwc_app::runs::Run) -> f64| runs.iter().map(f).collect::<Vec<f64>>();
+    cor_columns(py, &runs)
+}
+
+/// The columns of `bwc.cor`, one per quantity of the runs, in the order its documentation
+/// lists them: floats (NaN where absent), flags, and codes into the lists above.
+fn cor_columns<'py>(py: Python<'py>, runs: &[Run]) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
-    out.set_item("e", column(&|r| r.e).into_pyarray(py))?;
-    out.set_item(
-        "t_s",
-        column(&|r| r.t_s.unwrap_or(f64::NAN)).into_pyarray(py),
-    )?;
-    out.set_item(
-        "t_d",
-        column(&|r| r.t_d.unwrap_or(f64::NAN)).into_pyarray(py),
-    )?;
-    let separated: Vec<bool> = runs
-        .iter()
-        .map(|r| r.outcome == Outcome::Separated)
-        .collect();
-    out.set_item("separated", PyArray1::from_vec(py, separated))?;
-    out.set_item(
-        "e_error",
-        column(&|r| r.e_error.unwrap_or(f64::NAN)).into_pyarray(py),
-    )?;
-    let check = |r: &bwc_app::runs::Run| {
-        let name = r.check.map_or("none", |c| c.name());
-        CHECKS.iter().position(|n| *n == name).unwrap_or(4) as u8
+    let floats = |name: &str, f: &dyn Fn(&Run) -> Option<f64>| {
+        let v: Vec<f64> = runs.iter().map(|r| f(r).unwrap_or(f64::NAN)).collect();
+        out.set_item(name, v.into_pyarray(py))
     };
-    let checks: Vec<u8> = runs.iter().map(check).collect();
-    out.set_item("check", checks.into_pyarray(py))?;
-    out.set_item(
-        "tighter_failed_rtol",
-        column(&|r| r.tighter_failed.map_or(f64::NAN, |f| bwc_app::tidy(f.rtol))).into_pyarray(py),
-    )?;
-    let out_of_steps: Vec<bool> = runs
-        .iter()
-        .map(|r| r.tighter_failed.is_some_and(|f| f.out_of_steps))
-        .collect();
-    out.set_item("tighter_out_of_steps", PyArray1::from_vec(py, out_of_steps))?;
-    let double_double: Vec<bool> = runs.iter().map(|r| r.double_double).collect();
-    out.set_item("double_double", PyArray1::from_vec(py, double_double))?;
-    let phase: Vec<bool> = runs.iter().map(|r| r.phase).collect();
-    out.set_item("phase", PyArray1::from_vec(py, phase))?;
-    let declined = |r: &bwc_app::runs::Run| {
-        let name = r.double_double_declined.map_or("none", |d| d.name());
-        DECLINED.iter().position(|n| *n == name).unwrap_or(0) as u8
+    let flags = |name: &str, f: &dyn Fn(&Run) -> bool| {
+        out.set_item(name, PyArray1::from_vec(py, runs.iter().map(f).collect()))
     };
-    let declined: Vec<u8> = runs.iter().map(declined).collect();
-    out.set_item("double_double_declined", declined.into_pyarray(py))?;
-    let evals: Vec<u64> = runs.iter().map(|r| r.stats.rhs_evals).collect();
+    let codes = |name: &str, list: &[&str], f: &dyn Fn(&Run) -> &'static str| {
+        let code = |r: &Run| list.iter().position(|n| *n == f(r)).unwrap_or(0) as u8;
+        out.set_item(
+            name,
+            runs.iter().map(code).collect::<Vec<u8>>().into_pyarray(py),
+        )
+    };
+    let solver = |r: &Run| r.solver;
+    floats("e", &|r| Some(r.e))?;
+    floats("t_s", &|r| r.t_s)?;
+    floats("t_d", &|r| r.t_d)?;
+    flags("separated", &|r| r.outcome == Outcome::Separated)?;
+    floats("e_error", &|r| solver(r).and_then(|c| c.e_error))?;
+    codes("check", &CHECKS, &|r| {
+        solver(r).map_or("none", |c| c.check.name())
+    })?;
+    let failed = |r: &Run| solver(r).and_then(|c| c.tighter_failed);
+    floats("tighter_failed_rtol", &|r| {
+        failed(r).map(|f| bwc_app::tidy(f.rtol))
+    })?;
+    flags("tighter_out_of_steps", &|r| {
+        failed(r).is_some_and(|f| f.out_of_steps)
+    })?;
+    flags("double_double", &|r| {
+        solver(r).is_some_and(|c| c.double_double)
+    })?;
+    flags("phase", &|r| solver(r).is_some_and(|c| c.phase))?;
+    codes("double_double_declined", &DECLINED, &|r| {
+        let declined = solver(r).and_then(|c| c.double_double_declined);
+        declined.map_or("none", |d| d.name())
+    })?;
+    let evals: Vec<u64> = runs
+        .iter()
+        .map(|r| solver(r).map_or(0, |c| c.stats.rhs_evals))
+        .collect();
     out.set_item("rhs_evals", evals.into_pyarray(py))?;
-    let interpolated: Vec<bool> = runs.iter().map(|r| r.interpolation.is_some()).collect();
-    out.set_item("interpolated", PyArray1::from_vec(py, interpolated))?;
-    let gave_up = |r: &bwc_app::runs::Run| {
-        let name = r.sweep_gave_up.map_or("none", |g| g.name());
-        GAVE_UP.iter().position(|n| *n == name).unwrap_or(0) as u8
-    };
-    let gave_up: Vec<u8> = runs.iter().map(gave_up).collect();
-    out.set_item("sweep_gave_up", gave_up.into_pyarray(py))?;
+    flags("interpolated", &|r| r.interpolation.is_some())?;
+    codes("sweep_gave_up", &GAVE_UP, &|r| {
+        r.sweep_gave_up.map_or("none", |g| g.name())
+    })?;
     // Codes into OUTCOMES (the Python side makes the string array without per-run objects).
-    let code = |o: Outcome| OUTCOMES.iter().position(|n| *n == o.name()).unwrap_or(3) as u8;
-    let outcome: Vec<u8> = runs.iter().map(|r| code(r.outcome)).collect();
-    out.set_item("outcome", outcome.into_pyarray(py))?;
+    codes("outcome", &OUTCOMES, &|r| r.outcome.name())?;
     Ok(out)
 }
 

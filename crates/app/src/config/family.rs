@@ -45,6 +45,26 @@ pub(super) fn family_space(
     family: Family,
     durations: bool,
 ) -> Result<Space, AppError> {
+    foreign_keys_absent(ctx, r, family)?;
+    let (param, t_b) = searched(ctx, r, t, family, durations)?;
+    Space::family(family, param, t_b).map_err(|e| match e {
+        IdentifyError::Bounds {
+            name,
+            lo,
+            hi,
+            allowed,
+        } => ctx.invalid(
+            &r.bounds.as_ref().map_or(t.clone(), |b| b.span()),
+            format!("[fit.bounds].{name}"),
+            format!("[{lo}, {hi}] is not admissible: {allowed}"),
+        ),
+        other => ctx.invalid(t, "[[fit]]", other.to_string()),
+    })
+}
+
+/// A family's fit names none of the Bouc-Wen quantities and none of the tables that belong
+/// to the Bouc-Wen models (an input, a known mass, a start, a vector, a drop test).
+fn foreign_keys_absent(ctx: &Ctx, r: &RawFit, family: Family) -> Result<(), AppError> {
     let model = family.name();
     let not_here = |span: Range<usize>, key: &str, what: &str| {
         ctx.invalid(
@@ -97,9 +117,22 @@ pub(super) fn family_space(
             "a drop-test sequence",
         ),
     ];
-    if let Some((Some(span), key, what)) = tables.into_iter().find(|x| x.0.is_some()) {
-        return Err(not_here(span, key, what));
+    match tables.into_iter().find(|x| x.0.is_some()) {
+        Some((Some(span), key, what)) => Err(not_here(span, key, what)),
+        _ => Ok(()),
     }
+}
+
+/// The family's parameter (its default bounds where the config gives none) and `T_b`
+/// (required where `durations`, held at 1 otherwise), from `[fit.bounds]`, `[fit.fixed]` and
+/// `log`.
+fn searched(
+    ctx: &Ctx,
+    r: &RawFit,
+    t: &Range<usize>,
+    family: Family,
+    durations: bool,
+) -> Result<(Param, Param), AppError> {
     let (log_param, log_t) = log_flags(ctx, r, family)?;
     let name = family.param_name();
     let b = r.bounds.as_ref().map(|b| b.get_ref());
@@ -110,8 +143,7 @@ pub(super) fn family_space(
         .unwrap_or_else(|| default_param(family));
     let bound_t = b.and_then(|b| b.t_b().clone());
     let fixed_t = v.and_then(|v| v.t_b().clone());
-    let t_b = param_of(ctx, "fit", "T_b", &bound_t, &fixed_t, log_t)?;
-    let t_b = match t_b {
+    let t_b = match param_of(ctx, "fit", "T_b", &bound_t, &fixed_t, log_t)? {
         Some(p) => p,
         None if !durations => Param::Fixed(1.0),
         None => {
@@ -122,19 +154,7 @@ pub(super) fn family_space(
             ))
         }
     };
-    Space::family(family, param, t_b).map_err(|e| match e {
-        IdentifyError::Bounds {
-            name,
-            lo,
-            hi,
-            allowed,
-        } => ctx.invalid(
-            &r.bounds.as_ref().map_or(t.clone(), |b| b.span()),
-            format!("[fit.bounds].{name}"),
-            format!("[{lo}, {hi}] is not admissible: {allowed}"),
-        ),
-        other => ctx.invalid(t, "[[fit]]", other.to_string()),
-    })
+    Ok((param, t_b))
 }
 
 /// `log = [...]` of a family: its parameter and `T_b`.

@@ -3,101 +3,15 @@
 //! run leaves no half-written file.
 
 mod figures;
+mod run_summary;
 mod study;
 
+pub use run_summary::{RunSummary, RUN_KEYS};
 pub use study::{Study, FIGURE_POINTS, FIGURE_RUNS, RUNS_FILE};
 
-use crate::runs::{Outcome, Run};
+use crate::runs::Run;
 use crate::scene::{Scene, System};
-use bw_models::Check;
 use serde::Serialize;
-
-/// One run in the JSON summary. Key names are a fixed contract; keys may be added.
-#[derive(Debug, Serialize)]
-pub struct RunSummary {
-    /// The time scale `T_c` (s): solver times (`t_max`, `max_step`) are multiples of it; null
-    /// for nondimensional runs.
-    #[serde(rename = "T_c")]
-    pub t_c: Option<f64>,
-    /// Accepted steps.
-    pub accepted: u64,
-    /// `"double"`, or `"double-double"` where the reported run is the double-double one
-    /// (`[solver] double_double`: the double-precision runs could not meet `e_tol`).
-    pub arithmetic: &'static str,
-    /// The contacts of a `[sequence]` scene (absent otherwise).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub bounces: Option<Vec<BounceSummary>>,
-    /// What the check of `e` against `[solver] e_tol` found: `"met"` (`e_error` at most
-    /// `e_tol`), `"unmet"` (above it, and no tighter run was possible), `"unverified"` (no run
-    /// at another tolerance finished: `e` is one unchecked run) or `"off"` (one run: no `e_tol`,
-    /// or a trajectory); null for an interpolated row or a failed run.
-    pub check: Option<&'static str>,
-    /// Where `check` is `"unmet"` under `[solver] double_double`: why the double-double retry
-    /// reported nothing (`e` is then the double-precision one), as the predicate the warning
-    /// prints after "the double-double retry" (`"was not tried: ..."`); null otherwise.
-    pub double_double_declined: Option<String>,
-    /// Coefficient of restitution.
-    pub e: f64,
-    /// The estimate of the error in `e` of a CoR checked against a run at another tolerance
-    /// (`[solver] e_tol`); null for a single run, a trajectory or an interpolated row.
-    pub e_error: Option<f64>,
-    /// For a failed run, what went wrong and which setting would help; null otherwise.
-    pub error: Option<String>,
-    /// Located events.
-    pub events: u64,
-    /// Where `e` and `t_s` came from an interpolant of the sweep (`"source": "interpolated"`):
-    /// its error estimate and piece; null for a simulated run.
-    pub interpolation: Option<InterpolationSummary>,
-    /// Jacobian evaluations (RODAS4 steps).
-    pub jacobians: u64,
-    /// `"shccm"` or `"mcm"`.
-    pub model: &'static str,
-    /// System name, if any.
-    pub name: Option<String>,
-    /// The nondimensional parameters the run integrated; null for a failed run.
-    pub nondimensional: Option<NondimSummary>,
-    /// How the run ended: `"separated"`, `"settled"`, `"horizon"` or `"failed"`.
-    pub outcome: &'static str,
-    /// Whether `e` and `t_s` came from the phase path (`[solver] phase`: quadratures in phase
-    /// space, no time steps, so every count is 0 and `e_error` is its own estimate).
-    pub phase: bool,
-    /// Rejected steps.
-    pub rejected: u64,
-    /// For a settled contact, where it came to rest (`F + u = 0`); null otherwise.
-    pub rest: Option<RestSummary>,
-    /// RHS evaluations (of every run behind a checked CoR).
-    pub rhs_evals: u64,
-    /// The relative tolerance of the reported run (`[solver] rtol`, or tighter where `e_tol`
-    /// asked for it); null for an interpolated row or a failed run.
-    pub rtol: Option<f64>,
-    /// Whether the bodies separated.
-    pub separated: bool,
-    /// Steps taken by Taylor series (0 on the Runge-Kutta path; counted in `accepted`).
-    pub series_steps: u64,
-    /// `"simulated"`, or `"interpolated"` (then every count is 0: see `interpolation`).
-    pub source: &'static str,
-    /// When the run switched to RODAS4 because it had become stiff (unit of `t_s`), or null.
-    pub stiff_from: Option<f64>,
-    /// For a simulated run of a sweep whose speed the sweep tried to interpolate and gave up
-    /// on: why (`"noise"`: a larger `[sweep].tolerance` helps; `"too-few-speeds"`: a kink or
-    /// steep stretch, more speeds help; `"not-smooth"`: runs without a separation or failed
-    /// split the range; `"budget"`); null otherwise.
-    pub sweep_gave_up: Option<&'static str>,
-    /// Contact duration (s), null where no time scale exists.
-    pub t_d: Option<f64>,
-    /// Separation time (nondimensional for nondimensional scenes, s otherwise), null without separation.
-    pub t_s: Option<f64>,
-    /// As `e_error`, for `t_s` (its unit), where both runs separated.
-    pub t_s_error: Option<f64>,
-    /// Under `[solver] e_tol`: the tighter run that failed, so that the check stopped at the
-    /// run before it (`rtol`, and `out_of_steps`: whether a larger `[solver] max_steps` would
-    /// let it finish); null where none failed.
-    pub tighter_failed: Option<FailedRunSummary>,
-    /// Unit of `t_s`.
-    pub time_unit: &'static str,
-    /// Impact speed (m/s), null for nondimensional scenes.
-    pub v0: Option<f64>,
-}
 
 /// A tighter run under `e_tol` that failed (`bw_models::FailedRun`).
 #[derive(Debug, Serialize)]
@@ -212,67 +126,7 @@ impl Summary {
     /// Summarises runs (with their bounces when `sequence`).
     pub fn new(runs: &[Run], sequence: bool) -> Self {
         Summary {
-            runs: runs
-                .iter()
-                .map(|r| RunSummary {
-                    v0: r.v0,
-                    t_s: r.t_s,
-                    e: r.e,
-                    t_d: r.t_d,
-                    separated: r.outcome == Outcome::Separated,
-                    rhs_evals: r.stats.rhs_evals,
-                    rtol: r.rtol.map(crate::format::tidy),
-                    e_error: r.e_error,
-                    t_s_error: r.t_s_error,
-                    check: r.check.map(Check::name),
-                    tighter_failed: r.tighter_failed.map(|f| FailedRunSummary {
-                        rtol: crate::format::tidy(f.rtol),
-                        out_of_steps: f.out_of_steps,
-                    }),
-                    double_double_declined: r.double_double_declined.map(|d| d.to_string()),
-                    phase: r.phase,
-                    arithmetic: if r.double_double {
-                        "double-double"
-                    } else {
-                        "double"
-                    },
-                    accepted: r.stats.accepted,
-                    rejected: r.stats.rejected,
-                    events: r.stats.events,
-                    interpolation: r.interpolation.map(|i| InterpolationSummary {
-                        degree: i.degree,
-                        estimate: i.estimate,
-                        from: i.from,
-                        to: i.to,
-                    }),
-                    source: source(r),
-                    jacobians: r.stats.jacobians,
-                    stiff_from: r.stiff_from,
-                    sweep_gave_up: r.sweep_gave_up.map(|g| g.name()),
-                    series_steps: r.series_steps,
-                    model: r.model.name(),
-                    name: r.name.clone(),
-                    time_unit: r.time_unit,
-                    outcome: r.outcome.name(),
-                    error: r.error.clone(),
-                    rest: r.rest.map(|q| RestSummary {
-                        t: q.t,
-                        x: q.x,
-                        f: q.f,
-                        u: q.u,
-                    }),
-                    t_c: r.t_c,
-                    nondimensional: r.nondimensional.map(|q| NondimSummary {
-                        B: q.b,
-                        Gamma: q.gamma,
-                        kappa: q.kappa,
-                        sigma: q.sigma,
-                        n: q.n,
-                        p: q.p,
-                    }),
-                    bounces: sequence.then(|| r.bounces.iter().map(BounceSummary::of).collect()),
-                })
-                .collect(),
+            runs: runs.iter().map(|r| RunSummary::of(r, sequence)).collect(),
         }
     }
 
@@ -411,29 +265,23 @@ pub fn units(scene: &Scene, time_unit: Option<&str>) -> serde_json::Value {
     let t = time_unit.unwrap_or("s");
     let si = si_states(scene);
     let (m, ms, n) = if si { ("m", "m/s", "N") } else { (nd, nd, nd) };
-    let bounces = serde_json::json!({"n": "count", "t_contact": "s", "v_in": "m/s",
-        "v_out": "m/s", "e": "1", "t_s": "s", "apex": "m", "interval": "s", "x_s": "m",
-        "outcome": "text"});
+    let runs = run_summary::run_units(run_summary::SceneUnits { t, m, n });
     serde_json::json!({
-        "runs": {"v0": "m/s", "e": "1", "t_s": t, "t_d": "s", "T_c": "s", "stiff_from": t,
-            "rest": {"t": t, "x": m, "F": n, "u": n}, "nondimensional": "1",
-            "rhs_evals": "count", "accepted": "count", "rejected": "count", "events": "count",
-            "jacobians": "count", "series_steps": "count", "source": "text",
-            "rtol": "1", "e_error": "1", "t_s_error": t, "check": "text",
-            "tighter_failed": {"rtol": "1", "out_of_steps": "true/false"}, "arithmetic": "text",
-            "double_double_declined": "text", "phase": "true/false",
-            "interpolation": {"degree": "count", "estimate": "1", "from": "m/s", "to": "m/s"},
-            "name": "text", "model": "text", "outcome": "text", "separated": "true/false",
-            "error": "text", "sweep_gave_up": "text", "time_unit": "text",
-            "bounces": bounces},
+        "runs": runs,
         "sweep.csv": {"v_0": "m/s", "e": "1", "t_d": "s", "t_s": t, "separated": "true/false",
             "name": "text", "outcome": "text", "source": "text"},
         "trajectory.csv": {"v_0": "m/s", "name": "text", "t": t, "x": m, "v": ms, "u": n,
             "F": n, "z": m, "r": m, "y": m, "x_m_1": "m", "x_m_2": "m", "x_m": "m",
             "v_m_1": "m/s", "v_m_2": "m/s", "v_m": "m/s", "u_1": "N", "u_2": "N"},
         "loop.csv": {"v_0": "m/s", "x": m, "F": n, "name": "text"},
-        "bounces.csv": bounces,
+        "bounces.csv": bounce_units(),
     })
+}
+
+/// The unit of each key of a bounce (`bounces` of a run, `bounces.csv`).
+fn bounce_units() -> serde_json::Value {
+    serde_json::json!({"n": "count", "t_contact": "s", "v_in": "m/s", "v_out": "m/s",
+        "e": "1", "t_s": "s", "apex": "m", "interval": "s", "x_s": "m", "outcome": "text"})
 }
 
 /// `bounces.csv`: the columns of [`BounceSummary`], one row per contact.

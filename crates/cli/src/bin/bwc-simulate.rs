@@ -293,11 +293,12 @@ fn report(scene: &Scene, runs: &[bwc_app::runs::Run]) {
 /// Warns where a checked CoR's own error estimate stayed above `[solver].e_tol`, or where no
 /// run at another tolerance could check it.
 fn unmet_e_tol(scene: &Scene, label: &str, r: &bwc_app::runs::Run) {
-    let (Some(e_tol), Some(check), Some(rtol)) = (scene.settings.e_tol, r.check, r.rtol) else {
+    let (Some(e_tol), Some(c)) = (scene.settings.e_tol, r.solver.as_ref()) else {
         return;
     };
+    let (check, rtol) = (c.check, c.rtol);
     // Why no tighter run settled it, and the setting that would let one finish.
-    let stop = match r.tighter_failed {
+    let stop = match c.tighter_failed {
         Some(f) if f.out_of_steps => format!(
             "the run at rtol {:e} needed more than [solver].max_steps = {} steps; a larger \
              max_steps lets it finish",
@@ -307,9 +308,9 @@ fn unmet_e_tol(scene: &Scene, label: &str, r: &bwc_app::runs::Run) {
         Some(f) => format!("the run at rtol {:e} failed", tidy(f.rtol)),
         None => format!("rtol {:e} is the tightest", LADDER.floor_rtol),
     };
-    match (check, r.e_error) {
+    match (check, c.e_error) {
         (Check::Unmet, Some(estimate)) => {
-            let retry = match r.double_double_declined {
+            let retry = match c.double_double_declined {
                 Some(why) => format!("; the double-double retry ([solver] double_double) {why}"),
                 None => String::new(),
             };
@@ -370,15 +371,15 @@ impl Table {
                 "-".into()
             };
             // A checked CoR's estimate; an interpolated row's is its interpolant's.
-            let estimate = r
-                .e_error
+            let estimate = (r.solver.as_ref())
+                .and_then(|c| c.e_error)
                 .or(r.interpolation.map(|i| i.estimate))
                 .map_or("-".to_string(), |d| format!("{d:.1e}"));
             let ts = r.t_s.map_or("-".to_string(), |t| format!("{t:.9e}"));
             let td = r.t_d.map_or("-".to_string(), |t| format!("{t:.6e}"));
             let evals = match r.interpolation {
                 Some(_) => "interp.".to_string(),
-                None => r.stats.rhs_evals.to_string(),
+                None => r.solver.map_or(0, |c| c.stats.rhs_evals).to_string(),
             };
             bwc_app::out!(
                 "{:<width$} {:>10} {:>12} {:>11} {:>16} {:>14} {:>10}",
@@ -390,7 +391,7 @@ impl Table {
                 td,
                 evals
             );
-            if r.double_double {
+            if r.solver.is_some_and(|c| c.double_double) {
                 self.precise.push(label);
             }
         }
