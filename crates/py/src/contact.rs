@@ -21,21 +21,59 @@ fn law(
     model: &Bound<'_, PyAny>,
     params: &Bound<'_, PyAny>,
 ) -> PyResult<(PhysicalParams, Option<f64>)> {
-    let kind = match word(model, "model")?.as_deref() {
-        Some("shccm") => ModelKind::Shccm,
-        Some("mcm") => ModelKind::Mcm,
-        Some(other) => {
-            return Err(BwcError::new_err(format!(
-                "model: \"{other}\" is not a model: \"shccm\" or \"mcm\""
-            )))
-        }
-        None => {
-            return Err(BwcError::new_err(format!(
-                "model = {} is not a model: the string \"shccm\" or \"mcm\"",
-                shown(model)
-            )))
-        }
-    };
+    let kind = model_kind(model)?;
+    let (base, v) = values(params)?;
+    let bad = |e: bw_models::ModelError| BwcError::new_err(format!("params: {e}"));
+    if base {
+        let [b_b, gamma_b, kappa, sigma_b, n, p, u_b, t_b] = v;
+        let b = BaseParams {
+            b_b,
+            gamma_b,
+            kappa,
+            sigma_b,
+            n,
+            p,
+            u_b,
+            t_b,
+        };
+        let (law, m) = BaseMap::new(kind, b)
+            .and_then(|m| m.physical())
+            .map_err(bad)?;
+        Ok((law, Some(m)))
+    } else {
+        let [k, c, n, p, alpha, beta, gamma, a] = v;
+        let l = Physical {
+            k,
+            c,
+            n,
+            p,
+            alpha,
+            beta,
+            gamma,
+            a,
+        };
+        Ok((PhysicalParams::new(kind, l).map_err(bad)?, None))
+    }
+}
+
+/// The model a `model` argument names: `"shccm"` or `"mcm"`.
+fn model_kind(model: &Bound<'_, PyAny>) -> PyResult<ModelKind> {
+    match word(model, "model")?.as_deref() {
+        Some("shccm") => Ok(ModelKind::Shccm),
+        Some("mcm") => Ok(ModelKind::Mcm),
+        Some(other) => Err(BwcError::new_err(format!(
+            "model: \"{other}\" is not a model: \"shccm\" or \"mcm\""
+        ))),
+        None => Err(BwcError::new_err(format!(
+            "model = {} is not a model: the string \"shccm\" or \"mcm\"",
+            shown(model)
+        ))),
+    }
+}
+
+/// Whether a `params` dict holds base parameters, and its eight values in the order of
+/// [`BASE`] or [`PHYSICAL`]; every key checked, every value a number.
+fn values(params: &Bound<'_, PyAny>) -> PyResult<(bool, [f64; 8])> {
     let params = params.downcast::<PyDict>().map_err(|_| {
         BwcError::new_err(format!(
             "params = {} is not admissible: a dict of the law's parameters ({}; or {})",
@@ -75,37 +113,7 @@ fn law(
             .extract()
             .map_err(|_| BwcError::new_err(format!("params[\"{name}\"]: not a number")))?;
     }
-    let bad = |e: bw_models::ModelError| BwcError::new_err(format!("params: {e}"));
-    if base {
-        let [b_b, gamma_b, kappa, sigma_b, n, p, u_b, t_b] = v;
-        let b = BaseParams {
-            b_b,
-            gamma_b,
-            kappa,
-            sigma_b,
-            n,
-            p,
-            u_b,
-            t_b,
-        };
-        let (law, m) = BaseMap::new(kind, b)
-            .and_then(|m| m.physical())
-            .map_err(bad)?;
-        Ok((law, Some(m)))
-    } else {
-        let [k, c, n, p, alpha, beta, gamma, a] = v;
-        let l = Physical {
-            k,
-            c,
-            n,
-            p,
-            alpha,
-            beta,
-            gamma,
-            a,
-        };
-        Ok((PhysicalParams::new(kind, l).map_err(bad)?, None))
-    }
+    Ok((base, v))
 }
 
 fn settings(policy: &Bound<'_, PyAny>, rtol: f64, atol: f64) -> PyResult<ElementSettings> {

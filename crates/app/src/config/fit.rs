@@ -107,16 +107,7 @@ pub(super) fn parse_fit(
         columns_for(ctx, (r, &t), &data_path, weights)?;
     }
     let known = known(ctx, r)?;
-    let input = match &r.input {
-        Some(i) => signal(ctx, i, "[fit.input]", known.map(|k| k.m))?,
-        None => Signal::zero(),
-    };
-    // The input scales U_b, T_b matter under an input, for durations, with a known body, and
-    // for drop tests where they are given.
-    let uses_input_scales = !bw_models::input::Input::is_zero(&input)
-        || weights.j2 > 0.0
-        || known.is_some()
-        || (drop && scales_given(r));
+    let (input, uses_input_scales) = input_and_scales(ctx, r, known, weights, drop)?;
     let setup = drop
         .then(|| drop_setup(ctx, r, &t, uses_input_scales))
         .transpose()?;
@@ -128,14 +119,7 @@ pub(super) fn parse_fit(
     };
     let (start, params) = start_and_params(ctx, r, &space, &scales)?;
     let reference = reference(ctx, r, params, &scales)?;
-    let masses = [
-        ("[fit.known].m", known.map(|k| k.m)),
-        ("[fit.sequence].m", setup.as_ref().map(|s| s.m)),
-    ];
-    let hints = masses
-        .into_iter()
-        .filter_map(|(key, m)| crate::plausible::mass_hint(ctx.path, key, m?))
-        .collect();
+    let hints = mass_hints(ctx, known, setup.as_ref());
     let (budget, seed, settings, pareto) = search(ctx, r, index)?;
     let posterior =
         super::posterior::posterior(ctx, r.posterior.as_ref(), r.prior.as_ref(), &space)?;
@@ -165,6 +149,42 @@ pub(super) fn parse_fit(
         objective_span: r.objectives.as_ref().map_or(t.clone(), |o| o.span()),
         pareto_span: r.pareto.as_ref().map_or(t.clone(), |p| p.span()),
     })
+}
+
+/// `[fit.input]` (none: zero) and whether the input scales `U_b`, `T_b` matter: under an
+/// input, for durations, with a known body, and for drop tests where they are given.
+fn input_and_scales(
+    ctx: &Ctx,
+    r: &RawFit,
+    known: Option<KnownMassStiffness>,
+    weights: Weights,
+    drop: bool,
+) -> Result<(Signal, bool), AppError> {
+    let input = match &r.input {
+        Some(i) => signal(ctx, i, "[fit.input]", known.map(|k| k.m))?,
+        None => Signal::zero(),
+    };
+    let uses_input_scales = !bw_models::input::Input::is_zero(&input)
+        || weights.j2 > 0.0
+        || known.is_some()
+        || (drop && scales_given(r));
+    Ok((input, uses_input_scales))
+}
+
+/// Notes on masses that look like grams or tonnes where kilograms are expected.
+fn mass_hints(
+    ctx: &Ctx,
+    known: Option<KnownMassStiffness>,
+    setup: Option<&bwc_identify::DropSetup>,
+) -> Vec<String> {
+    let masses = [
+        ("[fit.known].m", known.map(|k| k.m)),
+        ("[fit.sequence].m", setup.map(|s| s.m)),
+    ];
+    masses
+        .into_iter()
+        .filter_map(|(key, m)| crate::plausible::mass_hint(ctx.path, key, m?))
+        .collect()
 }
 
 /// A `[[fit]]` of a contact-law family ([`super::family`]).

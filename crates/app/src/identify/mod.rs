@@ -97,20 +97,7 @@ pub fn run_fit(
         &result.point,
     ));
     let speeds = curve_speeds(&f.data);
-    let data_speeds: Vec<f64> = f.data.points.iter().map(|p| p.v0).collect();
-    let (unc, curve, band) = match uncertainty(&exact, &result.point, &result.at_bound) {
-        Ok(u) => {
-            let curve = u.band(&exact, &speeds).map_err(&err)?;
-            let band = u.band(&exact, &data_speeds).map_err(&err)?;
-            (Ok(u), curve, band)
-        }
-        Err(e) => {
-            warnings.push(format!("\"{}\": no intervals: {e}", f.name));
-            let map = f.space.map(&result.params).map_err(&err)?;
-            let curve = plain_curve(f, &map, &speeds).map_err(|e| err(e.into()))?;
-            (Err(e.to_string()), curve, Vec::new())
-        }
-    };
+    let (unc, curve, band) = intervals(config, f, &exact, &result, &speeds, &mut warnings)?;
     let (pareto, pareto_evaluations) = match f.pareto {
         Some(count) => pareto_front(config, f, count, seed, progress, &exact, &result.point)?,
         None => (Vec::new(), 0),
@@ -153,6 +140,40 @@ pub fn run_fit(
         warnings,
         drop: None,
         reference,
+    })
+}
+
+/// The intervals (or why there are none), the curve and the band at the data.
+type Intervals = (
+    Result<bwc_identify::Uncertainty, String>,
+    Vec<BandPoint>,
+    Vec<BandPoint>,
+);
+
+/// The intervals at the optimum of a search, with the model's band on the curve's `speeds`
+/// and at the data's; or, where there are none (a warning says why), the plain curve.
+fn intervals<I: bw_models::input::Input + Sync>(
+    config: &Path,
+    f: &FitConfig,
+    exact: &Objective<'_, I>,
+    result: &search::Searched,
+    speeds: &[f64],
+    warnings: &mut Vec<String>,
+) -> Result<Intervals, AppError> {
+    let err = fail(config, &f.name);
+    let data_speeds: Vec<f64> = f.data.points.iter().map(|p| p.v0).collect();
+    Ok(match uncertainty(exact, &result.point, &result.at_bound) {
+        Ok(u) => {
+            let curve = u.band(exact, speeds).map_err(&err)?;
+            let band = u.band(exact, &data_speeds).map_err(&err)?;
+            (Ok(u), curve, band)
+        }
+        Err(e) => {
+            warnings.push(format!("\"{}\": no intervals: {e}", f.name));
+            let map = f.space.map(&result.params).map_err(&err)?;
+            let curve = plain_curve(f, &map, speeds).map_err(|e| err(e.into()))?;
+            (Err(e.to_string()), curve, Vec::new())
+        }
     })
 }
 

@@ -242,6 +242,63 @@ fn body(i: usize) -> ChainPart {
     ChainPart::Body(i as u32)
 }
 
+/// At least two bodies (walls counted), each with a positive finite mass, a finite position
+/// and velocity and a length `>= 0`; finite wall faces.
+fn check_bodies<I>(
+    bodies: &[ChainBody<I>],
+    walls: Walls,
+    walls_count: usize,
+) -> Result<(), ModelError> {
+    if bodies.is_empty() || bodies.len() + walls_count < 2 {
+        let n = bodies.len() as f64;
+        return Err(invalid(
+            ChainPart::Chain,
+            "bodies",
+            n,
+            "at least 2 bodies, walls counted",
+        ));
+    }
+    for (i, b) in bodies.iter().enumerate() {
+        if !(b.mass > 0.0 && b.mass.is_finite()) {
+            return Err(invalid(body(i), "mass", b.mass, "> 0 and finite (kg)"));
+        }
+        for (name, value) in [("position", b.position), ("velocity", b.velocity)] {
+            if !value.is_finite() {
+                return Err(invalid(body(i), name, value, "finite"));
+            }
+        }
+        if !(b.length >= 0.0 && b.length.is_finite()) {
+            return Err(invalid(body(i), "length", b.length, ">= 0 and finite (m)"));
+        }
+    }
+    for (part, wall) in [
+        (ChainPart::LeftWall, walls.left),
+        (ChainPart::RightWall, walls.right),
+    ] {
+        if let Some(w) = wall.filter(|w| !w.is_finite()) {
+            return Err(invalid(part, "face", w, "finite (m)"));
+        }
+    }
+    Ok(())
+}
+
+/// Tolerances positive and finite.
+fn check_settings(settings: &ChainSettings) -> Result<(), ModelError> {
+    for (name, value, allowed) in [
+        ("rtol", settings.rtol, "> 0 and finite"),
+        ("atol", settings.atol, "> 0 and finite (m)"),
+    ] {
+        if !(value > 0.0 && value.is_finite()) {
+            return Err(ModelError::InvalidSetting {
+                name,
+                value,
+                allowed,
+            });
+        }
+    }
+    Ok(())
+}
+
 impl<I: Input> Chain<I> {
     /// A chain of `bodies` (left to right) with `laws` for its pairs: one per neighbouring
     /// pair, the left wall's pair first and the right wall's last where there are walls, or a
@@ -260,36 +317,7 @@ impl<I: Input> Chain<I> {
         settings: ChainSettings,
     ) -> Result<Self, ModelError> {
         let walls_count = usize::from(walls.left.is_some()) + usize::from(walls.right.is_some());
-        if bodies.is_empty() || bodies.len() + walls_count < 2 {
-            let n = bodies.len() as f64;
-            return Err(invalid(
-                ChainPart::Chain,
-                "bodies",
-                n,
-                "at least 2 bodies, walls counted",
-            ));
-        }
-        for (i, b) in bodies.iter().enumerate() {
-            if !(b.mass > 0.0 && b.mass.is_finite()) {
-                return Err(invalid(body(i), "mass", b.mass, "> 0 and finite (kg)"));
-            }
-            for (name, value) in [("position", b.position), ("velocity", b.velocity)] {
-                if !value.is_finite() {
-                    return Err(invalid(body(i), name, value, "finite"));
-                }
-            }
-            if !(b.length >= 0.0 && b.length.is_finite()) {
-                return Err(invalid(body(i), "length", b.length, ">= 0 and finite (m)"));
-            }
-        }
-        for (part, wall) in [
-            (ChainPart::LeftWall, walls.left),
-            (ChainPart::RightWall, walls.right),
-        ] {
-            if let Some(w) = wall.filter(|w| !w.is_finite()) {
-                return Err(invalid(part, "face", w, "finite (m)"));
-            }
-        }
+        check_bodies(&bodies, walls, walls_count)?;
         let pairs = bodies.len() - 1 + walls_count;
         let laws = match laws.len() {
             1 => vec![laws[0]; pairs],
@@ -303,20 +331,7 @@ impl<I: Input> Chain<I> {
                 ))
             }
         };
-        if !(settings.rtol > 0.0 && settings.rtol.is_finite()) {
-            return Err(ModelError::InvalidSetting {
-                name: "rtol",
-                value: settings.rtol,
-                allowed: "> 0 and finite",
-            });
-        }
-        if !(settings.atol > 0.0 && settings.atol.is_finite()) {
-            return Err(ModelError::InvalidSetting {
-                name: "atol",
-                value: settings.atol,
-                allowed: "> 0 and finite (m)",
-            });
-        }
+        check_settings(&settings)?;
         let chain = Self {
             bodies,
             laws,
