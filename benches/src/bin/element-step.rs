@@ -19,29 +19,7 @@ const V_IN: f64 = 2.0;
 
 /// Table 4 (Cross 2011) of `kind`.
 fn table4(kind: ModelKind) -> PhysicalParams {
-    let law = match kind {
-        ModelKind::Shccm => Physical {
-            k: 117080063.0,
-            c: 5854003.0,
-            n: 1.1,
-            p: 1.7,
-            alpha: 0.1,
-            beta: 981.05,
-            gamma: -961.4,
-            a: 0.925,
-        },
-        ModelKind::Mcm => Physical {
-            k: 253000000.0,
-            c: 2811.0,
-            n: 1.2,
-            p: 1.8,
-            alpha: 0.15,
-            beta: 1200.0,
-            gamma: -1200.0,
-            a: 1.01,
-        },
-    };
-    PhysicalParams::new(kind, law).expect("Table 4 is admissible")
+    bw_models::published::cross(kind)
 }
 
 /// One bounce by the host: element steps taken and the rebound speed (m/s).

@@ -22,28 +22,7 @@ const BOUNCES: usize = 3;
 
 /// Table 4's laws (the Cross baseball), as in `fixtures/cross_*.toml`.
 fn law(kind: ModelKind) -> Physical {
-    match kind {
-        ModelKind::Shccm => Physical {
-            k: 117080063.0,
-            c: 5854003.0,
-            n: 1.1,
-            p: 1.7,
-            alpha: 0.1,
-            beta: 981.05,
-            gamma: -961.4,
-            a: 0.925,
-        },
-        ModelKind::Mcm => Physical {
-            k: 253000000.0,
-            c: 2811.0,
-            n: 1.2,
-            p: 1.8,
-            alpha: 0.15,
-            beta: 1200.0,
-            gamma: -1200.0,
-            a: 1.01,
-        },
-    }
+    bw_models::published::cross_law(kind)
 }
 
 /// The scene's bounces: `(v_in, v_out)` per contact.

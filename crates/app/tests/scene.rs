@@ -36,3 +36,35 @@ fn speed_ranges_and_base_arrays() {
     .unwrap_err();
     assert!(e.to_string().contains("v0.count"), "{e}");
 }
+
+/// `fixtures/cross_shccm.toml` and `fixtures/cross_mcm.toml` are the laws of
+/// `bw_models::published` (Table 4), with its mass.
+#[test]
+fn the_cross_fixtures_are_table_4() {
+    use bw_models::published::{cross_law, CROSS_MASS};
+    for (file, kind) in [
+        ("cross_shccm.toml", ModelKind::Shccm),
+        ("cross_mcm.toml", ModelKind::Mcm),
+    ] {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../fixtures")
+            .join(file);
+        let scene = Scene::parse(&path, &std::fs::read_to_string(&path).unwrap()).unwrap();
+        let physical = &scene.describe()["systems"][0]["physical"];
+        let l = cross_law(kind);
+        let want = [
+            ("m", CROSS_MASS),
+            ("k", l.k),
+            ("c", l.c),
+            ("n", l.n),
+            ("p", l.p),
+            ("alpha", l.alpha),
+            ("beta", l.beta),
+            ("gamma", l.gamma),
+            ("A", l.a),
+        ];
+        for (key, value) in want {
+            assert_eq!(physical[key].as_f64(), Some(value), "{file}: {key}");
+        }
+    }
+}

@@ -63,6 +63,7 @@ mod outcome;
 mod params;
 pub mod phase;
 mod power;
+pub mod published;
 mod scaling;
 mod separation;
 pub mod sequence;

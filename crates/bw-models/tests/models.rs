@@ -58,29 +58,7 @@ fn tight() -> Settings {
 
 /// Cross (2011), Table 4 (tab:RCross).
 fn cross(kind: ModelKind) -> PhysicalParams {
-    let law = match kind {
-        ModelKind::Shccm => Physical {
-            k: 117080063.0,
-            c: 5854003.0,
-            n: 1.1,
-            p: 1.7,
-            alpha: 0.1,
-            beta: 981.05,
-            gamma: -961.4,
-            a: 0.925,
-        },
-        ModelKind::Mcm => Physical {
-            k: 253000000.0,
-            c: 2811.0,
-            n: 1.2,
-            p: 1.8,
-            alpha: 0.15,
-            beta: 1200.0,
-            gamma: -1200.0,
-            a: 1.01,
-        },
-    };
-    PhysicalParams::new(kind, law).unwrap()
+    bw_models::published::cross(kind)
 }
 
 /// Exact T_s of the elastic limit: with B = Γ = σ = 0, Z = X and V' = -|X|^(p-1) X, so e = 1 and

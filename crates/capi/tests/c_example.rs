@@ -5,7 +5,7 @@
 use bw_models::input::Constant;
 use bw_models::sequence::Policy;
 use bw_models::{
-    impact, Bwshccl, Bwshccm, ContactElement, ElementSettings, ModelKind, Penetration, Physical,
+    impact, Bwshccl, Bwshccm, ContactElement, ElementSettings, ModelKind, Penetration,
     PhysicalParams, Settings,
 };
 use std::path::{Path, PathBuf};
@@ -18,17 +18,7 @@ const DT: f64 = 1e-6;
 
 /// The law of the example: Table 4's BWSHCCM.
 fn params() -> PhysicalParams {
-    let law = Physical {
-        k: 117080063.0,
-        c: 5854003.0,
-        n: 1.1,
-        p: 1.7,
-        alpha: 0.1,
-        beta: 981.05,
-        gamma: -961.4,
-        a: 0.925,
-    };
-    PhysicalParams::new(ModelKind::Shccm, law).unwrap()
+    bw_models::published::cross(ModelKind::Shccm)
 }
 
 /// The example's host in Rust: `(v_in, v_out, dissipated)` per contact.

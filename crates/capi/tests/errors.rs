@@ -21,17 +21,19 @@ fn expect(status: BwcStatus, want: BwcStatus, words: &[&str]) {
     }
 }
 
+/// Table 4's BWSHCCM.
 fn shccm() -> BwcLawParams {
+    let l = bw_models::published::CROSS_BWSHCCM;
     BwcLawParams {
         model: BWC_MODEL_SHCCM,
-        k: 117080063.0,
-        c: 5854003.0,
-        n: 1.1,
-        p: 1.7,
-        alpha: 0.1,
-        beta: 981.05,
-        gamma: -961.4,
-        a: 0.925,
+        k: l.k,
+        c: l.c,
+        n: l.n,
+        p: l.p,
+        alpha: l.alpha,
+        beta: l.beta,
+        gamma: l.gamma,
+        a: l.a,
     }
 }
 

@@ -35,18 +35,10 @@ impl Default for Params {
     /// The BWSHCCM of the paper's Table 4 (Cross's baseball), `rtol` 1e-10, `atol` 1e-16 m,
     /// reset: the start values of `modelDescription.xml`.
     fn default() -> Self {
+        let l = bw_models::published::CROSS_BWSHCCM;
         Self {
             reals: [
-                117080063.0,
-                5854003.0,
-                1.1,
-                1.7,
-                0.1,
-                981.05,
-                -961.4,
-                0.925,
-                1e-10,
-                1e-16,
+                l.k, l.c, l.n, l.p, l.alpha, l.beta, l.gamma, l.a, 1e-10, 1e-16,
             ],
             model: 0,
             policy: 0,

@@ -8,13 +8,13 @@ import numpy as np
 import pytest
 
 import bwc
+from laws import CROSS_BWSHCCM
 
 ROOT = pathlib.Path(__file__).resolve().parents[3]
 FIXTURES = ROOT / "fixtures"
 HUNT_CROSSLEY = {"B": 0, "Gamma": 0, "kappa": 0.5, "sigma": 0.5, "n": 1, "p": 1.5}
 PAPER_DSS = {"B_b": 2.38, "Gamma_b": -2.38, "kappa": 0.677, "sigma_b": 0.0348, "n": 2.93, "p": 2.62}
-LAW = {"k": 117080063.0, "c": 5854003.0, "n": 1.1, "p": 1.7, "alpha": 0.1, "beta": 981.05,
-       "gamma": -961.4, "A": 0.925}
+LAW = CROSS_BWSHCCM
 
 
 @pytest.mark.parametrize("value", [float("nan"), float("inf"), -float("inf")])

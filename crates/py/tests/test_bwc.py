@@ -15,6 +15,7 @@ from scipy.optimize import brentq
 from scipy.special import beta as beta_fn
 
 import bwc
+from laws import CROSS_BWSHCCM, CROSS_MASS
 
 ROOT = pathlib.Path(__file__).resolve().parents[3]
 FIXTURES = ROOT / "fixtures"
@@ -194,8 +195,7 @@ def test_a_sweep_too_noisy_to_interpolate_warns_and_names_the_setting():
 def test_a_kink_in_e_needs_more_speeds_and_the_warning_says_so():
     # Table 4's baseball law (the README's example): e(v0) has a kink near 2.97 m/s. 200 speeds
     # over 0.5-10 m/s cannot pay for pieces around it; 2,000 can, and then nothing is said.
-    law = {"m": 0.145, "k": 117080063.0, "c": 5854003.0, "n": 1.1, "p": 1.7, "alpha": 0.1,
-           "beta": 981.05, "gamma": -961.4, "A": 0.925}
+    law = {"m": CROSS_MASS, **CROSS_BWSHCCM}
     with pytest.warns(bwc.BwcWarning, match="changes too sharply .* more speeds let the sweep isolate"):
         few = bwc.cor("shccm", law, np.linspace(0.5, 10.0, 200))
     assert not few["interpolated"].any()
@@ -222,8 +222,7 @@ def test_cor_matches_an_independent_scipy_model():
         assert abs(out["e"][0] - ndbwshccm_e(**q)) < 1e-8, q
 
 
-CROSS = {"m": 0.145, "k": 117080063.0, "c": 5854003.0, "n": 1.1, "p": 1.7, "alpha": 0.1, "beta": 981.05,
-         "gamma": -961.4, "A": 0.925}
+CROSS = {"m": CROSS_MASS, **CROSS_BWSHCCM}
 
 
 def test_cor_equals_the_simulate_tool():

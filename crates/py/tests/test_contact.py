@@ -11,11 +11,11 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import bwc
+from laws import CROSS_BWMCM, CROSS_BWSHCCM, CROSS_MASS
 
 # Table 4's BWSHCCM (the Cross baseball), as in fixtures/cross_shccm.toml.
-LAW = {"k": 117080063.0, "c": 5854003.0, "n": 1.1, "p": 1.7, "alpha": 0.1, "beta": 981.05,
-       "gamma": -961.4, "A": 0.925}
-M, G = 0.145, 9.81
+LAW = CROSS_BWSHCCM
+M, G = CROSS_MASS, 9.81
 
 
 def host_bounces(contact, h0, bounces, dt):
@@ -106,8 +106,7 @@ def test_many_contacts_are_each_one_contact_on_any_thread_count():
 def test_penetration_steps_find_onsets_in_many_contacts():
     """Contacts whose overlap begins at different instants in one step: each onset is where the
     linear penetration crosses 0."""
-    many = bwc.Contacts("mcm", {**LAW, "c": 2811.0, "n": 1.2, "p": 1.8, "alpha": 0.15, "beta": 1200.0,
-                                "gamma": -1200.0, "A": 1.01, "k": 253000000.0}, 4)
+    many = bwc.Contacts("mcm", CROSS_BWMCM, 4)
     d0 = np.array([-4e-6, -1e-6, -3e-6, -5e-6])  # m, approaching at 1 m/s
     out = many.advance_penetration(1e-5, d0, np.ones(4), d0 + 1e-5, np.ones(4))
     np.testing.assert_allclose(out["began_at"], -d0 / 1.0, rtol=1e-12)
@@ -221,3 +220,13 @@ def test_steps_the_law_cannot_be_integrated_over_say_what_helps():
     with pytest.raises(bwc.BwcError, match=r"^advance: setting `dt` = 1e-310 is not admissible: a step long enough"):
         contact.advance(1e-310, -1.0, 1.0)
     assert not contact.in_contact and contact.contacts == 0
+
+
+def test_the_test_laws_are_the_fixtures_table_4():
+    """The laws the tests share are the scenes of `fixtures/cross_*.toml` (Table 4)."""
+    import tomllib
+    fixtures = os.path.join(os.path.dirname(__file__), "..", "..", "..", "fixtures")
+    for name, law in [("cross_shccm.toml", CROSS_BWSHCCM), ("cross_mcm.toml", CROSS_BWMCM)]:
+        with open(os.path.join(fixtures, name), "rb") as f:
+            physical = tomllib.load(f)["physical"]
+        assert physical == {"m": CROSS_MASS, **law}, name

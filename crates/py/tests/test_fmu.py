@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import bwc
+from laws import CROSS_BWSHCCM, CROSS_MASS
 
 fmpy = pytest.importorskip("fmpy", reason="FMPy (PyPI) imports the FMU")
 from fmpy import extract, read_model_description  # noqa: E402
@@ -16,9 +17,8 @@ from fmpy.fmi2 import FMU2Slave  # noqa: E402
 from fmpy.validation import validate_fmu  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[3]
-LAW = {"k": 117080063.0, "c": 5854003.0, "n": 1.1, "p": 1.7, "alpha": 0.1, "beta": 981.05,
-       "gamma": -961.4, "A": 0.925}
-M, G = 0.145, 9.81
+LAW = CROSS_BWSHCCM
+M, G = CROSS_MASS, 9.81
 
 
 @pytest.fixture(scope="module")

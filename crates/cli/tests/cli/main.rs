@@ -2,6 +2,16 @@
 //! ([`identify`]), long studies resumed from their checkpoints ([`checkpoint`]), impact sequences and drop tests ([`sequence`]), sweeps served by interpolants
 //! ([`sweep`]), chains of bodies ([`chain`]), studies written as they are computed ([`study`]).
 
+/// Table 4's BWSHCCM for the 0.145 kg baseball as a scene's `[physical]` table (the law of
+/// `bw_models::published::CROSS_BWSHCCM`, checked by `the_physical_table_is_table_4`), a
+/// literal for `concat!`.
+macro_rules! cross_physical {
+    () => {
+        "[physical]\nm = 0.145\nk = 117080063.0\nc = 5854003.0\nn = 1.1\np = 1.7\n\
+         alpha = 0.1\nbeta = 981.05\ngamma = -961.4\nA = 0.925\n"
+    };
+}
+
 mod chain;
 mod checkpoint;
 mod identify;

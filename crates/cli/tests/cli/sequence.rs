@@ -5,7 +5,11 @@ use super::*;
 /// The Table 4 baseball contact law dropped from 1 m: `[sequence]` with the given extra keys.
 fn drop_scene(extra: &str) -> String {
     format!(
-        "model = \"shccm\"\n[sequence]\nh0 = 1.0\n{extra}\n[physical]\nm = 0.145\nk = 117080063.0\nc = 5854003.0\nn = 1.1\np = 1.7\nalpha = 0.1\nbeta = 981.05\ngamma = -961.4\nA = 0.925\n"
+        concat!(
+            "model = \"shccm\"\n[sequence]\nh0 = 1.0\n{extra}\n",
+            cross_physical!()
+        ),
+        extra = extra
     )
 }
 
@@ -212,17 +216,7 @@ fn drop_tests_are_fitted_from_their_intervals() {
 fn a_base_sequence_is_the_physical_one_in_other_units() {
     // The Table 4 law as base parameters of the 0.145 kg ball: the same bounces, reset and
     // carry (whose carried state is rescaled between the contacts' speeds).
-    let law = bw_models::Physical {
-        k: 117080063.0,
-        c: 5854003.0,
-        n: 1.1,
-        p: 1.7,
-        alpha: 0.1,
-        beta: 981.05,
-        gamma: -961.4,
-        a: 0.925,
-    };
-    let params = bw_models::PhysicalParams::new(bw_models::ModelKind::Shccm, law).unwrap();
+    let params = bw_models::published::cross(bw_models::ModelKind::Shccm);
     let b = bw_models::base_params(&params, 0.145).unwrap();
     let dir = scratch("base-sequence");
     for policy in ["reset", "carry"] {

@@ -301,7 +301,27 @@ fn rosenbrock_method_and_the_stiffness_switch() {
     assert!(err.contains("20000 steps"), "{err}");
 }
 
-const GOOD_PHYSICAL: &str = "model = \"shccm\"\nv0 = [1.0]\n[physical]\nm = 0.145\nk = 117080063.0\nc = 5854003.0\nn = 1.1\np = 1.7\nalpha = 0.1\nbeta = 981.05\ngamma = -961.4\nA = 0.925\n";
+const GOOD_PHYSICAL: &str = concat!("model = \"shccm\"\nv0 = [1.0]\n", cross_physical!());
+
+/// The scenes' `[physical]` table is Table 4's law of `bw_models::published`.
+#[test]
+fn the_physical_table_is_table_4() {
+    let scene = bwc_app::scene::Scene::parse(Path::new("t.toml"), GOOD_PHYSICAL).unwrap();
+    let described = scene.describe().to_string();
+    let l = bw_models::published::CROSS_BWSHCCM;
+    for (key, value) in [
+        ("k", l.k),
+        ("c", l.c),
+        ("beta", l.beta),
+        ("gamma", l.gamma),
+        ("A", l.a),
+    ] {
+        assert!(
+            described.contains(&format!("\"{key}\":{value:?}")),
+            "{key} in {described}"
+        );
+    }
+}
 
 /// How a bad scene is made: the good one with replacements or an appended table, or a whole
 /// text.
@@ -773,9 +793,12 @@ fn a_dt_that_undersamples_the_contact_says_so() {
         std::fs::write(
             &path,
             format!(
-                "model = \"shccm\"\nv0 = [2.15]\n[physical]\nm = 0.145\nk = 117080063.0\n\
-                 c = 5854003.0\nn = 1.1\np = 1.7\nalpha = 0.1\nbeta = 981.05\ngamma = -961.4\n\
-                 A = 0.925\n[output]\ntrajectory = true\ndt = {dt}\n"
+                concat!(
+                    "model = \"shccm\"\nv0 = [2.15]\n",
+                    cross_physical!(),
+                    "[output]\ntrajectory = true\ndt = {dt}\n"
+                ),
+                dt = dt
             ),
         )
         .unwrap();

@@ -222,6 +222,7 @@ fn a_sweep_with_a_kink_it_cannot_isolate_says_more_speeds_help() {
     );
 }
 
-const BASEBALL_200: &str = "model = \"shccm\"\nv0 = { from = 0.5, to = 10.0, count = 200 }\n\
-    [physical]\nm = 0.145\nk = 117080063.0\nc = 5854003.0\nn = 1.1\np = 1.7\nalpha = 0.1\n\
-    beta = 981.05\ngamma = -961.4\nA = 0.925\n";
+const BASEBALL_200: &str = concat!(
+    "model = \"shccm\"\nv0 = { from = 0.5, to = 10.0, count = 200 }\n",
+    cross_physical!()
+);
