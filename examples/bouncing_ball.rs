@@ -9,7 +9,7 @@
 use bw_models::input::Constant;
 use bw_models::sequence::{drop_sequence, Contact, Flight, Policy, SequenceSettings, Start};
 use bw_models::Separation;
-use bw_models::{impact, Bwshccl, Bwshccm, ContactLaw, ModelKind, Physical, PhysicalParams};
+use bw_models::{impact, Bwshccl, Bwshccm, ContactLaw, ModelKind, PhysicalParams};
 use bw_models::{Settings, State};
 use bwc_events::{Locator, Outcome, SwitchAt};
 use bwc_ode::{Integrator, Options, DOP853};
@@ -19,18 +19,9 @@ const G: f64 = 9.81;
 const H0: f64 = 1.0;
 const BOUNCES: usize = 4;
 
+/// Table 4's BWSHCCM (Cross's baseball, `bw_models::published`).
 fn params() -> Result<PhysicalParams, bw_models::ModelError> {
-    let law = Physical {
-        k: 117080063.0,
-        c: 5854003.0,
-        n: 1.1,
-        p: 1.7,
-        alpha: 0.1,
-        beta: 981.05,
-        gamma: -961.4,
-        a: 0.925,
-    };
-    PhysicalParams::new(ModelKind::Shccm, law)
+    PhysicalParams::new(ModelKind::Shccm, bw_models::published::CROSS_BWSHCCM)
 }
 
 /// One contact at impact speed `v_in` (m/s): duration (s) and rebound speed (m/s).

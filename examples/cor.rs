@@ -5,7 +5,7 @@
 //! `cargo run --example cor`
 
 use bw_models::input::Zero;
-use bw_models::{impact, Bwshccm, ModelKind, Ndbwshccm, Nondim, NondimParams, Physical};
+use bw_models::{impact, Bwshccm, ModelKind, Ndbwshccm, Nondim, NondimParams};
 use bw_models::{PhysicalParams, Settings};
 
 #[path = "support/hunt_crossley.rs"]
@@ -30,18 +30,10 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
     );
     assert!((out.e - exact).abs() < 1e-10);
 
-    // Table 4 (Cross's baseball, BWSHCCM): SI parameters, mass 0.145 kg, 3 m/s.
-    let law = Physical {
-        k: 117080063.0,
-        c: 5854003.0,
-        n: 1.1,
-        p: 1.7,
-        alpha: 0.1,
-        beta: 981.05,
-        gamma: -961.4,
-        a: 0.925,
-    };
-    let params = PhysicalParams::new(ModelKind::Shccm, law)?;
+    // Table 4 (Cross's baseball, BWSHCCM): SI parameters (k = 117080063 kg m^(1-p) s^-2,
+    // c = 5854003 kg m^-p s^-1, n = 1.1, p = 1.7, alpha = 0.1, beta = 981.05 m^-n,
+    // gamma = -961.4 m^-n, A = 0.925), mass 0.145 kg, 3 m/s.
+    let params = PhysicalParams::new(ModelKind::Shccm, bw_models::published::CROSS_BWSHCCM)?;
     let ball = impact(
         &Bwshccm::new(&params, 0.145, 3.0, Zero)?,
         &Settings::default(),

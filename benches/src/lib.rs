@@ -85,55 +85,9 @@ pub fn side_by_side(fs: &mut [Box<dyn FnMut() + '_>]) -> Vec<f64> {
 pub mod cor {
     //! One CoR evaluation of the paper's Table 3 models (DSS (1) and DSA (1)), the unit of work
     //! of the identification.
-    use bw_models::{
-        impact_at, input::Zero, BaseMap, BaseParams, Cor, ModelError, ModelKind, Settings,
-    };
+    use bw_models::{impact_at, input::Zero, BaseMap, Cor, ModelError, ModelKind, Settings};
 
-    /// Table 3, DSS (1), NDBWSHCCM.
-    pub const DSS1_SHCCM: BaseParams = BaseParams {
-        b_b: 2.38,
-        gamma_b: -2.38,
-        kappa: 0.677,
-        sigma_b: 0.0348,
-        n: 2.93,
-        p: 2.62,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
-    /// Table 3, DSS (1), NDBWMCM (σ_b at the edge of its admissible set).
-    pub const DSS1_MCM: BaseParams = BaseParams {
-        b_b: 0.966,
-        gamma_b: -0.966,
-        kappa: 0.531,
-        sigma_b: 2.22e-16,
-        n: 1.57,
-        p: 1.75,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
-
-    /// Table 3, DSA (1), NDBWSHCCM (`Γ_b != -B_b`, `n` near 1).
-    pub const DSA1_SHCCM: BaseParams = BaseParams {
-        b_b: 1.04,
-        gamma_b: -1.02,
-        kappa: 0.362,
-        sigma_b: 0.017,
-        n: 1.01,
-        p: 1.67,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
-    /// Table 3, DSA (1), NDBWMCM.
-    pub const DSA1_MCM: BaseParams = BaseParams {
-        b_b: 0.521,
-        gamma_b: -0.521,
-        kappa: 0.168,
-        sigma_b: 0.0144,
-        n: 1.0,
-        p: 2.04,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
+    pub use bw_models::published::{DSA1_MCM, DSA1_SHCCM, DSS1_MCM, DSS1_SHCCM};
 
     /// The base map of a model at DSS (1).
     pub fn dss1(kind: ModelKind) -> BaseMap {
@@ -189,16 +143,7 @@ mod stress_sample;
 /// the default fits of the NDBWSHCCM and the NDBWMCM to the measured data (BENCHMARKS.md) and
 /// their residual standard deviations, `u = 0`.
 pub fn baseball_truths() -> [(bw_models::BaseParams, f64); 2] {
-    let base = |b_b, gamma_b, kappa, sigma_b, n, p| bw_models::BaseParams {
-        b_b,
-        gamma_b,
-        kappa,
-        sigma_b,
-        n,
-        p,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
+    let base = bw_models::BaseParams::unforced;
     [
         (
             base(0.041289, 0.013128, 0.02, 6.930122e-4, 3.43861, 4.0),

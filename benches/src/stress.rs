@@ -140,16 +140,7 @@ pub fn sample(seed: u64, i: u64) -> Case {
     };
     Case {
         kind,
-        base: BaseParams {
-            b_b,
-            gamma_b,
-            kappa,
-            sigma_b,
-            n,
-            p,
-            u_b: 1.0,
-            t_b: 1.0,
-        },
+        base: BaseParams::unforced(b_b, gamma_b, kappa, sigma_b, n, p),
         v0,
         input,
     }

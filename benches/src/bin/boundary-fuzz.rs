@@ -12,8 +12,8 @@
 
 use bwc::*;
 use bwc_app::chain::ChainScene;
-use bwc_app::config::Config;
-use bwc_app::scene::Scene;
+use bwc_app::fit::config::Config;
+use bwc_app::impact::scene::Scene;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;

@@ -44,16 +44,7 @@ fn main() {
         }
     };
     let (r, m) = (0.005, 4.1092e-3);
-    let law = Physical {
-        k: 7.326e9,
-        c: 0.0,
-        n: 1.0,
-        p: 1.5,
-        alpha: 0.5,
-        beta: 0.0,
-        gamma: 0.0,
-        a: 1.0,
-    };
+    let law = Physical::hertz_damped(7.326e9, 0.0);
     let law = PairLaw::new(&PhysicalParams::new(ModelKind::Shccm, law).expect("law")).expect("law");
     let scheme = if std::env::var("BWC_SCHEME").is_ok_and(|s| s == "whole") {
         Scheme::Whole

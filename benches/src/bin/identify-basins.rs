@@ -5,7 +5,7 @@
 //!
 //! `cargo run --release -p bwc-benches --bin identify-basins -- CONFIG [FILTER] [N]`
 
-use bwc_app::config::Config;
+use bwc_app::fit::config::Config;
 use bwc_identify::{minimize, Budget, Objective};
 
 fn main() {

@@ -6,7 +6,7 @@
 //! `cargo run --release -p bwc-benches --bin identify-convergence -- fixtures/*.toml`
 //! (loop fits are skipped); `BWC_SEEDS=6-10` runs other seeds.
 
-use bwc_app::config::Config;
+use bwc_app::fit::config::Config;
 use bwc_identify::{fit, Budget, Objective};
 use std::time::Instant;
 

@@ -6,7 +6,7 @@
 //!
 //! `cargo run --release -p bwc-benches --bin identify-coverage -- [REPLICATES]` (default 40)
 
-use bwc_app::config::Config;
+use bwc_app::fit::config::Config;
 use bwc_identify::{coverage, study};
 
 fn main() {
@@ -22,7 +22,7 @@ fn main() {
     );
     bwc_app::out!("|---|---|---|---|---|---|---|");
     for (f, (truth, noise)) in config.fits.iter().zip(truths) {
-        let task = bwc_app::identify::coverage_task(f, truth, noise);
+        let task = bwc_app::fit::identify::coverage_task(f, truth, noise);
         let clock = std::time::Instant::now();
         let reps = study(&task, 1..replicates + 1).expect("replicates");
         let with: Vec<_> = reps.iter().filter(|r| r.error.is_none()).collect();

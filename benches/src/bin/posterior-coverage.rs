@@ -10,7 +10,7 @@
 //! rows whose model and noise model it names.
 
 use bw_models::BaseParams;
-use bwc_app::config::Config;
+use bwc_app::fit::config::Config;
 use bwc_identify::{coverage, posterior_replicate, PosteriorTask, SmcSettings};
 use rayon::prelude::*;
 

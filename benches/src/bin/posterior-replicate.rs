@@ -8,7 +8,7 @@
 
 use bw_models::input::Zero;
 use bw_models::{BaseParams, Settings};
-use bwc_app::config::Config;
+use bwc_app::fit::config::Config;
 use bwc_identify::{
     fit, marginals, posterior_band, sample, Dataset, NoiseScale, Objective, PosteriorProblem,
     PosteriorSpec, SmcSettings, Weights,

@@ -9,9 +9,9 @@
 //!
 //! `target/release/sweep-check [CASES] [SEED] [COUNT]` (defaults 200, 1, 400)
 
-use bwc_app::runs::Run;
-use bwc_app::scene::Scene;
-use bwc_app::simulate;
+use bwc_app::impact::runs::Run;
+use bwc_app::impact::scene::Scene;
+use bwc_app::impact::simulate;
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use std::path::Path;

@@ -10,15 +10,17 @@ fn main() {
         std::process::exit(2)
     });
     let rounds: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(5);
-    let scene = bwc_app::scene::Scene::load(std::path::Path::new(&path)).unwrap_or_else(|e| {
-        eprintln!("sweep-time: {e}");
-        std::process::exit(1)
-    });
+    let scene =
+        bwc_app::impact::scene::Scene::load(std::path::Path::new(&path)).unwrap_or_else(|e| {
+            eprintln!("sweep-time: {e}");
+            std::process::exit(1)
+        });
     let mut times: Vec<f64> = (0..rounds)
         .map(|_| {
             let clock = std::time::Instant::now();
-            let runs = bwc_app::with_threads(Some(1), || Ok(bwc_app::simulate::run(&scene, None)))
-                .expect("one thread");
+            let runs =
+                bwc_app::with_threads(Some(1), || Ok(bwc_app::impact::simulate::run(&scene, None)))
+                    .expect("one thread");
             std::hint::black_box(runs);
             clock.elapsed().as_secs_f64()
         })

@@ -1,14 +1,16 @@
 //! # bwc-app: scenes and configs, running them, and their outputs
 //!
 //! The application layer of bwc, between the libraries and the front ends (the command-line
-//! tools of `bwc-cli`, the Python package): it parses scene files ([`scene`]) and
-//! identification configs ([`config`]) into validated settings with line-accurate errors, runs
-//! them ([`simulate`], [`sequence`], [`chain`], [`identify`]), and turns the results into summaries,
-//! tables, plots ([`output`], [`plot`]) and output folders written atomically ([`outdir`]).
-//! Errors ([`AppError`]) name the file, line and key; the front ends report them once.
+//! tools of `bwc-cli`, the Python package), by feature: a pair's impacts ([`impact`]: scene
+//! files, simulation, runs, drop tests, outputs), identification ([`fit`]: configs, fits,
+//! posteriors, comparisons) and chains of bodies ([`chain`]); a scene file of either kind is
+//! read once ([`scene_file`]). Below them lie what they share: the TOML tables and their
+//! line-accurate errors, inputs ([`signal`]), plausibility hints ([`plausible`]), plots
+//! ([`plot`]) and output folders written atomically ([`outdir`]). Errors ([`AppError`]) name
+//! the file, line and key; the front ends report them once.
 //!
 //! ```
-//! use bwc_app::scene::Scene;
+//! use bwc_app::impact::scene::Scene;
 //! let scene = Scene::parse(std::path::Path::new("example.toml"), r#"
 //!     model = "shccm"
 //!     [nondimensional]
@@ -19,29 +21,23 @@
 //!     n = 1.0
 //!     p = 1.5
 //! "#)?;
-//! let runs = bwc_app::simulate::run(&scene, None);
-//! assert_eq!(runs[0].outcome, bwc_app::runs::Outcome::Separated);
+//! let runs = bwc_app::impact::simulate::run(&scene, None);
+//! assert_eq!(runs[0].outcome, bwc_app::impact::runs::Outcome::Separated);
 //! assert!((runs[0].e - 0.748434931597434).abs() < 1e-9);
 //! # Ok::<(), bwc_app::AppError>(())
 //! ```
 #![deny(missing_docs)]
 
 pub mod chain;
-pub mod checkpoint;
-pub mod config;
-pub mod corner;
 mod error;
+pub mod fit;
 mod format;
-pub mod identify;
+pub mod impact;
 pub mod outdir;
-pub mod output;
 pub mod plausible;
 pub mod plot;
-pub mod runs;
-pub mod scene;
-pub mod sequence;
+pub mod scene_file;
 pub mod signal;
-pub mod simulate;
 mod tables;
 
 pub use error::AppError;

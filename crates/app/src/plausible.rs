@@ -8,7 +8,7 @@
 //! | mass (`m`, `m1`, `m2`, `[sequence].m`; a config's `[fit.known].m`, `[fit.sequence].m`) | above [`HEAVY`] = 20 kg | g for kg |
 //! | stiffness `k` | below [`SOFT`] = 100 N/m^p | N/mm^p or kN/m^p for N/m^p |
 
-use crate::scene::{Scene, System};
+use crate::impact::scene::{Scene, System};
 use bwc_identify::PLAUSIBLE_SPEED;
 use std::path::Path;
 

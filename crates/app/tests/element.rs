@@ -12,7 +12,7 @@ use bw_models::{
     Bwmcl, Bwshccl, ContactElement, ContactLaw, ElementSettings, ModelKind, Penetration, Physical,
     PhysicalParams,
 };
-use bwc_app::scene::Scene;
+use bwc_app::impact::scene::Scene;
 use std::path::Path;
 
 const M: f64 = 0.145;
@@ -44,7 +44,8 @@ fn scene_bounces(kind: ModelKind, policy: &str) -> Vec<(f64, f64)> {
     );
     let scene = Scene::parse(Path::new("drop.toml"), &src).unwrap();
     let seq = scene.sequence.as_ref().unwrap();
-    let bounces = bwc_app::sequence::bounces(&scene.systems[0], seq, &scene.settings).unwrap();
+    let bounces =
+        bwc_app::impact::sequence::bounces(&scene.systems[0], seq, &scene.settings).unwrap();
     bounces.iter().map(|(b, _)| (b.v_in, b.v_out)).collect()
 }
 

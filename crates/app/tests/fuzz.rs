@@ -1,6 +1,6 @@
 //! Arbitrary and near-valid inputs: never a panic; every error names the file.
-use bwc_app::config::Config;
-use bwc_app::scene::Scene;
+use bwc_app::fit::config::Config;
+use bwc_app::impact::scene::Scene;
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use std::path::{Path, PathBuf};
@@ -131,7 +131,7 @@ proptest! {
                 Ok(mut scene) => {
                     scene.settings.max_steps = 20_000;
                     scene.speeds.truncate(3);
-                    let _ = bwc_app::simulate::run(&scene, None);
+                    let _ = bwc_app::impact::simulate::run(&scene, None);
                 }
             }
         } else if let Err(e) = Config::parse(&path, &mutated) {

@@ -1,8 +1,8 @@
 //! Summaries: the JSON written run by run is the JSON tree's text; every key of a run has its
 //! unit in `"units"` and its line in the outputs reference.
 
-use bwc_app::output::{units, Summary};
-use bwc_app::scene::Scene;
+use bwc_app::impact::output::{units, Summary};
+use bwc_app::impact::scene::Scene;
 use serde_json::Value;
 use std::collections::BTreeSet;
 
@@ -30,14 +30,14 @@ fn provenance_json_is_the_tree_as_text() {
     let mut interpolated = 0;
     for text in SCENES {
         let scene = Scene::parse(std::path::Path::new("test.toml"), text).unwrap();
-        let runs = bwc_app::simulate::run(&scene, None);
+        let runs = bwc_app::impact::simulate::run(&scene, None);
         outcomes.extend(runs.iter().map(|r| (r.outcome.name(), r.bounces.len())));
         interpolated += runs.iter().filter(|r| r.interpolation.is_some()).count();
         let summary = Summary::new(&runs, scene.sequence.is_some());
         // The tree built key by key, sorted as serde_json's maps are.
         let mut tree = bwc_app::outdir::provenance("bwc-simulate");
         tree["runs"] = serde_json::to_value(&summary.runs).unwrap();
-        let unit = bwc_app::simulate::Tally::of(&scene, &runs).time_unit();
+        let unit = bwc_app::impact::simulate::Tally::of(&scene, &runs).time_unit();
         tree["units"] = units(&scene, unit);
         tree["scene"] = scene.describe();
         assert_eq!(
@@ -59,9 +59,9 @@ fn runs_and_units() -> Vec<(Value, Value)> {
         .iter()
         .map(|text| {
             let scene = Scene::parse(std::path::Path::new("test.toml"), text).unwrap();
-            let runs = bwc_app::simulate::run(&scene, None);
+            let runs = bwc_app::impact::simulate::run(&scene, None);
             let summary = Summary::new(&runs, scene.sequence.is_some());
-            let unit = bwc_app::simulate::Tally::of(&scene, &runs).time_unit();
+            let unit = bwc_app::impact::simulate::Tally::of(&scene, &runs).time_unit();
             let json = serde_json::to_value(&summary.runs).unwrap();
             (json, units(&scene, unit))
         })
@@ -138,7 +138,7 @@ fn the_reference_lists_every_key_of_a_run() {
             keys.extend(run.as_object().unwrap().keys().cloned());
         }
     }
-    let list: BTreeSet<String> = bwc_app::output::RUN_KEYS
+    let list: BTreeSet<String> = bwc_app::impact::output::RUN_KEYS
         .iter()
         .map(|k| k.to_string())
         .collect();

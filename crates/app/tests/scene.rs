@@ -1,7 +1,7 @@
 //! Scene files: speed ranges and arrays of base parameters.
 
 use bw_models::ModelKind;
-use bwc_app::scene::Scene;
+use bwc_app::impact::scene::Scene;
 use std::path::Path;
 
 const BASE: &str = "model = \"shccm\"\n[[base]]\nB_b = 1\nGamma_b = 0\nkappa = 0.5\nsigma_b = 0.1\nn = 1\np = 1\n[[base]]\nname = \"second\"\nmodel = \"mcm\"\nB_b = 1\nGamma_b = 0\nkappa = 0.5\nsigma_b = 0.1\nn = 1\np = 1\n";

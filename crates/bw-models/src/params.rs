@@ -60,6 +60,24 @@ pub struct Physical {
     pub a: f64,
 }
 
+impl Physical {
+    /// The Hertz law with a damping `c |x|^p u` as a BWSHCCL: `β = γ = 0`, `A = 1` (the
+    /// Bouc-Wen element a spring, `z = x`), `α = 1/2`, `n = 1`, `p = 3/2`, so that
+    /// `F = -k |x|^(1/2) x - c |x|^(3/2) u`: Hunt-Crossley's law with `c = (3/2) α_HC k`.
+    pub const fn hertz_damped(k: f64, c: f64) -> Self {
+        Physical {
+            k,
+            c,
+            n: 1.0,
+            p: 1.5,
+            alpha: 0.5,
+            beta: 0.0,
+            gamma: 0.0,
+            a: 1.0,
+        }
+    }
+}
+
 /// Validated SI parameters of one model: the contact law plus its model kind.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PhysicalParams {
@@ -193,6 +211,30 @@ pub struct BaseParams {
     pub u_b: f64,
     /// `T_b > 0` (irrelevant when `u = 0`, except to express durations in seconds).
     pub t_b: f64,
+}
+
+impl BaseParams {
+    /// Base parameters of an unforced impact in nondimensional time: `U_b = T_b = 1`, which
+    /// do not matter without an input and durations in seconds.
+    pub const fn unforced(
+        b_b: f64,
+        gamma_b: f64,
+        kappa: f64,
+        sigma_b: f64,
+        n: f64,
+        p: f64,
+    ) -> Self {
+        BaseParams {
+            b_b,
+            gamma_b,
+            kappa,
+            sigma_b,
+            n,
+            p,
+            u_b: 1.0,
+            t_b: 1.0,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -52,16 +52,7 @@ impl Input for Force {
 /// The Hunt-Crossley law `F = k |x|^(3/2) + c |x|^(3/2) (-ẋ)` (N; `k` in N/m^1.5, `c` in
 /// N s/m^2.5): the BWSHCCL with `β = γ = 0` and `A = 1`, so that `z = x` for any `α`.
 fn hunt_crossley(k: f64, c: f64) -> PairLaw {
-    let law = Physical {
-        k,
-        c,
-        n: 1.0,
-        p: 1.5,
-        alpha: 0.5,
-        beta: 0.0,
-        gamma: 0.0,
-        a: 1.0,
-    };
+    let law = Physical::hertz_damped(k, c);
     PairLaw::new(&PhysicalParams::new(ModelKind::Shccm, law).unwrap()).unwrap()
 }
 

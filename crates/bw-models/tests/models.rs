@@ -226,16 +226,7 @@ fn earlier_and_lipschitz_mcm_forms_agree() {
 
 /// Base parameters without input scales (`U_b = T_b = 1`).
 fn base(b_b: f64, gamma_b: f64, kappa: f64, sigma_b: f64, n: f64, p: f64) -> BaseParams {
-    BaseParams {
-        b_b,
-        gamma_b,
-        kappa,
-        sigma_b,
-        n,
-        p,
-        u_b: 1.0,
-        t_b: 1.0,
-    }
+    BaseParams::unforced(b_b, gamma_b, kappa, sigma_b, n, p)
 }
 
 /// Table 3 (tab:DSSDSA_param): the parameter vectors of each dataset.

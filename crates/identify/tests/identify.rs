@@ -124,16 +124,7 @@ fn recovers_known_parameters_with_input_and_durations() {
 /// The same seed gives bit-identical results on 1 and 2 threads.
 #[test]
 fn identical_results_for_any_thread_count() {
-    let truth = BaseParams {
-        b_b: 1.0,
-        gamma_b: -1.0,
-        kappa: 0.6,
-        sigma_b: 0.03,
-        n: 1.5,
-        p: 1.5,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
+    let truth = posterior::band_design::TRUTH;
     let data = synthetic(ModelKind::Shccm, truth, 0.0, &[0.2, 0.5, 1.0, 2.0, 4.0]);
     let space = cor_space(3.0, (0.1, 0.9), 0.1, truth);
     let run = |threads: usize| {
@@ -200,16 +191,7 @@ fn cor_objective<'a>(space: &'a Space, data: &'a Dataset) -> Objective<'a, Zero>
 /// Five speeds of Table 3's DSS (1) NDBWSHCCM (CoR and duration), and its space with B_b, g, κ
 /// and σ_b free.
 fn dss_problem() -> (Dataset, Space) {
-    let truth = BaseParams {
-        b_b: 2.38,
-        gamma_b: -2.38,
-        kappa: 0.677,
-        sigma_b: 0.0348,
-        n: 2.93,
-        p: 2.62,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
+    let truth = bw_models::published::DSS1_SHCCM;
     let data = synthetic(ModelKind::Shccm, truth, 0.0, &[0.5, 1.0, 2.0, 3.0, 4.5]);
     (data, cor_space(5.0, (0.02, 0.98), 0.3, truth))
 }
@@ -565,16 +547,7 @@ fn band_covers_the_truth_in_a_small_study() {
         None,
     )
     .unwrap();
-    let truth = BaseParams {
-        b_b: 1.0,
-        gamma_b: -1.0,
-        kappa: 0.6,
-        sigma_b: 0.03,
-        n: 1.5,
-        p: 1.5,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
+    let truth = posterior::band_design::TRUTH;
     let noise = 0.01;
     let task = CoverageTask {
         space,

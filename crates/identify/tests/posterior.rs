@@ -3,7 +3,7 @@
 //! `posterior-band`: BENCHMARKS.md, "Posteriors").
 
 #[path = "support/band_design.rs"]
-mod band_design;
+pub(crate) mod band_design;
 use band_design::task;
 use bw_models::input::Zero;
 use bw_models::Settings;

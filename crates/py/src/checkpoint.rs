@@ -3,7 +3,7 @@
 //! the client records as they arrive), and the fingerprints of their tasks.
 
 use crate::{chain_scene_of, config_of, error, BwcError};
-use bwc_app::checkpoint::fingerprint;
+use bwc_app::fit::checkpoint::fingerprint;
 use pyo3::prelude::*;
 use std::fmt::Debug;
 use std::path::PathBuf;
@@ -12,8 +12,8 @@ use std::path::PathBuf;
 pub(crate) fn open(
     path: Option<PathBuf>,
     command: &str,
-) -> PyResult<Option<bwc_app::checkpoint::Checkpoint>> {
-    path.map(|p| bwc_app::checkpoint::Checkpoint::open(&p, command))
+) -> PyResult<Option<bwc_app::fit::checkpoint::Checkpoint>> {
+    path.map(|p| bwc_app::fit::checkpoint::Checkpoint::open(&p, command))
         .transpose()
         .map_err(error)
 }
@@ -22,7 +22,7 @@ pub(crate) fn open(
 /// the fingerprint of what the task depends on, and new ones appended, on the disk when
 /// `record` returns.
 #[pyclass(module = "bwc._native", frozen)]
-pub struct Checkpoint(bwc_app::checkpoint::Checkpoint);
+pub struct Checkpoint(bwc_app::fit::checkpoint::Checkpoint);
 
 #[pymethods]
 impl Checkpoint {

@@ -26,10 +26,10 @@ mod dict_errors;
 
 use bw_models::Check;
 use bwc_app::chain::ChainScene;
-use bwc_app::config::Config;
-use bwc_app::runs::{Outcome, Run};
-use bwc_app::scene::Scene;
-use bwc_app::simulate;
+use bwc_app::fit::config::Config;
+use bwc_app::impact::runs::{Outcome, Run};
+use bwc_app::impact::scene::Scene;
+use bwc_app::impact::simulate;
 use bwc_app::AppError;
 use dict_errors::Root;
 use numpy::{IntoPyArray, PyArray1};
@@ -60,7 +60,7 @@ create_exception!(
 /// the package's Python function (`stacklevel` 2: the native call has no frame of its own):
 /// a sweep that found no interpolant, and, one warning a kind for all runs (a sweep may have
 /// thousands), runs that met the horizon and CoRs whose check against `e_tol` was not met.
-fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[bwc_app::runs::Run]) -> PyResult<()> {
+fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[bwc_app::impact::runs::Run]) -> PyResult<()> {
     let mut notes = scene.hints.clone();
     notes.extend(simulate::Tally::of(scene, runs).no_interpolant_notes(scene));
     let n = runs.len();
@@ -101,8 +101,8 @@ fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[bwc_app::runs::Run]) -> PyR
 
 /// How many runs `keep` picks, and the labels of the first three.
 fn labels_of(
-    runs: &[bwc_app::runs::Run],
-    keep: impl Fn(&bwc_app::runs::Run) -> bool,
+    runs: &[bwc_app::impact::runs::Run],
+    keep: impl Fn(&bwc_app::impact::runs::Run) -> bool,
 ) -> (usize, String) {
     let picked: Vec<String> = runs.iter().filter(|r| keep(r)).map(|r| r.label()).collect();
     let more = if picked.len() > 3 { "; ..." } else { "" };
@@ -274,7 +274,7 @@ fn simulate_json<'py>(
         .allow_threads(|| bwc_app::with_threads(threads, || Ok(simulate::run(&scene, None))))
         .map_err(error)?;
     warn_notes(py, &scene, &runs)?;
-    let summary = bwc_app::output::Summary::new(&runs, scene.sequence.is_some());
+    let summary = bwc_app::impact::output::Summary::new(&runs, scene.sequence.is_some());
     let text = summary.provenance_json(&scene, &runs);
     let sampled = scene.output.trajectory || scene.output.loops;
     let trajectories = runs
@@ -403,9 +403,12 @@ fn is_chain_file(path: PathBuf) -> bool {
 }
 
 /// A run's samples as a dict of numpy arrays.
-fn trajectory<'py>(py: Python<'py>, r: &bwc_app::runs::Run) -> PyResult<Bound<'py, PyDict>> {
+fn trajectory<'py>(
+    py: Python<'py>,
+    r: &bwc_app::impact::runs::Run,
+) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
-    let column = |f: &dyn Fn(&bwc_app::runs::Sample) -> f64| {
+    let column = |f: &dyn Fn(&bwc_app::impact::runs::Sample) -> f64| {
         r.trajectory.iter().map(f).collect::<Vec<f64>>()
     };
     out.set_item("t", column(&|s| s.t).into_pyarray(py))?;
@@ -441,11 +444,11 @@ fn identify_json(
         .allow_threads(|| {
             bwc_app::with_threads(threads, || {
                 let c = checkpoint.as_ref();
-                bwc_app::identify::fit_all(&file, &config, seed, &|| {}, c)
+                bwc_app::fit::identify::fit_all(&file, &config, seed, &|| {}, c)
             })
         })
         .map_err(error)?;
-    Ok(bwc_app::identify::summary_of(&config, &reports, &loops).to_string())
+    Ok(bwc_app::fit::identify::summary_of(&config, &reports, &loops).to_string())
 }
 
 /// `bwc.coverage`: the JSON text `bwc-identify coverage --json` prints for the config over the
@@ -471,12 +474,12 @@ fn coverage_json(
         .allow_threads(|| {
             bwc_app::with_threads(threads, || {
                 let c = checkpoint.as_ref();
-                bwc_app::identify::coverage_study(&file, &config, noise, fit, seeds, c)
+                bwc_app::fit::identify::coverage_study(&file, &config, noise, fit, seeds, c)
             })
         })
         .map_err(error)?;
     let mut v = bwc_app::outdir::provenance("bwc-identify");
-    v["coverage"] = bwc_app::identify::coverage_summary(&reports)["coverage"].take();
+    v["coverage"] = bwc_app::fit::identify::coverage_summary(&reports)["coverage"].take();
     Ok(v.to_string())
 }
 
@@ -503,7 +506,7 @@ fn posterior_json(
         .allow_threads(|| {
             bwc_app::with_threads(threads, || {
                 let c = checkpoint.as_ref();
-                bwc_app::identify::posterior_all(&file, &config, seed, fit, sizes, c)
+                bwc_app::fit::identify::posterior_all(&file, &config, seed, fit, sizes, c)
             })
         })
         .map_err(error)?;
@@ -511,16 +514,16 @@ fn posterior_json(
 }
 
 /// The JSON of posteriors with their samples.
-fn posterior_text(config: &Config, reports: &[bwc_app::identify::PosteriorReport]) -> String {
+fn posterior_text(config: &Config, reports: &[bwc_app::fit::identify::PosteriorReport]) -> String {
     let mut v = bwc_app::outdir::provenance("bwc-identify");
-    v["posteriors"] = bwc_app::identify::posterior_summary(reports)["posteriors"].take();
+    v["posteriors"] = bwc_app::fit::identify::posterior_summary(reports)["posteriors"].take();
     for (p, r) in v["posteriors"]
         .as_array_mut()
         .into_iter()
         .flatten()
         .zip(reports)
     {
-        p["samples"] = bwc_app::identify::samples_json(r);
+        p["samples"] = bwc_app::fit::identify::samples_json(r);
     }
     v["config"] = config.describe();
     v.to_string()
@@ -547,7 +550,7 @@ fn posterior_sizes(
 }
 
 /// The fit named `name` of a config (or an error listing the names).
-fn fit_named<'a>(config: &'a Config, name: &str) -> PyResult<&'a bwc_app::config::FitConfig> {
+fn fit_named<'a>(config: &'a Config, name: &str) -> PyResult<&'a bwc_app::fit::config::FitConfig> {
     config.fits.iter().find(|f| f.name == name).ok_or_else(|| {
         let names: Vec<&str> = config.fits.iter().map(|f| f.name.as_str()).collect();
         BwcError::new_err(format!("fit = {name:?} names no [[fit]]: one of {names:?}"))
@@ -591,11 +594,11 @@ fn posterior_run_json(
     let run = py
         .allow_threads(|| {
             bwc_app::with_threads(Some(1), || {
-                bwc_app::identify::posterior_run(&file, f, seed, sizes, index)
+                bwc_app::fit::identify::posterior_run(&file, f, seed, sizes, index)
             })
         })
         .map_err(error)?;
-    Ok(bwc_app::identify::run_json(&run).to_string())
+    Ok(bwc_app::fit::identify::run_json(&run).to_string())
 }
 
 /// Pools the runs (JSON texts of `posterior_run_json`) of each fit named in `fits` into the JSON
@@ -620,13 +623,13 @@ fn posterior_pool_json(
             .map(|t| {
                 let v: serde_json::Value = serde_json::from_str(t)
                     .map_err(|e| BwcError::new_err(format!("a posterior run's JSON: {e}")))?;
-                bwc_app::identify::run_of_json(&v).map_err(error)
+                bwc_app::fit::identify::run_of_json(&v).map_err(error)
             })
             .collect::<PyResult<Vec<_>>>()?;
         let report = py
             .allow_threads(|| {
                 bwc_app::with_threads(threads, || {
-                    bwc_app::identify::posterior_from_runs(&file, f, seed, runs)
+                    bwc_app::fit::identify::posterior_from_runs(&file, f, seed, runs)
                 })
             })
             .map_err(error)?;

@@ -7,8 +7,8 @@
 //! effective mass (`m_l m_r / (m_l + m_r)`, or the body's mass against a wall). `T_b` (default 1)
 //! sets the contact's time scale; CoR data alone leave it open.
 
-use crate::scene::raw::{RawBase, RawPhysical};
 use crate::tables::{contact_law, model_kind, span, Ctx, Num};
+use crate::tables::{RawBase, RawPhysical};
 use crate::AppError;
 use bw_models::chain::PairLaw;
 use bw_models::{BaseMap, BaseParams, ModelKind};

@@ -3,10 +3,10 @@
 //! infinite mass.
 
 use super::laws::{laws, LawTables, RawChainPair};
-use crate::scene::raw::{Mass, RawBase, RawPhysical};
 use crate::signal::Signal;
 use crate::tables::{every_error, RawInput};
 use crate::tables::{model_kind, read_text, signal, span, syntax_error, Ctx, Num};
+use crate::tables::{Mass, RawBase, RawPhysical};
 use crate::AppError;
 use bw_models::chain::{ChainBody, ChainSettings, PairLaw, Stop, Walls};
 use bw_models::input::Input;
@@ -197,7 +197,7 @@ impl ChainScene {
     /// Reads and validates a chain scene.
     ///
     /// # Errors
-    /// As [`crate::scene::Scene::load`].
+    /// As [`crate::impact::scene::Scene::load`].
     pub fn load(path: &Path) -> Result<Self, AppError> {
         Self::parse(path, &read_text(path)?)
     }

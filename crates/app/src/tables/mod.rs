@@ -1,13 +1,17 @@
-//! TOML plumbing shared by scenes ([`crate::scene`]) and identification configs
-//! ([`crate::config`]): where a key sits in its file ([`Ctx`]), errors that name the file, the
+//! TOML plumbing shared by scenes ([`crate::impact::scene`]) and identification configs
+//! ([`crate::fit::config`]): where a key sits in its file ([`Ctx`]), errors that name the file, the
 //! line and the key, and the tables both kinds of file hold (`[input]`, `[solver]`).
 
 mod context;
+mod describe;
 mod input;
+mod laws;
 mod solver;
 
 pub(crate) use context::{span, Ctx, Num};
+pub(crate) use describe::{base_json, settings_json, signal_json};
 pub(crate) use input::{signal, RawInput};
+pub(crate) use laws::{Mass, RawBase, RawPhysical};
 pub(crate) use solver::{solver_settings, RawSolver};
 
 use crate::AppError;

@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::input::Zero;
+use crate::models::nondimensional_scales;
 use crate::{ModelKind, Ndbwshccm, Nondim, NondimParams, State};
 use bwc_ode::System;
 use std::cell::Cell;
@@ -84,15 +85,7 @@ impl CollisionModel<3> for Failing {
     fn input_constant_after(&self) -> Option<f64> {
         self.inner.input_constant_after()
     }
-    fn impact_speed(&self) -> f64 {
-        1.0
-    }
-    fn state_scale(&self) -> State<3> {
-        State::<3>::repeat(1.0)
-    }
-    fn time_scale(&self) -> f64 {
-        1.0
-    }
+    nondimensional_scales!(3);
     fn kinks(&self, t: f64, y: &State<3>) -> [f64; 2] {
         self.inner.kinks(t, y)
     }

@@ -3,7 +3,7 @@
 
 use super::{FamilySpec, ParamSpec};
 use crate::cor::impact;
-use crate::models::CollisionModel;
+use crate::models::{nondimensional_scales, unforced, CollisionModel};
 use bwc_ode::{State, System};
 
 pub(super) const SPEC: FamilySpec = FamilySpec {
@@ -61,21 +61,8 @@ impl CollisionModel<2> for Ndkv {
     fn velocity(&self, y: &State<2>) -> f64 {
         y[1]
     }
-    fn input(&self, _t: f64) -> f64 {
-        0.0
-    }
-    fn input_constant_after(&self) -> Option<f64> {
-        Some(f64::NEG_INFINITY)
-    }
-    fn impact_speed(&self) -> f64 {
-        1.0
-    }
-    fn state_scale(&self) -> State<2> {
-        State::<2>::repeat(1.0)
-    }
-    fn time_scale(&self) -> f64 {
-        1.0
-    }
+    unforced!();
+    nondimensional_scales!(2);
     fn kinks(&self, _t: f64, _y: &State<2>) -> [f64; 2] {
         // Linear: no point where the right-hand side is not smooth.
         [1.0, 1.0]

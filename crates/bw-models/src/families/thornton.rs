@@ -14,7 +14,7 @@
 
 use super::{FamilySpec, ParamSpec};
 use crate::cor::impact;
-use crate::models::CollisionModel;
+use crate::models::{nondimensional_scales, unforced, CollisionModel};
 use bwc_ode::{State, System};
 
 pub(super) const SPEC: FamilySpec = FamilySpec {
@@ -118,21 +118,8 @@ impl CollisionModel<3> for Ndthornton {
     fn velocity(&self, y: &State<3>) -> f64 {
         y[1]
     }
-    fn input(&self, _t: f64) -> f64 {
-        0.0
-    }
-    fn input_constant_after(&self) -> Option<f64> {
-        Some(f64::NEG_INFINITY)
-    }
-    fn impact_speed(&self) -> f64 {
-        1.0
-    }
-    fn state_scale(&self) -> State<3> {
-        State::<3>::repeat(1.0)
-    }
-    fn time_scale(&self) -> f64 {
-        1.0
-    }
+    unforced!();
+    nondimensional_scales!(3);
     /// The turn from loading to unloading (`V = 0`) and the yield onset while loading
     /// (`δ = δ_y`), the end of the unloading curve after (`δ = δ_f`).
     fn kinks(&self, _t: f64, y: &State<3>) -> [f64; 2] {

@@ -85,3 +85,47 @@ pub(crate) fn at_rest<M: CollisionModel<N>, const N: usize>(
         .zip(scale.iter())
         .all(|(d, s)| d.abs() <= 10.0 * atol * s)
 }
+
+/// The [`CollisionModel`] methods of a nondimensional model with `N` states: impact speed,
+/// state scales and time scale all 1.
+macro_rules! nondimensional_scales {
+    ($n:literal) => {
+        fn impact_speed(&self) -> f64 {
+            1.0
+        }
+        fn state_scale(&self) -> State<$n> {
+            State::<$n>::repeat(1.0)
+        }
+        fn time_scale(&self) -> f64 {
+            1.0
+        }
+    };
+}
+pub(crate) use nondimensional_scales;
+
+/// The [`CollisionModel`] input methods of a model whose `input` field is an
+/// [`Input`](crate::input::Input).
+macro_rules! input_of_field {
+    () => {
+        fn input(&self, t: f64) -> f64 {
+            self.input.at(t)
+        }
+        fn input_constant_after(&self) -> Option<f64> {
+            self.input.constant_after()
+        }
+    };
+}
+pub(crate) use input_of_field;
+
+/// The [`CollisionModel`] input methods of an unforced model: `u = 0` at all times.
+macro_rules! unforced {
+    () => {
+        fn input(&self, _t: f64) -> f64 {
+            0.0
+        }
+        fn input_constant_after(&self) -> Option<f64> {
+            Some(f64::NEG_INFINITY)
+        }
+    };
+}
+pub(crate) use unforced;

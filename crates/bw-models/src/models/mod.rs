@@ -11,7 +11,7 @@ mod nondim;
 mod si;
 
 pub(crate) use coefficients::NdCoefficients;
-pub(crate) use collision::at_rest;
 pub use collision::CollisionModel;
+pub(crate) use collision::{at_rest, nondimensional_scales, unforced};
 pub use nondim::{Ndbwmcm, NdbwmcmEarlier, Ndbwshccm};
 pub use si::{Bwmcm, BwmcmEarlier, Bwshccm};

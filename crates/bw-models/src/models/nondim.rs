@@ -3,7 +3,7 @@
 //! double-double paths expand.
 
 use super::coefficients::NdCoefficients;
-use super::collision::CollisionModel;
+use super::collision::{input_of_field, nondimensional_scales, unforced, CollisionModel};
 use super::form::NdForm;
 use crate::clearance::shccm_clearance;
 use crate::error::ModelError;
@@ -90,21 +90,8 @@ impl<I: Input> CollisionModel<3> for Ndbwshccm<I> {
     fn velocity(&self, y: &State<3>) -> f64 {
         y[2]
     }
-    fn input(&self, t: f64) -> f64 {
-        self.input.at(t)
-    }
-    fn input_constant_after(&self) -> Option<f64> {
-        self.input.constant_after()
-    }
-    fn impact_speed(&self) -> f64 {
-        1.0
-    }
-    fn state_scale(&self) -> State<3> {
-        State::<3>::repeat(1.0)
-    }
-    fn time_scale(&self) -> f64 {
-        1.0
-    }
+    input_of_field!();
+    nondimensional_scales!(3);
     fn kinks(&self, _t: f64, y: &State<3>) -> [f64; 2] {
         [y[2], y[1]]
     }
@@ -214,21 +201,8 @@ impl<I: Input> CollisionModel<4> for Ndbwmcm<I> {
     fn velocity(&self, y: &State<4>) -> f64 {
         y[3]
     }
-    fn input(&self, t: f64) -> f64 {
-        self.input.at(t)
-    }
-    fn input_constant_after(&self) -> Option<f64> {
-        self.input.constant_after()
-    }
-    fn impact_speed(&self) -> f64 {
-        1.0
-    }
-    fn state_scale(&self) -> State<4> {
-        State::<4>::repeat(1.0)
-    }
-    fn time_scale(&self) -> f64 {
-        1.0
-    }
+    input_of_field!();
+    nondimensional_scales!(4);
     fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
         [y[3] + self.k.sigma * self.force_of(y), y[2]]
     }
@@ -315,21 +289,8 @@ impl CollisionModel<4> for NdbwmcmEarlier {
     fn velocity(&self, y: &State<4>) -> f64 {
         self.rdot(y) + y[3]
     }
-    fn input(&self, _t: f64) -> f64 {
-        0.0
-    }
-    fn input_constant_after(&self) -> Option<f64> {
-        Some(f64::NEG_INFINITY)
-    }
-    fn impact_speed(&self) -> f64 {
-        1.0
-    }
-    fn state_scale(&self) -> State<4> {
-        State::<4>::repeat(1.0)
-    }
-    fn time_scale(&self) -> f64 {
-        1.0
-    }
+    unforced!();
+    nondimensional_scales!(4);
     fn kinks(&self, _t: f64, y: &State<4>) -> [f64; 2] {
         [y[3], y[2]]
     }

@@ -3,7 +3,7 @@
 //! forms (Table 1) where the input is constant.
 
 use super::coefficients::NdCoefficients;
-use super::collision::CollisionModel;
+use super::collision::{input_of_field, unforced, CollisionModel};
 use super::form::NdForm;
 use crate::clearance::{in_natural_units, shccm_clearance};
 use crate::error::ModelError;
@@ -76,12 +76,7 @@ impl<I: Input> CollisionModel<3> for Bwshccm<I> {
     fn velocity(&self, y: &State<3>) -> f64 {
         y[2]
     }
-    fn input(&self, t: f64) -> f64 {
-        self.input.at(t)
-    }
-    fn input_constant_after(&self) -> Option<f64> {
-        self.input.constant_after()
-    }
+    input_of_field!();
     fn impact_speed(&self) -> f64 {
         self.v0
     }
@@ -163,12 +158,7 @@ impl<I: Input> CollisionModel<4> for Bwmcm<I> {
     fn velocity(&self, y: &State<4>) -> f64 {
         y[3]
     }
-    fn input(&self, t: f64) -> f64 {
-        self.input.at(t)
-    }
-    fn input_constant_after(&self) -> Option<f64> {
-        self.input.constant_after()
-    }
+    input_of_field!();
     fn impact_speed(&self) -> f64 {
         self.v0
     }
@@ -248,12 +238,7 @@ impl CollisionModel<4> for BwmcmEarlier {
     fn velocity(&self, y: &State<4>) -> f64 {
         self.rdot(y) + y[3]
     }
-    fn input(&self, _t: f64) -> f64 {
-        0.0
-    }
-    fn input_constant_after(&self) -> Option<f64> {
-        Some(f64::NEG_INFINITY)
-    }
+    unforced!();
     fn impact_speed(&self) -> f64 {
         self.v0
     }

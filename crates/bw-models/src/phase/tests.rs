@@ -47,16 +47,7 @@ fn mcm(dsa: bool, v0: f64) -> NondimParams {
 
 /// Table 3's DSS (1) NDBWSHCCM at `v0` (m/s).
 fn dss1(v0: f64) -> NondimParams {
-    let base = BaseParams {
-        b_b: 2.38,
-        gamma_b: -2.38,
-        kappa: 0.677,
-        sigma_b: 0.0348,
-        n: 2.93,
-        p: 2.62,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
+    let base = crate::published::DSS1_SHCCM;
     BaseMap::new(ModelKind::Shccm, base)
         .unwrap()
         .at(v0)

@@ -247,16 +247,7 @@ fn an_element_step_does_not_allocate() {
 #[test]
 fn a_conservative_law_dissipates_nothing_and_a_dashpot_never_gives_back() {
     let law = |kind, c| {
-        let physical = Physical {
-            k: 1e6,
-            c,
-            n: 1.0,
-            p: 1.5,
-            alpha: 0.5,
-            beta: 0.0,
-            gamma: 0.0,
-            a: 1.0,
-        };
+        let physical = Physical::hertz_damped(1e6, c);
         PhysicalParams::new(kind, physical).unwrap()
     };
     let mut elastic = ContactElement::new(

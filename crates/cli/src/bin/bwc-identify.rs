@@ -1,8 +1,8 @@
 //! `bwc-identify`: identify base parameters of the Bouc-Wen collision models from data.
 
-use bwc_app::checkpoint::Checkpoint;
-use bwc_app::config::Config;
-use bwc_app::identify::{render, render_loops, summary, FitReport, LoopReport};
+use bwc_app::fit::checkpoint::Checkpoint;
+use bwc_app::fit::config::Config;
+use bwc_app::fit::identify::{render, render_loops, summary, FitReport, LoopReport};
 use bwc_app::outdir;
 use bwc_app::AppError;
 use bwc_cli::exit;
@@ -235,12 +235,12 @@ fn run(
     let checkpoint = open_checkpoint(checkpoint, "run")?;
     let bar = progress_bar(&config, json, seed);
     let tick = || bar.inc(1);
-    let work = || bwc_app::identify::fit_all(path, &config, seed, &tick, checkpoint.as_ref());
+    let work = || bwc_app::fit::identify::fit_all(path, &config, seed, &tick, checkpoint.as_ref());
     let (reports, loop_reports) = bwc_app::with_threads(threads, work)?;
     bar.finish_and_clear();
     say_resumed(checkpoint.as_ref());
     warn(&reports, &loop_reports);
-    let summary = bwc_app::identify::summary_of(&config, &reports, &loop_reports);
+    let summary = bwc_app::fit::identify::summary_of(&config, &reports, &loop_reports);
     // The results are printed before the files are written: a failed write loses nothing.
     if json {
         bwc_app::out!("{summary}");
@@ -270,7 +270,7 @@ fn run(
 /// The progress of a run's evaluations on stderr: hidden for JSON output and without a seed
 /// (where the number of evaluations is not planned).
 fn progress_bar(config: &Config, json: bool, seed: Option<u64>) -> ProgressBar {
-    let total = seed.map_or(0, |_| bwc_app::identify::planned_evaluations(config));
+    let total = seed.map_or(0, |_| bwc_app::fit::identify::planned_evaluations(config));
     let target = if json || seed.is_none() {
         ProgressDrawTarget::hidden()
     } else {
@@ -412,15 +412,15 @@ fn compare(
     threads: Option<usize>,
 ) -> Result<(), AppError> {
     let config = Config::load(path)?;
-    let work = || bwc_app::identify::compare_all(path, &config, seed, folds, sizes);
+    let work = || bwc_app::fit::identify::compare_all(path, &config, seed, folds, sizes);
     let rows = bwc_app::with_threads(threads, work)?;
     if json {
         let mut v = outdir::provenance("bwc-identify");
-        v["comparisons"] = bwc_app::identify::compare_summary(&rows)["comparisons"].take();
+        v["comparisons"] = bwc_app::fit::identify::compare_summary(&rows)["comparisons"].take();
         bwc_app::out!("{v}");
         return Ok(());
     }
-    for (data, members) in bwc_app::identify::groups(&rows) {
+    for (data, members) in bwc_app::fit::identify::groups(&rows) {
         bwc_app::out!("{data}:");
         bwc_app::out!(
             "    {:28} {:14} {:>2} {:>4} {:>10} {:>9} {:>9} {:>16} {:>10}",
@@ -449,7 +449,7 @@ fn compare(
                 r.cv_rmse
             );
         }
-        bwc_app::out!("    {}", bwc_app::identify::verdict(&members));
+        bwc_app::out!("    {}", bwc_app::fit::identify::verdict(&members));
     }
     Ok(())
 }
@@ -468,15 +468,17 @@ fn posterior(
         outdir::prepare(dir)?;
     }
     let checkpoint = open_checkpoint(checkpoint, "posterior")?;
-    let work =
-        || bwc_app::identify::posterior_all(path, &config, seed, only, sizes, checkpoint.as_ref());
+    let work = || {
+        bwc_app::fit::identify::posterior_all(path, &config, seed, only, sizes, checkpoint.as_ref())
+    };
     let reports = bwc_app::with_threads(threads, work)?;
     say_resumed(checkpoint.as_ref());
     for w in reports.iter().flat_map(|r| &r.warnings) {
         eprintln!("bwc-identify: warning: {w}");
     }
     let mut summary = outdir::provenance("bwc-identify");
-    summary["posteriors"] = bwc_app::identify::posterior_summary(&reports)["posteriors"].take();
+    summary["posteriors"] =
+        bwc_app::fit::identify::posterior_summary(&reports)["posteriors"].take();
     summary["config"] = config.describe();
     // The results are printed before the files are written: a failed write loses nothing.
     if json {
@@ -494,7 +496,7 @@ fn posterior(
                 .iter()
                 .find(|f| f.name == r.name)
                 .expect("a fit");
-            files.extend(bwc_app::identify::render_posterior(f, r, dir)?);
+            files.extend(bwc_app::fit::identify::render_posterior(f, r, dir)?);
         }
         let written = outdir::write_all(dir, summary, files)?;
         if !json {
@@ -507,7 +509,7 @@ fn posterior(
 }
 
 /// One posterior as text: the evidence, the sampler's effort, the marginals.
-fn print_posterior(r: &bwc_app::identify::PosteriorReport) {
+fn print_posterior(r: &bwc_app::fit::identify::PosteriorReport) {
     bwc_app::out!(
         "{} ({}): log Z = {:.3} +- {:.3}, {} evaluations, {:.2} s, {} runs x {} particles, ESS {:.0}",
         r.name,
@@ -522,7 +524,7 @@ fn print_posterior(r: &bwc_app::identify::PosteriorReport) {
     );
     bwc_app::out!("    noise: {}", r.noise);
     for m in &r.marginals {
-        let unit = match bwc_app::identify::unit_of(m.name) {
+        let unit = match bwc_app::fit::identify::unit_of(m.name) {
             "-" => String::new(),
             u => format!(" {u}"),
         };
@@ -548,13 +550,20 @@ fn coverage_study(
     let config = Config::load(path)?;
     let checkpoint = open_checkpoint(checkpoint, "coverage")?;
     let work = || {
-        bwc_app::identify::coverage_study(path, &config, noise, only, seeds, checkpoint.as_ref())
+        bwc_app::fit::identify::coverage_study(
+            path,
+            &config,
+            noise,
+            only,
+            seeds,
+            checkpoint.as_ref(),
+        )
     };
     let reports = bwc_app::with_threads(threads, work)?;
     say_resumed(checkpoint.as_ref());
     if json {
         let mut v = outdir::provenance("bwc-identify");
-        v["coverage"] = bwc_app::identify::coverage_summary(&reports)["coverage"].take();
+        v["coverage"] = bwc_app::fit::identify::coverage_summary(&reports)["coverage"].take();
         bwc_app::out!("{v}");
         return Ok(());
     }

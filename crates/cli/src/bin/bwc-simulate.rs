@@ -2,10 +2,12 @@
 
 use bw_models::{Check, ModelKind, LADDER};
 use bwc_app::chain::ChainScene;
+use bwc_app::impact::output::{self, SummaryWriter};
+use bwc_app::impact::runs::Outcome;
+use bwc_app::impact::{scene::Scene, simulate};
 use bwc_app::outdir;
-use bwc_app::output::{self, SummaryWriter};
-use bwc_app::runs::Outcome;
-use bwc_app::{scene::Scene, simulate, tidy, AppError};
+use bwc_app::scene_file::SceneFile;
+use bwc_app::{tidy, AppError};
 use bwc_cli::exit;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -66,10 +68,10 @@ fn run(
     json: bool,
     threads: Option<usize>,
 ) -> Result<u8, AppError> {
-    if bwc_app::chain::is_chain_file(path) {
-        return run_chain(path, out, json, threads);
-    }
-    let scene = Scene::load(path)?;
+    let scene = match SceneFile::load(path)? {
+        SceneFile::Chain(chain) => return run_chain(&chain, out, json, threads),
+        SceneFile::Pair(scene) => scene,
+    };
     for hint in &scene.hints {
         eprintln!("bwc-simulate: warning: {hint}");
     }
@@ -233,7 +235,7 @@ fn notes(scene: &Scene, tally: &simulate::Tally) {
 
 /// Says on stderr what is not a plain separation: failures with their reason, horizons with the
 /// setting that moves them, settled contacts with their force balance.
-fn report(scene: &Scene, runs: &[bwc_app::runs::Run]) {
+fn report(scene: &Scene, runs: &[bwc_app::impact::runs::Run]) {
     for note in simulate::sampling_notes(scene, runs) {
         eprintln!("bwc-simulate: warning: {note}");
     }
@@ -292,7 +294,7 @@ fn report(scene: &Scene, runs: &[bwc_app::runs::Run]) {
 
 /// Warns where a checked CoR's own error estimate stayed above `[solver].e_tol`, or where no
 /// run at another tolerance could check it.
-fn unmet_e_tol(scene: &Scene, label: &str, r: &bwc_app::runs::Run) {
+fn unmet_e_tol(scene: &Scene, label: &str, r: &bwc_app::impact::runs::Run) {
     let (Some(e_tol), Some(c)) = (scene.settings.e_tol, r.solver.as_ref()) else {
         return;
     };
@@ -354,7 +356,7 @@ struct Table {
 }
 
 impl Table {
-    fn rows(&mut self, runs: &[bwc_app::runs::Run]) {
+    fn rows(&mut self, runs: &[bwc_app::impact::runs::Run]) {
         let labels: Vec<String> = runs.iter().map(|r| r.label()).collect();
         let width = match self.width {
             Some(w) => w,
@@ -398,7 +400,7 @@ impl Table {
     }
 
     /// The header; the unit of `t_s` is that of the first chunk's runs.
-    fn header(&self, runs: &[bwc_app::runs::Run], width: usize) {
+    fn header(&self, runs: &[bwc_app::impact::runs::Run], width: usize) {
         let t_unit = match runs.first().map(|r| r.time_unit) {
             Some(u) if runs.iter().all(|r| r.time_unit == u) && u == "s" => "(s)",
             Some(u) if runs.iter().all(|r| r.time_unit == u) => "(T, nondim.)",
@@ -428,7 +430,7 @@ impl Table {
 }
 
 /// The contacts of a sequence, with the unit of every column.
-fn bounce_table(runs: &[bwc_app::runs::Run]) {
+fn bounce_table(runs: &[bwc_app::impact::runs::Run]) {
     bwc_app::out!(
         "{:>4} {:>14} {:>12} {:>12} {:>10} {:>14} {:>12} {:>12} {:>10}",
         "n",
@@ -466,17 +468,16 @@ fn bounce_table(runs: &[bwc_app::runs::Run]) {
 /// Runs a `[chain]` scene: the summary on stdout (a table, or one JSON object with `--json`),
 /// the files into `out`.
 fn run_chain(
-    path: &std::path::Path,
+    scene: &ChainScene,
     out: Option<&std::path::Path>,
     json: bool,
     threads: Option<usize>,
 ) -> Result<u8, AppError> {
-    let scene = ChainScene::load(path)?;
     if let Some(dir) = out {
         outdir::prepare(dir)?;
     }
-    let outcome = bwc_app::with_threads(threads, || bwc_app::chain::run(&scene))?;
-    let mut summary = bwc_app::chain::summary(&scene, &outcome);
+    let outcome = bwc_app::with_threads(threads, || bwc_app::chain::run(scene))?;
+    let mut summary = bwc_app::chain::summary(scene, &outcome);
     for (k, v) in outdir::provenance("bwc-simulate")
         .as_object()
         .expect("provenance is an object")
@@ -486,10 +487,10 @@ fn run_chain(
     if json {
         bwc_app::out!("{summary}");
     } else {
-        chain_table(&scene, &outcome);
+        chain_table(scene, &outcome);
     }
     if let Some(dir) = out {
-        let files = bwc_app::chain::render(&scene, &outcome, dir)?;
+        let files = bwc_app::chain::render(scene, &outcome, dir)?;
         let written = outdir::write_all(dir, summary, files)?;
         if !json {
             for p in written {

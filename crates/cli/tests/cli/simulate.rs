@@ -306,7 +306,7 @@ const GOOD_PHYSICAL: &str = concat!("model = \"shccm\"\nv0 = [1.0]\n", cross_phy
 /// The scenes' `[physical]` table is Table 4's law of `bw_models::published`.
 #[test]
 fn the_physical_table_is_table_4() {
-    let scene = bwc_app::scene::Scene::parse(Path::new("t.toml"), GOOD_PHYSICAL).unwrap();
+    let scene = bwc_app::impact::scene::Scene::parse(Path::new("t.toml"), GOOD_PHYSICAL).unwrap();
     let described = scene.describe().to_string();
     let l = bw_models::published::CROSS_BWSHCCM;
     for (key, value) in [

@@ -31,7 +31,7 @@ fn path(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
-/// A study of three chunks (8192 runs each: `bwc_app::simulate::CHUNK`) and a bit, listed in
+/// A study of three chunks (8192 runs each: `bwc_app::impact::simulate::CHUNK`) and a bit, listed in
 /// `runs.jsonl` (above `summary_runs = 1000`): every line is the run `--json` prints at its
 /// place, `sweep.csv` has a row for each, and every `e` is the closed form's.
 #[test]

@@ -5,18 +5,22 @@
 use bw_models::{BaseParams, ModelKind, Settings};
 use bwc_identify::{Budget, Param, PosteriorTask, SmcSettings, Space};
 
+/// The synthetic truth of the identification tests: a NDBWSHCCM with loading branch
+/// `Γ_b = -B_b`.
+pub const TRUTH: BaseParams = BaseParams {
+    b_b: 1.0,
+    gamma_b: -1.0,
+    kappa: 0.6,
+    sigma_b: 0.03,
+    n: 1.5,
+    p: 1.5,
+    u_b: 1.0,
+    t_b: 1.0,
+};
+
 /// The design, the noise told to the likelihood (`given_noise`) or sampled with the parameters.
 pub fn task(given_noise: bool) -> PosteriorTask {
-    let truth = BaseParams {
-        b_b: 1.0,
-        gamma_b: -1.0,
-        kappa: 0.6,
-        sigma_b: 0.03,
-        n: 1.5,
-        p: 1.5,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
+    let truth = TRUTH;
     let fixed = Param::Fixed;
     let space = Space::new(
         ModelKind::Shccm,

@@ -6,9 +6,9 @@
 
 use super::curve_speeds;
 use super::report::fail;
-use crate::checkpoint::{fingerprint, Checkpoint};
-use crate::config::{Config, FitConfig};
-use crate::corner::CornerColumn;
+use crate::fit::checkpoint::{fingerprint, Checkpoint};
+use crate::fit::config::{Config, FitConfig};
+use crate::fit::corner::CornerColumn;
 use crate::AppError;
 use bwc_identify::{
     disagreement, fit, marginals, pool, posterior_band, run_spread, smc_run, FitResult, Marginal,
@@ -591,7 +591,7 @@ pub fn render_posterior(
         r.weights.len(),
         r.ess
     );
-    let svg = crate::corner::corner(&title, &columns, &r.weights).map_err(perr(&name))?;
+    let svg = crate::fit::corner::corner(&title, &columns, &r.weights).map_err(perr(&name))?;
     files.push((name, svg.into_bytes()));
     Ok(files)
 }

@@ -9,8 +9,8 @@ mod study;
 pub use run_summary::{RunSummary, RUN_KEYS};
 pub use study::{Study, FIGURE_POINTS, FIGURE_RUNS, RUNS_FILE};
 
-use crate::runs::Run;
-use crate::scene::{Scene, System};
+use crate::impact::runs::Run;
+use crate::impact::scene::{Scene, System};
 use serde::Serialize;
 
 /// A tighter run under `e_tol` that failed (`bw_models::FailedRun`).
@@ -61,7 +61,7 @@ pub struct BounceSummary {
 }
 
 impl BounceSummary {
-    fn of((b, x_s): &crate::runs::Bounced) -> Self {
+    fn of((b, x_s): &crate::impact::runs::Bounced) -> Self {
         use bw_models::sequence::BounceEnd;
         BounceSummary {
             n: b.n,
@@ -135,7 +135,7 @@ impl Summary {
     pub fn provenance_json(&self, scene: &Scene, runs: &[Run]) -> String {
         let mut w = SummaryWriter::array(Vec::new(), scene).expect("in-memory writer");
         w.add_summaries(&self.runs).expect("in-memory writer");
-        let tally = crate::simulate::Tally::of(scene, runs);
+        let tally = crate::impact::simulate::Tally::of(scene, runs);
         let text = w.finish(scene, &tally, None).expect("in-memory writer");
         String::from_utf8(text).expect("JSON is UTF-8")
     }
@@ -224,7 +224,7 @@ impl<W: std::io::Write> SummaryWriter<W> {
     pub fn finish(
         mut self,
         scene: &Scene,
-        tally: &crate::simulate::Tally,
+        tally: &crate::impact::simulate::Tally,
         files: Option<&[String]>,
     ) -> std::io::Result<W> {
         if !self.lines {
@@ -258,7 +258,7 @@ pub(crate) fn si_states(scene: &Scene) -> bool {
 /// nondimensional quantities are in the scales of Table 1). A unit given for an object holds for
 /// all its entries (`nondimensional`); the map under an array's key is that of each element
 /// (`bounces`).
-/// `time_unit`: that of `t_s` of every run ([`crate::simulate::Tally::time_unit`]; `None`
+/// `time_unit`: that of `t_s` of every run ([`crate::impact::simulate::Tally::time_unit`]; `None`
 /// without runs: s).
 pub fn units(scene: &Scene, time_unit: Option<&str>) -> serde_json::Value {
     let nd = "nondimensional";

@@ -4,8 +4,8 @@
 //! `--replicates` shard a study over machines).
 
 use super::report::{fail, reporting};
-use crate::checkpoint::{exact, fingerprint, float_of, Checkpoint};
-use crate::config::FitConfig;
+use crate::fit::checkpoint::{exact, fingerprint, float_of, Checkpoint};
+use crate::fit::config::FitConfig;
 use crate::AppError;
 use bw_models::input::Input;
 use bw_models::BaseParams;
@@ -189,7 +189,7 @@ pub fn coverage_summary(reports: &[CoverageReport]) -> Value {
 /// [`run_coverage`].
 pub fn coverage_study(
     path: &Path,
-    config: &crate::config::Config,
+    config: &crate::fit::config::Config,
     noise: Option<f64>,
     only: Option<&str>,
     seeds: std::ops::Range<u64>,

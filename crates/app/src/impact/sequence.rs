@@ -1,8 +1,8 @@
 //! The runs of `[sequence]` scenes: repeated impacts of a `[physical]` body on a fixed surface
 //! under gravity ([`bw_models::sequence`]), each contact an impact with input `u = -m g`.
 
-use crate::runs::{hint, scaling, Bounced, Outcome, Run};
-use crate::scene::{SequenceSpec, System, SystemSpec};
+use crate::impact::runs::{hint, scaling, Bounced, Outcome, Run};
+use crate::impact::scene::{SequenceSpec, System, SystemSpec};
 use bw_models::input::{Constant, Scaled};
 use bw_models::sequence::{drop_sequence, BounceEnd, Contact, Resumed};
 use bw_models::{

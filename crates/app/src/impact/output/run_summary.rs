@@ -3,7 +3,7 @@
 //! construction and the `"units"` of a run ([`run_units`]) all come.
 
 use super::{BounceSummary, FailedRunSummary, InterpolationSummary, NondimSummary, RestSummary};
-use crate::runs::{Outcome, Run};
+use crate::impact::runs::{Outcome, Run};
 use bw_models::Cor;
 use bwc_ode::Stats;
 use serde::Serialize;

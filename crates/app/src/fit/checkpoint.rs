@@ -15,7 +15,7 @@
 //! line the next run removes.
 //!
 //! ```
-//! use bwc_app::checkpoint::Checkpoint;
+//! use bwc_app::fit::checkpoint::Checkpoint;
 //! let path = std::env::temp_dir().join(format!("bwc-doc-{}.jsonl", std::process::id()));
 //! let c = Checkpoint::open(&path, "coverage").unwrap();
 //! c.record("fit/1", "abc", serde_json::json!({"covered": 3})).unwrap();

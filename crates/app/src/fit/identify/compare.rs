@@ -8,7 +8,7 @@
 use super::posterior::run_posterior;
 use super::report::{fail, reporting};
 use super::run_fit;
-use crate::config::{Config, FitConfig};
+use crate::fit::config::{Config, FitConfig};
 use crate::AppError;
 use bwc_identify::{fit, predict, Dataset, Objective};
 use serde_json::{json, Value};

@@ -2,7 +2,7 @@
 
 use super::reference::ReferenceReport;
 use super::report::{DropOutcome, FitReport, LoopReport};
-use crate::config::{FitConfig, LoopFitConfig};
+use crate::fit::config::{FitConfig, LoopFitConfig};
 use crate::plot::{self, Axis, Series, Style};
 use crate::AppError;
 use bw_models::{BaseParams, FamilyParams};

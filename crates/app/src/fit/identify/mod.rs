@@ -22,8 +22,8 @@ pub use render::{loop_summary, render, render_loops, slug, summary, units};
 use report::{fail, missing_params, reporting, search_warnings};
 pub use report::{DropOutcome, FitReport, LoopReport, ParetoPoint};
 
-use crate::checkpoint::Checkpoint;
-use crate::config::FitConfig;
+use crate::fit::checkpoint::Checkpoint;
+use crate::fit::config::FitConfig;
 use crate::signal::Signal;
 use crate::AppError;
 use bwc_identify::{
@@ -186,7 +186,7 @@ fn intervals<I: bw_models::input::Input + Sync>(
 fn reference_report(
     config: &Path,
     f: &FitConfig,
-    rf: &crate::config::Reference,
+    rf: &crate::fit::config::Reference,
     costs: &Costs,
     (s, identifiability): (&[f64], Option<&bwc_identify::Identifiability>),
     speeds: &[f64],
@@ -305,7 +305,7 @@ pub fn eval_fit(config: &Path, f: &FitConfig) -> Result<FitReport, AppError> {
 /// [`AppError::Identify`] if the optimizer or the final evaluation fails.
 pub fn run_loop_fit(
     config: &Path,
-    f: &crate::config::LoopFitConfig,
+    f: &crate::fit::config::LoopFitConfig,
     seed: u64,
     progress: &(dyn Fn() + Sync),
 ) -> Result<LoopReport, AppError> {
@@ -338,7 +338,7 @@ pub fn run_loop_fit(
 /// [`AppError::Invalid`] without `[loop_fit.params]`; [`AppError::Identify`] when a simulation fails.
 pub fn eval_loop_fit(
     config: &Path,
-    f: &crate::config::LoopFitConfig,
+    f: &crate::fit::config::LoopFitConfig,
 ) -> Result<LoopReport, AppError> {
     let clock = Instant::now();
     let law = f
@@ -389,7 +389,7 @@ impl<P: bwc_identify::CubeProblem> bwc_identify::CubeProblem for Counted<'_, P> 
 
 /// Evaluations the searches of `config` plan (for a progress bar; the converging search may
 /// stop earlier or take more starts).
-pub fn planned_evaluations(config: &crate::config::Config) -> u64 {
+pub fn planned_evaluations(config: &crate::fit::config::Config) -> u64 {
     let fits: u64 = config
         .fits
         .iter()
@@ -411,7 +411,7 @@ pub fn planned_evaluations(config: &crate::config::Config) -> u64 {
 /// The first failure in config order.
 pub fn fit_all(
     path: &Path,
-    config: &crate::config::Config,
+    config: &crate::fit::config::Config,
     seed: Option<u64>,
     tick: &(dyn Fn() + Sync),
     checkpoint: Option<&Checkpoint>,
@@ -450,7 +450,7 @@ pub fn fit_all(
 /// the fits (base-parameter fits first, then loop fits), the units, the config as parsed and
 /// the provenance.
 pub fn summary_of(
-    config: &crate::config::Config,
+    config: &crate::fit::config::Config,
     reports: &[FitReport],
     loops: &[LoopReport],
 ) -> serde_json::Value {

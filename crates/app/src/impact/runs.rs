@@ -1,7 +1,7 @@
 //! What a run of a scene gives: one simulated impact ([`Run`]) with its outcome, samples,
 //! bounces and provenance, and the setting that would help one that failed.
 
-use crate::scene::{System, SystemSpec};
+use crate::impact::scene::{System, SystemSpec};
 use bw_models::sequence::Bounce;
 use bw_models::sweep::GaveUp;
 use bw_models::{

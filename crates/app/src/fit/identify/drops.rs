@@ -1,8 +1,8 @@
-//! Fits and evaluations of drop-test data ([`crate::config::DropFit`]): the bounce sequence
+//! Fits and evaluations of drop-test data ([`crate::fit::config::DropFit`]): the bounce sequence
 //! simulated at each release height, the cost `J_drop` (s² for intervals, m² for heights).
 
 use super::report::{fail, missing_params, reporting, search_warnings, DropOutcome, FitReport};
-use crate::config::{DropFit, FitConfig};
+use crate::fit::config::{DropFit, FitConfig};
 use crate::AppError;
 use bwc_identify::{at_bound, minimize, Costs, DropObjective};
 use std::path::Path;

@@ -3,9 +3,9 @@
 //! axis and legends in words.
 
 use super::si_states;
+use crate::impact::runs::{Run, Sample};
+use crate::impact::scene::Scene;
 use crate::plot::{self, Axis, Series, Style};
-use crate::runs::{Run, Sample};
-use crate::scene::Scene;
 
 /// A figure: its file name and SVG text, or the file name and the drawing error.
 type Figure = Result<(String, Vec<u8>), (String, String)>;

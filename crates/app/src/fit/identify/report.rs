@@ -2,7 +2,7 @@
 //! uncertainty and warnings, with the settings of the evaluations that report it and the
 //! errors of a fit.
 
-use crate::config::FitConfig;
+use crate::fit::config::FitConfig;
 use crate::AppError;
 use bw_models::{BaseParams, Settings};
 use bwc_identify::{

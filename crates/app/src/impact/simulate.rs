@@ -1,7 +1,7 @@
 //! Runs the impacts of a scene: one per system and speed, in parallel, in a fixed order.
 
-use crate::runs::{hint, scaling, Interpolation, Outcome, Rest, Run, Sample, Scaling};
-use crate::scene::{Scene, System, SystemSpec};
+use crate::impact::runs::{hint, scaling, Interpolation, Outcome, Rest, Run, Sample, Scaling};
+use crate::impact::scene::{Scene, System, SystemSpec};
 use bw_models::input::{Constant, Input, Scaled};
 use bw_models::sweep::{self, GaveUp, Row, SweepSettings, Values};
 use bw_models::{
@@ -42,7 +42,7 @@ pub fn stream<E>(
 ) -> Result<(), E> {
     if let Some(seq) = &scene.sequence {
         let runs = (scene.systems.iter())
-            .map(|s| crate::sequence::run(s, seq, &scene.settings))
+            .map(|s| crate::impact::sequence::run(s, seq, &scene.settings))
             .collect();
         return sink(runs);
     }

@@ -2,7 +2,7 @@
 //! `summary.json`.
 
 use super::{Config, FitConfig, LoopFitConfig};
-use crate::scene::describe::{base, settings, signal};
+use crate::tables::{base_json, settings_json, signal_json};
 use bwc_identify::{Budget, Param, LAW_NAMES, NAMES};
 use serde_json::{json, Map, Value};
 
@@ -27,12 +27,12 @@ fn fit(f: &FitConfig) -> Value {
         "objectives": {"J1": f.weights.j1, "J2": f.weights.j2},
         "quantities": fit_quantities(f),
         "known": f.space.known().map(|k| json!({"m": k.m, "k": k.k})),
-        "input": signal(&f.input),
+        "input": signal_json(&f.input),
         "optimizer": optimizer(&f.budget, f.seed),
-        "solver": settings(&f.settings),
+        "solver": settings_json(&f.settings),
         "start": f.start,
-        "params": f.params.as_ref().map(base),
-        "reference": f.reference.as_ref().map(|r| json!({"label": r.label, "params": base(&r.params)})),
+        "params": f.params.as_ref().map(base_json),
+        "reference": f.reference.as_ref().map(|r| json!({"label": r.label, "params": base_json(&r.params)})),
         "pareto": f.pareto.map(|count| json!({"count": count})),
         "posterior": posterior(&f.posterior),
         "drops": f.drops.as_ref().map(|d| json!({

@@ -2,8 +2,7 @@
 //! the provenance block `"scene"` of `summary.json`.
 
 use super::{OutputSpec, Scene, System, SystemSpec};
-use crate::signal::Signal;
-use bw_models::{BaseParams, Settings, Stiffness};
+use crate::tables::{base_json, settings_json, signal_json};
 use serde_json::{json, Value};
 
 impl Scene {
@@ -14,7 +13,7 @@ impl Scene {
     pub fn describe(&self) -> Value {
         let v0 = if self.runs_listed_apart() {
             json!({"count": self.speeds.len(), "first": self.speeds.first(),
-                "last": self.speeds.last(), "listed_in": crate::output::RUNS_FILE})
+                "last": self.speeds.last(), "listed_in": crate::impact::output::RUNS_FILE})
         } else {
             json!(self.speeds)
         };
@@ -22,7 +21,7 @@ impl Scene {
             "path": self.path.display().to_string(),
             "systems": self.systems.iter().map(system).collect::<Vec<_>>(),
             "v0": v0,
-            "solver": settings(&self.settings),
+            "solver": settings_json(&self.settings),
             "output": output(&self.output),
             "sequence": self.sequence.map(|q| sequence(&q)),
             "sweep": {"interpolate": self.sweep.interpolate, "tolerance": self.sweep.tolerance},
@@ -42,16 +41,16 @@ fn system(spec: &SystemSpec) -> Value {
             input,
             time_scale_known,
         } => {
-            let mut b = base(map.base());
+            let mut b = base_json(map.base());
             if !time_scale_known {
                 b["T_b"] = Value::Null;
             }
-            json!({"base": b, "input": signal(input)})
+            json!({"base": b, "input": signal_json(input)})
         }
         System::Physical { params, m, input } => {
             let mut p = physical(params);
             p["m"] = json!(m);
-            json!({"physical": p, "input": signal(input)})
+            json!({"physical": p, "input": signal_json(input)})
         }
         System::Bodies { params, bodies } => {
             let ((m1, m2), (v1, v2), (l1, l2)) =
@@ -66,7 +65,7 @@ fn system(spec: &SystemSpec) -> Value {
             json!({
                 "physical": physical(params),
                 "bodies": {"m1": m1, "m2": m2, "v1": v1, "v2": v2, "l1": l1, "l2": l2,
-                    "u1": signal(u1), "u2": signal(u2)},
+                    "u1": signal_json(u1), "u2": signal_json(u2)},
             })
         }
     };
@@ -75,53 +74,10 @@ fn system(spec: &SystemSpec) -> Value {
     v
 }
 
-/// Base parameters keyed as in `[base]`.
-pub(crate) fn base(b: &BaseParams) -> Value {
-    json!({"B_b": b.b_b, "Gamma_b": b.gamma_b, "kappa": b.kappa, "sigma_b": b.sigma_b,
-        "n": b.n, "p": b.p, "U_b": b.u_b, "T_b": b.t_b})
-}
-
 fn physical(params: &bw_models::PhysicalParams) -> Value {
     let l = params.law();
     json!({"k": l.k, "c": l.c, "n": l.n, "p": l.p, "alpha": l.alpha, "beta": l.beta,
         "gamma": l.gamma, "A": l.a})
-}
-
-/// An input keyed as in `[input]`.
-pub(crate) fn signal(s: &Signal) -> Value {
-    match s {
-        Signal::Constant(c) => json!({"kind": "constant", "value": c}),
-        Signal::Arctan(a) => json!({"kind": "arctan", "m": a.m, "D": a.d, "omega": a.omega}),
-        Signal::Table(t) => {
-            let (ts, us): (Vec<f64>, Vec<f64>) = t.points().unzip();
-            json!({"kind": "table", "t": ts, "u": us})
-        }
-        Signal::Sum(terms) => {
-            json!({"kind": "sum", "terms": terms.iter().map(signal).collect::<Vec<_>>()})
-        }
-    }
-}
-
-/// Solver settings keyed as in `[solver]` (`max_step` null for none).
-pub(crate) fn settings(s: &Settings) -> Value {
-    let method = match s.stiffness {
-        Stiffness::Rosenbrock => "rosenbrock".to_string(),
-        _ => s.method.name.to_lowercase(),
-    };
-    json!({
-        "method": method,
-        "rtol": s.rtol,
-        "atol": s.atol,
-        "max_step": s.max_step.is_finite().then_some(s.max_step),
-        "t_max": s.t_max,
-        "max_steps": s.max_steps,
-        "stop_at_kinks": s.stop_at_kinks,
-        "switch_when_stiff": s.stiffness == Stiffness::Switch,
-        "series": s.series,
-        "e_tol": s.e_tol,
-        "double_double": s.double_double,
-        "phase": s.phase,
-    })
 }
 
 fn output(o: &OutputSpec) -> Value {

@@ -1,4 +1,4 @@
-//! A scene's output folder written as its runs come ([`crate::simulate::stream`]): the rows of
+//! A scene's output folder written as its runs come ([`crate::impact::simulate::stream`]): the rows of
 //! `sweep.csv`, `trajectory.csv` and `loop.csv` and the runs of the summary go to their files
 //! chunk by chunk, so that memory stays flat however many speeds a study has; the figures are
 //! drawn at the end from the runs they show, kept on the way. Every file is written under a
@@ -6,10 +6,10 @@
 //! that fails or is killed leaves the files of the run before it, complete, or none.
 
 use super::{figures, opt, source, units, SummaryWriter};
+use crate::impact::runs::{Outcome, Run};
+use crate::impact::scene::{Scene, System};
+use crate::impact::simulate::Tally;
 use crate::outdir::{self, Staged};
-use crate::runs::{Outcome, Run};
-use crate::scene::{Scene, System};
-use crate::simulate::Tally;
 use crate::AppError;
 use bw_models::ModelKind;
 use std::io::Write;
@@ -27,7 +27,7 @@ pub const FIGURE_RUNS: usize = 50;
 pub const RUNS_FILE: &str = "runs.jsonl";
 
 /// An output folder being written as a scene's runs come: [`Study::add`] each chunk in
-/// [`crate::simulate::stream`]'s order, then [`Study::finish`].
+/// [`crate::impact::simulate::stream`]'s order, then [`Study::finish`].
 pub struct Study<'a> {
     scene: &'a Scene,
     dir: PathBuf,
@@ -130,7 +130,7 @@ impl<'a> Study<'a> {
         })
     }
 
-    /// Writes the next runs of the scene, in [`crate::simulate::stream`]'s order.
+    /// Writes the next runs of the scene, in [`crate::impact::simulate::stream`]'s order.
     ///
     /// # Errors
     /// [`AppError::Output`] or [`AppError::Csv`] naming the file that could not be written.

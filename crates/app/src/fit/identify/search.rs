@@ -4,8 +4,8 @@
 //! computed again from the point found, which gives the same report.
 
 use super::report::fail;
-use crate::checkpoint::{exact, fingerprint, float_of, Checkpoint};
-use crate::config::FitConfig;
+use crate::fit::checkpoint::{exact, fingerprint, float_of, Checkpoint};
+use crate::fit::config::FitConfig;
 use crate::AppError;
 use bw_models::input::Input;
 use bw_models::BaseParams;

@@ -8,7 +8,7 @@
 //! singular value is below [`bwc_identify::WEAK`] times the largest says whether the two
 //! vectors differ in what the data leave undetermined.
 
-use crate::config::{FitConfig, Reference};
+use crate::fit::config::{FitConfig, Reference};
 use bw_models::BaseParams;
 use bwc_identify::{BandPoint, Costs, Identifiability, Weights};
 
