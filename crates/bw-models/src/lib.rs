@@ -85,7 +85,9 @@ pub use models::{
     Bwmcm, BwmcmEarlier, Bwshccm, CollisionModel, Ndbwmcm, NdbwmcmEarlier, Ndbwshccm,
 };
 pub use outcome::{Check, Cor, DdDeclined, DdFailure, FailedRun, Impact};
-pub use params::{BaseParams, ModelKind, Nondim, NondimParams, Physical, PhysicalParams};
+pub use params::{
+    BaseParams, ModelKind, Nondim, NondimParams, Physical, PhysicalParams, MODEL_KINDS,
+};
 pub use power::Pow;
 pub use scaling::{base_params, nondimensionalize, BaseMap, InputScaling, Scales};
 pub use separation::{separated, Separation};

@@ -12,12 +12,37 @@ pub enum ModelKind {
     Mcm,
 }
 
+/// Both models, in the order of [`ModelKind`]'s variants.
+pub const MODEL_KINDS: [ModelKind; 2] = [ModelKind::Shccm, ModelKind::Mcm];
+
 impl ModelKind {
-    /// Short name: `"shccm"` or `"mcm"`.
+    /// Short name, as scenes, configs and the bindings take it: `"shccm"` or `"mcm"`.
     pub fn name(self) -> &'static str {
         match self {
             ModelKind::Shccm => "shccm",
             ModelKind::Mcm => "mcm",
+        }
+    }
+
+    /// The model of a short name ([`ModelKind::name`]).
+    pub fn parse(name: &str) -> Option<Self> {
+        MODEL_KINDS.into_iter().find(|k| k.name() == name)
+    }
+
+    /// The model's name in the paper: `"BWSHCCM"` or `"BWMCM"`.
+    pub fn title(self) -> &'static str {
+        match self {
+            ModelKind::Shccm => "BWSHCCM",
+            ModelKind::Mcm => "BWMCM",
+        }
+    }
+
+    /// The names of the law's states (m), in the order of its state vector: `x, z` (BWSHCCL)
+    /// or `r, y, z` (BWMCL).
+    pub fn law_states(self) -> &'static [&'static str] {
+        match self {
+            ModelKind::Shccm => &["x", "z"],
+            ModelKind::Mcm => &["r", "y", "z"],
         }
     }
 }

@@ -59,11 +59,11 @@ fn law(
 /// The model a `model` argument names: `"shccm"` or `"mcm"`.
 fn model_kind(model: &Bound<'_, PyAny>) -> PyResult<ModelKind> {
     match word(model, "model")?.as_deref() {
-        Some("shccm") => Ok(ModelKind::Shccm),
-        Some("mcm") => Ok(ModelKind::Mcm),
-        Some(other) => Err(BwcError::new_err(format!(
-            "model: \"{other}\" is not a model: \"shccm\" or \"mcm\""
-        ))),
+        Some(name) => ModelKind::parse(name).ok_or_else(|| {
+            BwcError::new_err(format!(
+                "model: \"{name}\" is not a model: \"shccm\" or \"mcm\""
+            ))
+        }),
         None => Err(BwcError::new_err(format!(
             "model = {} is not a model: the string \"shccm\" or \"mcm\"",
             shown(model)

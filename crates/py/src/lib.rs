@@ -416,11 +416,13 @@ fn trajectory<'py>(
     out.set_item("v", column(&|s| s.v).into_pyarray(py))?;
     out.set_item("u", column(&|s| s.u).into_pyarray(py))?;
     out.set_item("F", column(&|s| s.f).into_pyarray(py))?;
-    let names: &[&str] = match r.model {
-        bw_models::ModelKind::Shccm => &["x", "z"],
-        bw_models::ModelKind::Mcm => &["r", "y", "z"],
-    };
-    for (i, name) in names.iter().enumerate().filter(|(_, n)| **n != "x") {
+    for (i, name) in r
+        .model
+        .law_states()
+        .iter()
+        .enumerate()
+        .filter(|(_, n)| **n != "x")
+    {
         out.set_item(*name, column(&|s| s.state[i]).into_pyarray(py))?;
     }
     Ok(out)

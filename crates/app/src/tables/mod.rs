@@ -332,13 +332,14 @@ fn with_value(src: &str, line: usize, value: Option<&str>) -> Option<String> {
 }
 
 pub(crate) fn model_kind(ctx: &Ctx, v: &Spanned<String>, key: &str) -> Result<ModelKind, AppError> {
-    match v.get_ref().as_str() {
-        "shccm" => Ok(ModelKind::Shccm),
-        "mcm" => Ok(ModelKind::Mcm),
-        other => Err(ctx.invalid(
+    ModelKind::parse(v.get_ref()).ok_or_else(|| {
+        ctx.invalid(
             &v.span(),
             key,
-            format!("\"{other}\" is not a model: use \"shccm\" or \"mcm\""),
-        )),
-    }
+            format!(
+                "\"{}\" is not a model: use \"shccm\" or \"mcm\"",
+                v.get_ref()
+            ),
+        )
+    })
 }

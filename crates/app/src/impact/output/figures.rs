@@ -59,10 +59,7 @@ fn sweep_style(points: usize) -> Style {
 fn by_system(runs: &[Run], f: impl Fn(&Run) -> (f64, f64)) -> Vec<Series> {
     let mut out: Vec<Series> = Vec::new();
     for r in runs.iter().filter(|r| r.e.is_finite()) {
-        let label = r.name.clone().unwrap_or_else(|| match r.model {
-            bw_models::ModelKind::Shccm => "BWSHCCM".into(),
-            bw_models::ModelKind::Mcm => "BWMCM".into(),
-        });
+        let label = r.name.clone().unwrap_or_else(|| r.model.title().into());
         match out.iter_mut().find(|s| s.label == label) {
             Some(s) => s.points.push(f(r)),
             None => out.push(Series {

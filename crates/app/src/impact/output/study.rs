@@ -54,8 +54,9 @@ struct Layout {
     several_systems: bool,
     /// `trajectory.csv` with the two bodies' columns.
     bodies: bool,
-    /// `trajectory.csv` with the BWMCM's `r`, `y`, `z` (the first system's model).
-    mcm: bool,
+    /// The first system's model, whose law states `trajectory.csv` carries after `x`
+    /// ([`ModelKind::law_states`]: `z`, or `r, y, z`).
+    model: ModelKind,
     /// Every `FIGURE_POINTS`-th run of a system drawn in the sweep figures (1: all).
     point_stride: usize,
     /// Every `FIGURE_RUNS`-th run drawn in the time-history and loop figures (1: all).
@@ -71,10 +72,7 @@ impl Layout {
             per_system,
             several_systems: scene.systems.len() > 1,
             bodies: (scene.systems.iter()).any(|s| matches!(s.system, System::Bodies { .. })),
-            mcm: scene
-                .systems
-                .first()
-                .is_some_and(|s| s.kind == ModelKind::Mcm),
+            model: scene.systems.first().map_or(ModelKind::Shccm, |s| s.kind),
             point_stride: per_system.div_ceil(FIGURE_POINTS).max(1),
             run_stride: total.div_ceil(FIGURE_RUNS).max(1),
         }
@@ -324,11 +322,7 @@ fn trajectory_header(l: Layout) -> Vec<&'static str> {
     } else {
         header.extend(["t", "x", "v", "u", "F"]);
     }
-    header.extend(if l.mcm {
-        ["r", "y", "z"].as_slice()
-    } else {
-        ["z"].as_slice()
-    });
+    header.extend(l.model.law_states().iter().filter(|n| **n != "x"));
     header
 }
 
@@ -366,8 +360,12 @@ fn trajectory_rows<W: Write>(w: &mut csv::Writer<W>, runs: &[Run], l: Layout) ->
             } else {
                 rec.extend([s.x, s.v, s.u, s.f].iter().map(f64::to_string));
             }
-            let extra: &[f64] = if l.mcm { &s.state[..3] } else { &s.state[1..2] };
-            rec.extend(extra.iter().map(f64::to_string));
+            let states = l.model.law_states().iter().enumerate();
+            rec.extend(
+                states
+                    .filter(|(_, n)| **n != "x")
+                    .map(|(i, _)| s.state[i].to_string()),
+            );
             w.write_record(&rec)?;
         }
     }
