@@ -13,7 +13,10 @@
 //! Each family is described once, by a [`FamilySpec`] in its own module ([`Family::spec`]):
 //! its name, its parameter with unit, admissible set and default bounds, its nondimensional
 //! impact and, where one exists, its CoR in closed form. Configs, fits, reports and the
-//! Python package take every family from [`FAMILIES`].
+//! Python package take every family from [`FAMILIES`]. A new family is a module with its
+//! spec and its model, a variant with its arm in [`Family::spec`] and its entry in
+//! [`FAMILIES`], and its row in the guide's `reference/laws.md` (a test compares the rows with
+//! the specs).
 //!
 //! Scaled by `δ* = (m v0² / k)^(1/(p+1))` and `t* = δ* / v0` (`p = 3/2`, or 1 for Kelvin-Voigt)
 //! each is a one-parameter nondimensional impact. All end at the paper's separation

@@ -2,7 +2,7 @@
 
 use bwc_app::fit::checkpoint::Checkpoint;
 use bwc_app::fit::config::Config;
-use bwc_app::fit::identify::{render, render_loops, summary, FitReport, LoopReport};
+use bwc_app::fit::identify::{render, render_loops, FitReport, LoopReport};
 use bwc_app::outdir;
 use bwc_app::AppError;
 use bwc_cli::exit;
@@ -246,10 +246,13 @@ fn run(
         bwc_app::out!("{summary}");
     } else {
         for r in &reports {
-            print_fit(&config, r);
+            bwc_app::outp!(
+                "{}",
+                bwc_app::fit::identify::fit_text(r, config_tolerance(&config, &r.name))
+            );
         }
         for r in &loop_reports {
-            print_loop_fit(r);
+            bwc_app::outp!("{}", bwc_app::fit::identify::loop_fit_text(r));
         }
     }
     if let Some(dir) = out {
@@ -294,113 +297,6 @@ fn warn(reports: &[FitReport], loop_reports: &[LoopReport]) {
     for w in loop_reports.iter().flat_map(LoopReport::warnings) {
         eprintln!("bwc-identify: warning: {w}");
     }
-}
-
-/// One fit's result as text: costs, parameters, identifiability, search, intervals and
-/// predictions.
-fn print_fit(config: &Config, r: &FitReport) {
-    let p = r.params;
-    let costs = match &r.drop {
-        Some(d) => format!("J_drop = {:.3e} {}", d.cost, d.unit()),
-        None => format!(
-            "J1 = {}, J2 = {}",
-            r.costs.j1.map_or("-".into(), |j| format!("{j:.3e}")),
-            r.costs.j2.map_or("-".into(), |j| format!("{j:.3e} s^2"))
-        ),
-    };
-    bwc_app::out!(
-        "{} ({}): {costs}, {} evaluations, {:.2} s",
-        r.name,
-        r.model,
-        r.evaluations,
-        r.wall_s
-    );
-    if let Some(law) = &r.family {
-        bwc_app::outp!("    {} = {:.6e}", law.family.param_name(), law.param);
-    } else {
-        bwc_app::outp!(
-            "    B_b = {:.6}, Gamma_b = {:.6}, kappa = {:.6}, sigma_b = {:.6e}, n = {:.6}, p = {:.6}",
-            p.b_b,
-            p.gamma_b,
-            p.kappa,
-            p.sigma_b,
-            p.n,
-            p.p
-        );
-    }
-    if let Some(law) = r.family.as_ref().filter(|_| r.uses_input_scales) {
-        bwc_app::outp!(", T_b = {:.6e} s", law.t_b);
-    } else if r.uses_input_scales {
-        bwc_app::outp!(", U_b = {:.6e}, T_b = {:.6e}", p.u_b, p.t_b);
-    }
-    bwc_app::out!();
-    if let Some(id) = &r.identifiability {
-        let sv: Vec<String> = id
-            .singular_values
-            .iter()
-            .map(|s| format!("{s:.2e}"))
-            .collect();
-        bwc_app::out!(
-            "    sensitivity singular values [{}]; weakest direction: {}",
-            sv.join(", "),
-            id.weakest_names().join(" + ")
-        );
-    }
-    if let Some(c) = &r.convergence {
-        bwc_app::out!(
-            "    search: {} of {} starts agree within {} %{}",
-            c.agreeing,
-            c.starts,
-            config_tolerance(config, &r.name) * 100.0,
-            if r.at_bound.is_empty() {
-                String::new()
-            } else {
-                format!("; on a bound: {}", r.at_bound.join(", "))
-            }
-        );
-    }
-    if let Some(Ok(u)) = &r.uncertainty {
-        let iv: Vec<String> = u
-            .params
-            .iter()
-            .map(|(n, i)| match i {
-                Some([lo, hi]) => format!("{n} [{lo:.4}, {hi:.4}]"),
-                None => format!("{n} on its bound"),
-            })
-            .collect();
-        bwc_app::out!("    95 % intervals ({}): {}", u.method, iv.join(", "));
-    }
-    if let Some(s) = r.curve.first().and(predictions_summary(r)) {
-        bwc_app::out!("    {s}");
-    }
-    if let Some(rf) = &r.reference {
-        bwc_app::out!("    {}", rf.summary);
-    }
-}
-
-/// One hysteresis-loop fit's result as text.
-fn print_loop_fit(r: &LoopReport) {
-    let l = r.law;
-    bwc_app::out!(
-        "{} ({}, loops): cost = {:.3e}, {} evaluations, {:.2} s",
-        r.name,
-        r.model,
-        r.cost,
-        r.evaluations,
-        r.wall_s
-    );
-    bwc_app::out!(
-        "    k = {:.6e}, c = {:.6e}, n = {:.4}, p = {:.4}, alpha = {:.4}, beta = {:.4e}, gamma = \
-         {:.4e}, A = {:.4}",
-        l.k,
-        l.c,
-        l.n,
-        l.p,
-        l.alpha,
-        l.beta,
-        l.gamma,
-        l.a
-    );
 }
 
 /// `bwc-identify compare`.
@@ -485,7 +381,7 @@ fn posterior(
         bwc_app::out!("{summary}");
     } else {
         for r in &reports {
-            print_posterior(r);
+            bwc_app::outp!("{}", bwc_app::fit::identify::posterior_text(r));
         }
     }
     if let Some(dir) = out {
@@ -506,36 +402,6 @@ fn posterior(
         }
     }
     Ok(())
-}
-
-/// One posterior as text: the evidence, the sampler's effort, the marginals.
-fn print_posterior(r: &bwc_app::fit::identify::PosteriorReport) {
-    bwc_app::out!(
-        "{} ({}): log Z = {:.3} +- {:.3}, {} evaluations, {:.2} s, {} runs x {} particles, ESS {:.0}",
-        r.name,
-        r.model,
-        r.log_evidence,
-        r.log_evidence_error,
-        r.evaluations,
-        r.wall_s,
-        r.runs,
-        r.particles,
-        r.ess
-    );
-    bwc_app::out!("    noise: {}", r.noise);
-    for m in &r.marginals {
-        let unit = match bwc_app::fit::identify::unit_of(m.name) {
-            "-" => String::new(),
-            u => format!(" {u}"),
-        };
-        bwc_app::out!(
-            "    {:8} median {:.4e}, 95 % credible [{:.4e}, {:.4e}]{unit}",
-            m.name,
-            m.median,
-            m.interval[0],
-            m.interval[1]
-        );
-    }
 }
 
 /// `bwc-identify coverage`.
@@ -602,12 +468,4 @@ fn config_tolerance(config: &Config, name: &str) -> f64 {
         .iter()
         .find(|f| f.name == name)
         .map_or(f64::NAN, |f| f.budget.tolerance)
-}
-
-/// The sentence of the JSON's `predictions.e.summary`, if there are intervals.
-fn predictions_summary(r: &FitReport) -> Option<String> {
-    let v = summary(std::slice::from_ref(r));
-    v["fits"][0]["predictions"]["e"]["summary"]
-        .as_str()
-        .map(String::from)
 }

@@ -9,6 +9,7 @@ mod reference;
 mod render;
 mod report;
 mod search;
+mod text;
 
 pub use compare::{compare_all, compare_summary, groups, verdict, Comparison};
 pub use coverage::{coverage_study, coverage_summary, coverage_task, run_coverage, CoverageReport};
@@ -21,6 +22,7 @@ pub use reference::{ReferenceReport, Standing};
 pub use render::{loop_summary, render, render_loops, slug, summary, units};
 use report::{fail, missing_params, reporting, search_warnings};
 pub use report::{DropOutcome, FitReport, LoopReport, ParetoPoint};
+pub use text::{fit_text, loop_fit_text, posterior_text};
 
 use crate::fit::checkpoint::Checkpoint;
 use crate::fit::config::FitConfig;

@@ -1,6 +1,8 @@
 //! One run in the JSON summary ([`RunSummary`]): every key with its unit and its value from a
-//! [`Run`], each written once in [`run_summary!`]'s list, from which the struct, its
-//! construction and the `"units"` of a run ([`run_units`]) all come.
+//! [`Run`], each written once in the list below, from which the struct, its construction, the
+//! `"units"` of a run ([`run_units`]) and the list of keys ([`RUN_KEYS`]) all come. A new key
+//! is its entry here (in sorted order) and its row in the guide's `reference/outputs.md`; tests
+//! check that every key has its unit and its row.
 
 use super::{BounceSummary, FailedRunSummary, InterpolationSummary, NondimSummary, RestSummary};
 use crate::impact::runs::{Outcome, Run};
