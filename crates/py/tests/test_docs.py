@@ -42,3 +42,20 @@ def test_the_guides_shown_outputs_are_what_its_commands_print():
     )
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
     assert "0 differences" in run.stdout and not run.stdout.startswith("0 shown"), run.stdout
+
+
+def test_the_reference_lists_every_column_of_cor():
+    """The reference's row of ``bwc.cor`` names exactly the columns it returns, and each
+    column it calls a run's key is a key of a run of ``bwc.simulate``."""
+    import bwc
+    row = next(line for line in (ROOT / "docs/src/reference/python.md").read_text().splitlines()
+               if line.startswith("| `bwc.cor("))
+    described = row.split("|")[2]
+    named = set(re.findall(r"`([A-Za-z_]+)`", described)) - {"bwc"}
+    law = {"B": 0.0, "Gamma": 0.0, "kappa": 0.5, "sigma": 0.5, "n": 1.0, "p": 1.5}
+    out = bwc.cor("shccm", law)
+    run = bwc.simulate({"model": "shccm", "nondimensional": law})["runs"][0]
+    derived = {"double_double", "interpolated", "tighter_failed_rtol", "tighter_out_of_steps"}
+    run_keys = named - derived - {"Cor", "arithmetic", "source", "tighter_failed"}
+    assert set(out) == run_keys | derived, (set(out) ^ (run_keys | derived))
+    assert run_keys <= set(run), run_keys - set(run)
