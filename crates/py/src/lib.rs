@@ -24,7 +24,6 @@ mod contact;
 mod contacts;
 mod dict_errors;
 
-use bw_models::Check;
 use bwc_app::chain::ChainScene;
 use bwc_app::fit::config::Config;
 use bwc_app::impact::runs::{Outcome, Run};
@@ -61,32 +60,7 @@ create_exception!(
 /// a sweep that found no interpolant, and, one warning a kind for all runs (a sweep may have
 /// thousands), runs that met the horizon and CoRs whose check against `e_tol` was not met.
 fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[bwc_app::impact::runs::Run]) -> PyResult<()> {
-    let mut notes = scene.hints.clone();
-    notes.extend(simulate::Tally::of(scene, runs).no_interpolant_notes(scene));
-    let n = runs.len();
-    let (k, labels) = labels_of(runs, |r| r.outcome == Outcome::Horizon);
-    if k > 0 {
-        notes.push(format!(
-            "{k} of {n} runs did not separate by [solver].t_max = {} (outcome \"horizon\", e = \
-             0: {labels}): the horizon came first; raise [solver].t_max",
-            scene.settings.t_max
-        ));
-    }
-    let (k, labels) = labels_of(runs, |r| {
-        r.outcome == Outcome::Separated
-            && matches!(
-                r.solver.map(|c| c.check),
-                Some(Check::Unmet | Check::Unverified)
-            )
-    });
-    if k > 0 {
-        notes.push(format!(
-            "{k} of {n} CoRs did not meet [solver].e_tol = {:e} (check \"unmet\" or \
-             \"unverified\": {labels}): e_error says how well each e is known (NaN where \
-             unverified), and bwc-simulate on the same scene says why for each",
-            scene.settings.e_tol.unwrap_or(0.0)
-        ));
-    }
+    let notes = bwc_app::impact::notes::kind_notes(scene, runs);
     let category = py.get_type::<BwcWarning>();
     for note in notes {
         // A dict's scene has no file to name.
@@ -97,19 +71,6 @@ fn warn_notes(py: Python<'_>, scene: &Scene, runs: &[bwc_app::impact::runs::Run]
         PyErr::warn(py, &category, &text, 2)?;
     }
     Ok(())
-}
-
-/// How many runs `keep` picks, and the labels of the first three.
-fn labels_of(
-    runs: &[bwc_app::impact::runs::Run],
-    keep: impl Fn(&bwc_app::impact::runs::Run) -> bool,
-) -> (usize, String) {
-    let picked: Vec<String> = runs.iter().filter(|r| keep(r)).map(|r| r.label()).collect();
-    let more = if picked.len() > 3 { "; ..." } else { "" };
-    (
-        picked.len(),
-        format!("{}{more}", picked[..picked.len().min(3)].join("; ")),
-    )
 }
 
 /// The CLI's error as a `BwcError` (several mistakes one per line, as the CLI prints them).

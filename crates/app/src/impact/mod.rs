@@ -2,6 +2,7 @@
 //! [`sequence`]), what a run gives ([`runs`], with the setting that would help one that
 //! failed) and the outputs ([`output`]: the JSON summary, CSV files and figures).
 
+pub mod notes;
 pub mod output;
 pub mod runs;
 pub mod scene;

@@ -1,9 +1,8 @@
 //! `bwc-simulate`: simulate the impacts a TOML scene describes.
 
-use bw_models::{Check, ModelKind, LADDER};
 use bwc_app::chain::ChainScene;
+use bwc_app::impact::notes::{self, Note};
 use bwc_app::impact::output::{self, SummaryWriter};
-use bwc_app::impact::runs::Outcome;
 use bwc_app::impact::{scene::Scene, simulate};
 use bwc_app::outdir;
 use bwc_app::scene_file::SceneFile;
@@ -220,15 +219,7 @@ impl Write for Stdout {
 /// The notes on a whole study, on stderr: how many runs came from interpolants, and why a
 /// sweep found none.
 fn notes(scene: &Scene, tally: &simulate::Tally) {
-    if tally.interpolated > 0 {
-        eprintln!(
-            "bwc-simulate: {} of {} runs took e and t_s from interpolants in ln v0 verified \
-             against simulations (largest error estimate {:.1e}, [sweep].tolerance {:e}); \
-             [sweep] interpolate = false simulates every speed",
-            tally.interpolated, tally.runs, tally.largest_estimate, scene.sweep.tolerance
-        );
-    }
-    for note in tally.no_interpolant_notes(scene) {
+    for note in notes::study_notes(scene, tally) {
         eprintln!("bwc-simulate: {note}");
     }
 }
@@ -239,110 +230,11 @@ fn report(scene: &Scene, runs: &[bwc_app::impact::runs::Run]) {
     for note in simulate::sampling_notes(scene, runs) {
         eprintln!("bwc-simulate: warning: {note}");
     }
-    let t_max = scene.settings.t_max;
-    for r in runs {
-        let label = match r.label().as_str() {
-            "run" => "the run".to_string(),
-            l => format!("run {l}"),
-        };
-        match r.outcome {
-            Outcome::Separated => unmet_e_tol(scene, &label, r),
-            Outcome::Failed => eprintln!(
-                "bwc-simulate: {label} failed: {}",
-                r.error.as_deref().unwrap_or("unknown error")
-            ),
-            Outcome::Horizon => {
-                let when = match r.t_c {
-                    Some(t_c) if r.time_unit == "s" => format!(
-                        "t_max = {t_max} T_c = {:.6e} s (T_c = {t_c:.6e} s)",
-                        t_max * t_c
-                    ),
-                    _ => format!("t_max = {t_max} (nondimensional)"),
-                };
-                // A BWMCM whose series dashpot is soft against the contact (σ = m / (c T_c)
-                // large) lets the bodies creep together instead of rebounding.
-                let creeping =
-                    r.model == ModelKind::Mcm && r.nondimensional.is_some_and(|q| q.sigma > 1.0);
-                let why = if creeping {
-                    format!(
-                        "; the series dashpot yields (sigma = m / (c T_c) = {:.3e} > 1): a larger \
-                         c makes the contact spring back",
-                        r.nondimensional.map_or(f64::NAN, |q| q.sigma)
-                    )
-                } else {
-                    String::new()
-                };
-                eprintln!(
-                    "bwc-simulate: warning: {label}: no separation by {when}: the horizon came \
-                     first; raise [solver].t_max{why}"
-                );
-            }
-            Outcome::Settled => {
-                if let Some(q) = r.rest {
-                    eprintln!(
-                        "bwc-simulate: {label}: the contact settled at t = {:.6e} ({}): at \
-                         rest with F = {:.6e} balancing u = {:.6e}; it never separates",
-                        q.t, r.time_unit, q.f, q.u
-                    );
-                }
-            }
-            // An outcome without a warning of its own is in the table and the JSON as it is.
-            _ => {}
+    for note in runs.iter().flat_map(|r| notes::run_notes(scene, r)) {
+        match note {
+            Note::Warning(text) => eprintln!("bwc-simulate: warning: {text}"),
+            Note::Info(text) => eprintln!("bwc-simulate: {text}"),
         }
-    }
-}
-
-/// Warns where a checked CoR's own error estimate stayed above `[solver].e_tol`, or where no
-/// run at another tolerance could check it.
-fn unmet_e_tol(scene: &Scene, label: &str, r: &bwc_app::impact::runs::Run) {
-    let (Some(e_tol), Some(c)) = (scene.settings.e_tol, r.solver.as_ref()) else {
-        return;
-    };
-    let (check, rtol) = (c.check, c.rtol);
-    // Why no tighter run settled it, and the setting that would let one finish.
-    let stop = match c.tighter_failed {
-        Some(f) if f.out_of_steps => format!(
-            "the run at rtol {:e} needed more than [solver].max_steps = {} steps; a larger \
-             max_steps lets it finish",
-            tidy(f.rtol),
-            scene.settings.max_steps
-        ),
-        Some(f) => format!("the run at rtol {:e} failed", tidy(f.rtol)),
-        None => format!("rtol {:e} is the tightest", LADDER.floor_rtol),
-    };
-    match (check, c.e_error) {
-        (Check::Unmet, Some(estimate)) => {
-            let retry = match c.double_double_declined {
-                Some(why) => format!("; the double-double retry ([solver] double_double) {why}"),
-                None => String::new(),
-            };
-            eprintln!(
-                "bwc-simulate: warning: {label}: e at rtol {:e} differs by {estimate:.1e} from \
-                 the same impact at a looser rtol, more than [solver].e_tol = {e_tol:e}, and no \
-                 tighter run was possible ({stop}){retry}: take e as known to about \
-                 {estimate:.0e}",
-                tidy(rtol)
-            )
-        }
-        (Check::Unverified, _) => {
-            let tighter = if rtol > LADDER.floor_rtol {
-                format!("so did the tighter one ({stop})")
-            } else {
-                format!(
-                    "rtol is at the floor, {:e}, with no tighter run",
-                    LADDER.floor_rtol
-                )
-            };
-            eprintln!(
-                "bwc-simulate: warning: {label}: e is one unchecked run at rtol {rtol:e}: the \
-                 check against [solver].e_tol = {e_tol:e} failed at rtol {check:e}, and \
-                 {tighter}; [solver] method = \"{method}\", rtol = {check:e} with e_tol = 0 \
-                 shows why the check failed",
-                check = tidy(LADDER.tighten * rtol),
-                method = LADDER.check_method.name.to_lowercase()
-            )
-        }
-        _ => {}
     }
 }
 
