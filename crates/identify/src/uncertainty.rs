@@ -259,23 +259,15 @@ impl Uncertainty {
             if lo == 0.0 || hi == 1.0 {
                 self.clipped.push(base_name(name));
             }
+            // The quantity by its slot (a family's parameter has a name of its own in the slot
+            // of sigma_b), at the coordinate moved to `t`.
+            let slot = space.free_indices()[j];
             let at = |t: f64| {
                 let mut x = s.clone();
                 x[j] = t;
-                space.decode(&x)
+                space.quantities(&x)[slot]
             };
-            let value = |p: bw_models::BaseParams| match *name {
-                "B_b" => p.b_b,
-                "g" => p.gamma_b / p.b_b.max(f64::MIN_POSITIVE),
-                "kappa" => p.kappa,
-                // A family's damping parameter sits in the slot of sigma_b.
-                "sigma_b" | "alpha" | "zeta" | "e_r" => p.sigma_b,
-                "n" => p.n,
-                "p" => p.p,
-                "U_b" => p.u_b,
-                _ => p.t_b,
-            };
-            let (a, b) = (value(at(lo)), value(at(hi)));
+            let (a, b) = (at(lo), at(hi));
             if *name == "g" {
                 // Γ_b = g B_b mixes two coordinates: its interval by the delta method.
                 let grad: Vec<f64> = (0..s.len())

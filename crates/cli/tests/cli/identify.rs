@@ -855,6 +855,43 @@ fn a_thornton_fit_recovers_its_yield_speed_and_time_scale() {
     );
 }
 
+/// A Thornton fit of noisy CoRs (yield speed 0.2 m/s, noise of about 0.003) reports the
+/// interval of `v_y` around its estimate, in m/s: the parameter is looked up by its slot, not
+/// by a name list that knew only the older families.
+#[test]
+fn a_family_parameters_interval_and_unit_are_its_own() {
+    use bw_models::{family_impact, Family, FamilyParams, Settings};
+    let dir = scratch("thornton-interval");
+    let law = FamilyParams {
+        family: Family::Thornton,
+        param: 0.2,
+        t_b: 1.0,
+    };
+    let noise = [0.004, -0.003, 0.002, -0.001, 0.003, -0.004];
+    let mut csv = String::from("v_0,e\n");
+    for (v0, z) in [0.5, 0.8, 1.2, 2.0, 3.0, 4.5].into_iter().zip(noise) {
+        let e = family_impact(&law, v0, &Settings::default()).unwrap().e;
+        csv += &format!("{v0},{}\n", e + z);
+    }
+    std::fs::write(dir.join("t.csv"), csv).unwrap();
+    let path = dir.join("t.toml");
+    std::fs::write(
+        &path,
+        "[[fit]]\nname = \"t\"\nmodel = \"thornton\"\ndata = \"t.csv\"\n",
+    )
+    .unwrap();
+    let v = json(&identify(&["run", path.to_str().unwrap(), "--json"]));
+    let f = &v["fits"][0];
+    let v_y = f["params"]["v_y"].as_f64().unwrap();
+    let iv = &f["intervals"]["params"]["v_y"];
+    let (lo, hi) = (iv[0].as_f64().unwrap(), iv[1].as_f64().unwrap());
+    assert!(
+        lo < v_y && v_y < hi && lo > 0.18 && hi < 0.22,
+        "{v_y} in [{lo}, {hi}]"
+    );
+    assert_eq!(v["units"]["params"]["v_y"], "m/s");
+}
+
 /// A fit's reported noise level is the residual standard deviation of its own CSV:
 /// `sqrt(Σ (e - e_model)² / dof)`, computed here from `<fit>.csv` and the JSON's `dof`, and near
 /// the noise the data were drawn with.

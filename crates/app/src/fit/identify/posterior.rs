@@ -542,7 +542,11 @@ pub fn unit_of(name: &str) -> &'static str {
     match name {
         "U_b" => "N",
         "T_b" | "sigma_t" => "s",
-        _ => "-",
+        // A contact-law family's parameter: its own unit (`alpha` s/m, `v_y` m/s).
+        _ => (bw_models::FAMILIES.iter())
+            .map(|f| f.spec().param)
+            .find(|p| p.name == name)
+            .map_or("-", |p| p.unit),
     }
 }
 

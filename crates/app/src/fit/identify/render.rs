@@ -527,11 +527,15 @@ pub fn render_loops(
 /// The unit of every JSON key and CSV column of an identification (`"1"`: dimensionless; the
 /// base parameters carry powers of the impact speed in m/s, from the map `P(P*, u, v0)`).
 pub fn units() -> serde_json::Value {
-    let params = serde_json::json!({
+    let mut params = serde_json::json!({
         "B_b": "(m/s)^(-2n/(p+1))", "Gamma_b": "(m/s)^(-2n/(p+1))", "kappa": "1",
         "sigma_b": "NDBWSHCCM (m/s)^-1, NDBWMCM (m/s)^(-(p-1)/(p+1))", "n": "1", "p": "1",
         "U_b": "(m/s)^(2p/(p+1)) / N", "T_b": "s (m/s)^((p-1)/(p+1))",
     });
+    // A contact-law family's parameter, under its own name.
+    for p in bw_models::FAMILIES.iter().map(|f| f.spec().param) {
+        params[p.name] = json!(if p.unit == "-" { "1" } else { p.unit });
+    }
     serde_json::json!({
         "params": params,
         "J1": "1", "J2": "s^2", "J_drop": "s^2 (intervals) or m^2 (rebound heights)", "wall_s": "s",
