@@ -892,6 +892,51 @@ fn a_family_parameters_interval_and_unit_are_its_own() {
     assert_eq!(v["units"]["params"]["v_y"], "m/s");
 }
 
+/// A family's Pareto front names its columns as the family does (`e_r`, `T_b`), with their
+/// units, not the Bouc-Wen vector whose `sigma_b` slot holds the parameter.
+#[test]
+fn a_family_pareto_front_has_the_familys_columns() {
+    use bw_models::{family_impact, Family, FamilyParams, Settings};
+    let dir = scratch("flores-pareto");
+    let law = FamilyParams {
+        family: Family::HertzFlores,
+        param: 0.7,
+        t_b: 1e-3,
+    };
+    let mut csv = String::from("v_0,e,t_d\n");
+    for v0 in [0.5, 1.0, 2.0] {
+        let out = family_impact(&law, v0, &Settings::default()).unwrap();
+        csv += &format!("{v0},{},{}\n", out.e, out.t_s.unwrap() * law.time_scale(v0));
+    }
+    std::fs::write(dir.join("f.csv"), csv).unwrap();
+    let path = dir.join("f.toml");
+    std::fs::write(
+        &path,
+        "[[fit]]\nname = \"f\"\nmodel = \"hertz-flores\"\ndata = \"f.csv\"\n\
+         [fit.objectives]\nJ1 = 1.0\nJ2 = 1.0\n[fit.bounds]\nT_b = [1e-4, 1e-2]\n\
+         [fit.pareto]\ncount = 3\n",
+    )
+    .unwrap();
+    let out_dir = dir.join("out");
+    let v = json(&identify(&[
+        "run",
+        path.to_str().unwrap(),
+        "--json",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]));
+    let front = std::fs::read_to_string(out_dir.join("f_pareto.csv")).unwrap();
+    assert_eq!(front.lines().next(), Some("w,J1,J2,e_r,T_b"), "{front}");
+    let row: Vec<f64> = (front.lines().nth(1).unwrap().split(','))
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert!(
+        (row[3] - 0.7).abs() < 1e-3 && (row[4] / 1e-3 - 1.0).abs() < 1e-3,
+        "{row:?}"
+    );
+    assert_eq!(v["units"]["<fit>_pareto.csv"]["e_r"], "1");
+}
+
 /// A fit's reported noise level is the residual standard deviation of its own CSV:
 /// `sqrt(Σ (e - e_model)² / dof)`, computed here from `<fit>.csv` and the JSON's `dof`, and near
 /// the noise the data were drawn with.

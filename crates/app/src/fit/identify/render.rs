@@ -400,18 +400,27 @@ fn data_csv(
 fn pareto_files(r: &FitReport, out: &Path, stem: &str) -> Result<Vec<(String, Vec<u8>)>, AppError> {
     let name = format!("{stem}_pareto.csv");
     let mut w = csv::Writer::from_writer(Vec::new());
-    let rows = std::iter::once(
-        [
+    // A family's fit: its parameter and T_b under their own names; a Bouc-Wen fit: P*.
+    let header: Vec<String> = match r.family {
+        Some(law) => vec!["w", "J1", "J2", law.family.param_name(), "T_b"],
+        None => vec![
             "w", "J1", "J2", "B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "U_b", "T_b",
-        ]
-        .map(String::from),
-    )
-    .chain(r.pareto.iter().map(|p| {
-        let q = p.params;
-        [
-            p.w, p.j1, p.j2, q.b_b, q.gamma_b, q.kappa, q.sigma_b, q.n, q.p, q.u_b, q.t_b,
-        ]
-        .map(|x| x.to_string())
+        ],
+    }
+    .into_iter()
+    .map(String::from)
+    .collect();
+    let rows = std::iter::once(header).chain(r.pareto.iter().map(|p| {
+        let values = match p.family {
+            Some(law) => vec![p.w, p.j1, p.j2, law.param, law.t_b],
+            None => {
+                let q = p.params;
+                vec![
+                    p.w, p.j1, p.j2, q.b_b, q.gamma_b, q.kappa, q.sigma_b, q.n, q.p, q.u_b, q.t_b,
+                ]
+            }
+        };
+        values.into_iter().map(|x| x.to_string()).collect()
     }));
     for row in rows {
         w.write_record(&row).map_err(|source| AppError::Csv {
@@ -532,9 +541,14 @@ pub fn units() -> serde_json::Value {
         "sigma_b": "NDBWSHCCM (m/s)^-1, NDBWMCM (m/s)^(-(p-1)/(p+1))", "n": "1", "p": "1",
         "U_b": "(m/s)^(2p/(p+1)) / N", "T_b": "s (m/s)^((p-1)/(p+1))",
     });
-    // A contact-law family's parameter, under its own name.
+    // A contact-law family's parameter, under its own name (also a column of its Pareto front).
+    let mut pareto = json!({"w": "1", "J1": "1", "J2": "s^2", "B_b": params["B_b"],
+        "Gamma_b": params["Gamma_b"], "kappa": "1", "sigma_b": params["sigma_b"], "n": "1",
+        "p": "1", "U_b": params["U_b"], "T_b": params["T_b"]});
     for p in bw_models::FAMILIES.iter().map(|f| f.spec().param) {
-        params[p.name] = json!(if p.unit == "-" { "1" } else { p.unit });
+        let unit = json!(if p.unit == "-" { "1" } else { p.unit });
+        params[p.name] = unit.clone();
+        pareto[p.name] = unit;
     }
     serde_json::json!({
         "params": params,
@@ -546,9 +560,7 @@ pub fn units() -> serde_json::Value {
             "model": "s (interval) or m (h1)"},
         "<fit>.csv": {"v_0": "m/s", "e": "1", "e_model": "1", "t_d": "s", "t_d_model": "s",
             "e_lo": "1", "e_hi": "1", "t_d_lo": "s", "t_d_hi": "s"},
-        "<fit>_pareto.csv": {"w": "1", "J1": "1", "J2": "s^2", "B_b": params["B_b"],
-            "Gamma_b": params["Gamma_b"], "kappa": "1", "sigma_b": params["sigma_b"], "n": "1",
-            "p": "1", "U_b": params["U_b"], "T_b": params["T_b"]},
+        "<fit>_pareto.csv": pareto,
         "<loop fit>_loops.csv": {"v_0": "m/s", "source": "data or model", "x": "m", "F": "N"},
     })
 }
