@@ -856,8 +856,8 @@ fn a_thornton_fit_recovers_its_yield_speed_and_time_scale() {
 }
 
 /// A Thornton fit of noisy CoRs (yield speed 0.2 m/s, noise of about 0.003) reports the
-/// interval of `v_y` around its estimate, in m/s: the parameter is looked up by its slot, not
-/// by a name list that knew only the older families.
+/// interval of `v_y` around its estimate, in m/s (the parameter is looked up by its slot, not
+/// by a name list that knew only the older families), and its coverage study's truth as `v_y`.
 #[test]
 fn a_family_parameters_interval_and_unit_are_its_own() {
     use bw_models::{family_impact, Family, FamilyParams, Settings};
@@ -890,6 +890,18 @@ fn a_family_parameters_interval_and_unit_are_its_own() {
         "{v_y} in [{lo}, {hi}]"
     );
     assert_eq!(v["units"]["params"]["v_y"], "m/s");
+    // A coverage study of the fit names its truth as the family does.
+    let args = [
+        "coverage",
+        path.to_str().unwrap(),
+        "--json",
+        "--replicates",
+        "2",
+    ];
+    let c = json(&identify(&args));
+    let truth = &c["coverage"][0]["truth"];
+    assert_eq!(truth.as_object().unwrap().len(), 1, "{truth}");
+    assert_eq!(truth["v_y"].as_f64(), Some(v_y));
 }
 
 /// A family's Pareto front names its columns as the family does (`e_r`, `T_b`), with their

@@ -19,8 +19,11 @@ use std::path::Path;
 pub struct CoverageReport {
     /// Fit name.
     pub name: String,
-    /// The true parameters of the synthetic data.
+    /// The true parameters of the synthetic data (of a family's fit, the search's slots: see
+    /// `family`).
     pub truth: BaseParams,
+    /// A contact-law family's true law, under its own names.
+    pub family: Option<bw_models::FamilyParams>,
     /// Where the truth came from: `"params"` (`[fit.params]`) or `"fit"` (the fit's optimum).
     pub truth_from: &'static str,
     /// Noise standard deviation of `e`.
@@ -104,6 +107,7 @@ pub fn run_coverage(
         .collect::<Result<Vec<_>, AppError>>()?;
     Ok(CoverageReport {
         name: f.name.clone(),
+        family: f.space.family_params(&truth),
         truth,
         truth_from,
         noise,
@@ -162,9 +166,13 @@ pub fn coverage_summary(reports: &[CoverageReport]) -> Value {
         .iter()
         .map(|r| {
             let t = r.truth;
+            let truth = match &r.family {
+                Some(law) => json!({ law.family.param_name(): law.param }),
+                None => json!({"B_b": t.b_b, "Gamma_b": t.gamma_b, "kappa": t.kappa, "sigma_b": t.sigma_b, "n": t.n, "p": t.p}),
+            };
             json!({
                 "name": r.name,
-                "truth": {"B_b": t.b_b, "Gamma_b": t.gamma_b, "kappa": t.kappa, "sigma_b": t.sigma_b, "n": t.n, "p": t.p},
+                "truth": truth,
                 "truth_from": r.truth_from,
                 "noise": r.noise,
                 "level": bwc_identify::LEVEL,

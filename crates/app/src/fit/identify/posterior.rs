@@ -245,8 +245,8 @@ pub fn posterior_from_runs(
         .iter()
         .map(|s| {
             let b = f.space.decode(&s[..f.space.dim()]);
-            let mut row = match f.family {
-                Some(_) => vec![b.sigma_b, b.t_b],
+            let mut row = match f.space.family_params(&b) {
+                Some(law) => vec![law.param, law.t_b],
                 None => vec![b.b_b, b.gamma_b, b.kappa, b.sigma_b, b.n, b.p, b.u_b, b.t_b],
             };
             let (se, st) = p.noise_at(s);
