@@ -231,18 +231,56 @@ fn simulate_json<'py>(
     threads: Option<usize>,
 ) -> PyResult<(String, Vec<Option<Bound<'py, PyDict>>>)> {
     let scene = scene_of(path, scene_json, Root::Dict("scene"))?;
+    pair_result(py, &scene, threads)
+}
+
+/// The summary text and trajectories of a pair scene's runs, as [`simulate_json`] gives them.
+fn pair_result<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    threads: Option<usize>,
+) -> PyResult<(String, Vec<Option<Bound<'py, PyDict>>>)> {
     let runs = py
-        .allow_threads(|| bwc_app::with_threads(threads, || Ok(simulate::run(&scene, None))))
+        .allow_threads(|| bwc_app::with_threads(threads, || Ok(simulate::run(scene, None))))
         .map_err(error)?;
-    warn_notes(py, &scene, &runs)?;
+    warn_notes(py, scene, &runs)?;
     let summary = bwc_app::impact::output::Summary::new(&runs, scene.sequence.is_some());
-    let text = summary.provenance_json(&scene, &runs);
+    let text = summary.provenance_json(scene, &runs);
     let sampled = scene.output.trajectory || scene.output.loops;
     let trajectories = runs
         .iter()
         .map(|r| sampled.then(|| trajectory(py, r)).transpose())
         .collect::<PyResult<_>>()?;
     Ok((text, trajectories))
+}
+
+/// `bwc.simulate` of a scene file, read once: whether it is a `[chain]` scene, the summary as
+/// JSON text, and the trajectories of a pair scene's runs (a list) or a chain's samples (a
+/// dict or `None`), as [`simulate_json`] and [`simulate_chain_json`] give them.
+#[pyfunction]
+#[pyo3(signature = (path, threads=None))]
+fn simulate_file_json(
+    py: Python<'_>,
+    path: PathBuf,
+    threads: Option<usize>,
+) -> PyResult<(bool, String, PyObject)> {
+    match bwc_app::scene_file::SceneFile::load(&path).map_err(error)? {
+        bwc_app::scene_file::SceneFile::Pair(scene) => {
+            let (text, trajectories) = pair_result(py, &scene, threads)?;
+            Ok((
+                false,
+                text,
+                trajectories.into_pyobject(py)?.into_any().unbind(),
+            ))
+        }
+        bwc_app::scene_file::SceneFile::Chain(scene) => {
+            let out = py
+                .allow_threads(|| bwc_app::with_threads(threads, || bwc_app::chain::run(&scene)))
+                .map_err(error)?;
+            let (text, samples) = chain_result(py, &scene, &out, "bwc.simulate")?;
+            Ok((true, text, samples.into_pyobject(py)?.into_any().unbind()))
+        }
+    }
 }
 
 /// `bwc.simulate` of a `[chain]` scene: the summary as JSON text (with the provenance) and,
@@ -355,12 +393,6 @@ fn chain_samples<'py>(
     d.set_item("dissipated", ledger(&|l| l.dissipated).into_pyarray(py))?;
     d.set_item("work", ledger(&|l| l.work).into_pyarray(py))?;
     Ok(d)
-}
-
-/// Whether the scene file at `path` is a `[chain]` scene.
-#[pyfunction]
-fn is_chain_file(path: PathBuf) -> bool {
-    bwc_app::chain::is_chain_file(&path)
 }
 
 /// A run's samples as a dict of numpy arrays.
@@ -643,9 +675,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("BwcWarning", m.py().get_type::<BwcWarning>())?;
     m.add_function(wrap_pyfunction!(cor, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_json, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate_file_json, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_chain_json, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_chains_json, m)?)?;
-    m.add_function(wrap_pyfunction!(is_chain_file, m)?)?;
     m.add_function(wrap_pyfunction!(identify_json, m)?)?;
     m.add_function(wrap_pyfunction!(coverage_json, m)?)?;
     m.add_function(wrap_pyfunction!(posterior_json, m)?)?;

@@ -34,7 +34,7 @@ mod figures;
 mod laws;
 mod scene;
 
-pub use scene::{is_chain, is_chain_file, ChainScene};
+pub use scene::{is_chain, ChainScene};
 
 use crate::AppError;
 use bw_models::chain::{Chain, ChainRun, Ledger};

@@ -187,12 +187,6 @@ pub fn is_chain(src: &str) -> bool {
     }
 }
 
-/// Whether the file at `path` is a chain scene (false where it cannot be read or parsed: the
-/// scene reader then says why).
-pub fn is_chain_file(path: &Path) -> bool {
-    std::fs::read_to_string(path).is_ok_and(|src| is_chain(&src))
-}
-
 impl ChainScene {
     /// Reads and validates a chain scene.
     ///

@@ -25,7 +25,8 @@ import numpy as _np
 
 from ._native import BwcError, BwcWarning, __version__, cor as _cor, coverage_json as _coverage
 from ._native import identify_json as _identify, simulate_json as _simulate
-from ._native import is_chain_file as _is_chain_file, simulate_chain_json as _simulate_chain
+from ._native import simulate_file_json as _simulate_file
+from ._native import simulate_chain_json as _simulate_chain
 from ._native import simulate_chains_json as _simulate_chains
 from ._native import posterior_json as _posterior
 from ._native import Contact, Contacts, Step
@@ -337,13 +338,19 @@ def simulate(scene, *, threads=None):
     [0.8461, 0.7964]
     """
     source = _source(scene, "scene")
-    if "chain" in scene if isinstance(scene, dict) else _is_chain_file(source["path"]):
-        text, samples = _simulate_chain(threads=_threads(threads), **source)
+    if "path" in source:
+        # A file is read once and run as the kind of scene it is.
+        chain, text, extra = _simulate_file(source["path"], _threads(threads))
+    else:
+        chain = "chain" in scene
+        run = _simulate_chain if chain else _simulate
+        text, extra = run(threads=_threads(threads), **source)
+    if chain:
         value = _wrap(_json.loads(text), Simulation)
-        if samples is not None:
-            value["samples"] = Result(samples)
+        if extra is not None:
+            value["samples"] = Result(extra)
         return value
-    text, trajectories = _simulate(threads=_threads(threads), **source)
+    trajectories = extra
     value = _wrap(_json.loads(text), Simulation, {"runs": Run})
     for run, samples in zip(value["runs"], trajectories):
         if samples is not None:
