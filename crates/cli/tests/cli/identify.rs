@@ -35,16 +35,8 @@ fn identify_eval_reports_the_json_contract() {
 /// The known NDBWSHCCM of the synthetic datasets: `κ = 0.6`, `σ_b = 0.03`, the rest fixed.
 fn synthetic_truth() -> bw_models::BaseMap {
     use bw_models::{BaseMap, BaseParams, ModelKind};
-    let truth = BaseParams {
-        b_b: 1.0,
-        gamma_b: -1.0,
-        kappa: 0.6,
-        sigma_b: 0.03,
-        n: 1.5,
-        p: 1.5,
-        u_b: 1.0,
-        t_b: 1.0,
-    };
+    // The identification tests' synthetic truth (`bwc-identify`'s tests/support/band_design.rs).
+    let truth = BaseParams::unforced(1.0, -1.0, 0.6, 0.03, 1.5, 1.5);
     BaseMap::new(ModelKind::Shccm, truth).unwrap()
 }
 
