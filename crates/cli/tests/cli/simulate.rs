@@ -868,3 +868,48 @@ fn a_scene_gives_its_figures_their_titles_labels_and_styles() {
         &["[output.figures.cor].style", "\"dots\" is not a style"],
     );
 }
+
+/// `sweep.csv` of a scene of several systems has every column its `units` name, with `name`,
+/// and no other.
+#[test]
+fn every_sweep_column_has_its_unit() {
+    let dir = scratch("sweep-units");
+    let out_dir = dir.join("out");
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/kharaz_curves.toml");
+    let out = simulate(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let sweep = std::fs::read_to_string(out_dir.join("sweep.csv")).unwrap();
+    let header: Vec<&str> = sweep.lines().next().unwrap().split(',').collect();
+    assert_eq!(
+        header,
+        [
+            "v_0",
+            "e",
+            "t_d",
+            "t_s",
+            "separated",
+            "name",
+            "outcome",
+            "source"
+        ]
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
+            .unwrap();
+    let units = summary["units"]["sweep.csv"].as_object().unwrap();
+    let mut named: Vec<&str> = units.keys().map(String::as_str).collect();
+    let mut columns = header.clone();
+    named.sort_unstable();
+    columns.sort_unstable();
+    assert_eq!(named, columns);
+    assert_eq!(units["t_s"], "nondimensional");
+}

@@ -268,8 +268,7 @@ pub fn units(scene: &Scene, time_unit: Option<&str>) -> serde_json::Value {
     let runs = run_summary::run_units(run_summary::SceneUnits { t, m, n });
     serde_json::json!({
         "runs": runs,
-        "sweep.csv": {"v_0": "m/s", "e": "1", "t_d": "s", "t_s": t, "separated": "true/false",
-            "name": "text", "outcome": "text", "source": "text"},
+        "sweep.csv": study::sweep_units(t),
         "trajectory.csv": {"v_0": "m/s", "name": "text", "t": t, "x": m, "v": ms, "u": n,
             "F": n, "z": m, "r": m, "y": m, "x_m_1": "m", "x_m_2": "m", "x_m": "m",
             "v_m_1": "m/s", "v_m_2": "m/s", "v_m": "m/s", "u_1": "N", "u_2": "N"},

@@ -280,30 +280,80 @@ fn csv_error(dir: &Path, name: &str) -> impl Fn(csv::Error) -> AppError {
 }
 
 /// `sweep.csv`: one row per run (`name` where the scene has several systems).
+/// A column of `sweep.csv`: its name, its unit (`None`: the unit of the runs' `t_s`) and its
+/// value in a run.
+struct SweepColumn {
+    name: &'static str,
+    unit: Option<&'static str>,
+    value: fn(&Run) -> String,
+}
+
+/// The columns of `sweep.csv`, in order; `name` only where the scene has several systems.
+const SWEEP_COLUMNS: [SweepColumn; 8] = [
+    SweepColumn {
+        name: "v_0",
+        unit: Some("m/s"),
+        value: |r| opt(r.v0),
+    },
+    SweepColumn {
+        name: "e",
+        unit: Some("1"),
+        value: |r| opt(Some(r.e).filter(|e| e.is_finite())),
+    },
+    SweepColumn {
+        name: "t_d",
+        unit: Some("s"),
+        value: |r| opt(r.t_d),
+    },
+    SweepColumn {
+        name: "t_s",
+        unit: None,
+        value: |r| opt(r.t_s),
+    },
+    SweepColumn {
+        name: "separated",
+        unit: Some("true/false"),
+        value: |r| (r.outcome == Outcome::Separated).to_string(),
+    },
+    SweepColumn {
+        name: "name",
+        unit: Some("text"),
+        value: |r| r.name.clone().unwrap_or_default(),
+    },
+    SweepColumn {
+        name: "outcome",
+        unit: Some("text"),
+        value: |r| r.outcome.name().to_string(),
+    },
+    SweepColumn {
+        name: "source",
+        unit: Some("text"),
+        value: |r| source(r).to_string(),
+    },
+];
+
+/// The columns of `sweep.csv` for a scene of this layout.
+fn sweep_columns(l: Layout) -> impl Iterator<Item = &'static SweepColumn> {
+    SWEEP_COLUMNS
+        .iter()
+        .filter(move |c| c.name != "name" || l.several_systems)
+}
+
+/// The unit of every column `sweep.csv` may have, `t` that of the runs' `t_s`.
+pub(super) fn sweep_units(t: &str) -> serde_json::Value {
+    let units = SWEEP_COLUMNS
+        .iter()
+        .map(|c| (c.name.to_string(), c.unit.unwrap_or(t).into()));
+    serde_json::Value::Object(units.collect())
+}
+
 fn sweep_header(l: Layout) -> Vec<&'static str> {
-    let mut header = vec!["v_0", "e", "t_d", "t_s", "separated"];
-    if l.several_systems {
-        header.push("name");
-    }
-    header.extend(["outcome", "source"]);
-    header
+    sweep_columns(l).map(|c| c.name).collect()
 }
 
 fn sweep_rows<W: Write>(w: &mut csv::Writer<W>, runs: &[Run], l: Layout) -> csv::Result<()> {
     for r in runs {
-        let mut rec = vec![
-            opt(r.v0),
-            opt(Some(r.e).filter(|e| e.is_finite())),
-            opt(r.t_d),
-            opt(r.t_s),
-            (r.outcome == Outcome::Separated).to_string(),
-        ];
-        if l.several_systems {
-            rec.push(r.name.clone().unwrap_or_default());
-        }
-        rec.push(r.outcome.name().to_string());
-        rec.push(source(r).to_string());
-        w.write_record(&rec)?;
+        w.write_record(sweep_columns(l).map(|c| (c.value)(r)))?;
     }
     Ok(())
 }
