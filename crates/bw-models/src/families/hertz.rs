@@ -59,7 +59,7 @@ pub(super) const HUNT_CROSSLEY: FamilySpec = FamilySpec {
 
 pub(super) const LANKARANI_NIKRAVESH: FamilySpec = FamilySpec {
     name: "hertz-ln",
-    title: "Hertz with Lankarani-Nikravesh damping",
+    title: "Hertz, Lankarani-Nikravesh",
     force: "k δ^(3/2) (1 + 3 (1 - e_r²) / 4 · δ̇ / v0)",
     exponent: 1.5,
     param: E_R,
@@ -69,7 +69,7 @@ pub(super) const LANKARANI_NIKRAVESH: FamilySpec = FamilySpec {
 
 pub(super) const FLORES: FamilySpec = FamilySpec {
     name: "hertz-flores",
-    title: "Hertz with Flores damping",
+    title: "Hertz, Flores",
     force: "k δ^(3/2) (1 + 8 (1 - e_r) / (5 e_r) · δ̇ / v0)",
     exponent: 1.5,
     param: E_R,

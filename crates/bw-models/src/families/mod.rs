@@ -86,7 +86,7 @@ pub struct ParamSpec {
 pub struct FamilySpec {
     /// The name a config uses (`model = "hunt-crossley"`).
     pub name: &'static str,
-    /// Its name in prose (`"Hunt-Crossley"`).
+    /// Its name in figures' legends (`"Hunt-Crossley"`, `"Hertz, Flores"`).
     pub title: &'static str,
     /// The force law, as in the module's table.
     pub force: &'static str,

@@ -19,7 +19,7 @@ use bwc_ode::{State, System};
 
 pub(super) const SPEC: FamilySpec = FamilySpec {
     name: "thornton",
-    title: "Thornton elastic-perfectly-plastic",
+    title: "Thornton",
     force: "k δ^(3/2) to δ_y, then its tangent; k_p (δ - δ_f)^(3/2) unloading",
     exponent: 1.5,
     param: ParamSpec {

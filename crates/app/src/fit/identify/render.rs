@@ -283,16 +283,16 @@ fn fit_figure(
     )
 }
 
-/// The paper's name of a model given by its key (`"shccm"`, `"mcm"`).
+/// The name in a figure of a model given by its key: the paper's for the Bouc-Wen models
+/// (`"shccm"`, `"mcm"`), a family's title ([`bw_models::FamilySpec::title`]).
 fn model_name(key: &str) -> &'static str {
-    match key {
-        "mcm" => "NDBWMCM",
-        "shccm" => "NDBWSHCCM",
-        "hunt-crossley" => "Hunt-Crossley",
-        "kelvin-voigt" => "Kelvin-Voigt",
-        "hertz-ln" => "Hertz, Lankarani-Nikravesh",
-        "hertz-flores" => "Hertz, Flores",
-        _ => "model",
+    if let Some(family) = bw_models::Family::parse(key) {
+        return family.spec().title;
+    }
+    match bw_models::ModelKind::parse(key) {
+        Some(bw_models::ModelKind::Shccm) => "NDBWSHCCM",
+        Some(bw_models::ModelKind::Mcm) => "NDBWMCM",
+        None => "model",
     }
 }
 

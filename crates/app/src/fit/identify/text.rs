@@ -71,7 +71,13 @@ pub fn fit_text(r: &FitReport, tolerance: f64) -> String {
 fn params_line(r: &FitReport) -> String {
     let p = r.params;
     let mut line = match &r.family {
-        Some(law) => format!("{} = {:.6e}", law.family.param_name(), law.param),
+        Some(law) => {
+            let unit = match law.family.spec().param.unit {
+                "-" => String::new(),
+                u => format!(" {u}"),
+            };
+            format!("{} = {:.6e}{unit}", law.family.param_name(), law.param)
+        }
         None => format!(
             "B_b = {:.6}, Gamma_b = {:.6}, kappa = {:.6}, sigma_b = {:.6e}, n = {:.6}, p = {:.6}",
             p.b_b, p.gamma_b, p.kappa, p.sigma_b, p.n, p.p
