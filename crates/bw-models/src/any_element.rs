@@ -1,42 +1,110 @@
-//! A contact element of either law, chosen at run time: what bindings (C, Python) hold.
+//! A contact element of any registered law, chosen at run time by name: what the bindings
+//! (C, Python, the FMU) hold.
+//!
+//! The laws are listed once, in the `element_laws!` call below: each entry is a variant, its
+//! law type (a [`NamedLaw`]) and its number of states. [`ELEMENT_LAWS`] and every method's
+//! dispatch follow from that list.
 
 use crate::element::{ContactElement, ElementSettings, ElementStep, Penetration};
 use crate::error::ModelError;
+use crate::families::{HuntCrossleyLaw, KelvinVoigtLaw, ThorntonLaw};
+use crate::law_spec::{law_spec, LawSpec, NamedLaw};
 use crate::laws::{Bwmcl, Bwshccl};
 use crate::params::{ModelKind, PhysicalParams};
 
-/// A [`ContactElement`] of the law that validated parameters describe.
-///
-/// ```
-/// use bw_models::{AnyContactElement, ElementSettings, ModelKind, Physical, PhysicalParams};
-/// let law = Physical { k: 1e6, c: 1e3, n: 1.0, p: 1.5, alpha: 0.5, beta: 0.0, gamma: 0.0, a: 1.0 };
-/// let params = PhysicalParams::new(ModelKind::Mcm, law)?;
-/// let mut element = AnyContactElement::new(&params, ElementSettings::default())?;
-/// let step = element.advance(1e-5, -1.0, -1.0)?;
-/// assert!(step.force > 0.0 && element.state().len() == 3);
-/// # Ok::<(), bw_models::ModelError>(())
-/// ```
-#[derive(Debug, Clone)]
-#[non_exhaustive]
-pub enum AnyContactElement {
-    /// The Bouc-Wen-Simon-Hunt-Crossley law's element (states x, z).
-    Shccm(ContactElement<Bwshccl, 2>),
-    /// The Bouc-Wen-Maxwell law's element (states r, y, z).
-    Mcm(ContactElement<Bwmcl, 3>),
-}
+macro_rules! element_laws {
+    ($($(#[doc = $doc:literal])* $variant:ident($law:ty, $n:literal)),* $(,)?) => {
+        /// A [`ContactElement`] of one of the registered laws ([`ELEMENT_LAWS`]).
+        ///
+        /// ```
+        /// use bw_models::{AnyContactElement, ElementSettings};
+        /// let hertz = [("k", 1e9), ("alpha", 0.2)];
+        /// let mut element = AnyContactElement::of_law("hunt-crossley", &hertz, ElementSettings::default())?;
+        /// let step = element.advance(1e-6, -1.0, -1.0)?;
+        /// assert!(step.force > 0.0 && element.state().len() == 1);
+        /// assert_eq!(element.spec().states, ["x"]);
+        /// # Ok::<(), bw_models::ModelError>(())
+        /// ```
+        #[derive(Debug, Clone)]
+        #[non_exhaustive]
+        pub enum AnyContactElement {
+            $($(#[doc = $doc])* $variant(ContactElement<$law, $n>),)*
+        }
 
-/// `$body` with `$e` bound to the element, whichever law it holds.
-macro_rules! each {
-    ($self:expr, $e:ident => $body:expr) => {
-        match $self {
-            AnyContactElement::Shccm($e) => $body,
-            AnyContactElement::Mcm($e) => $body,
+        /// Every law an [`AnyContactElement`] can hold, in the order of its variants.
+        pub const ELEMENT_LAWS: &[&LawSpec] = &[$(&<$law as NamedLaw<$n>>::SPEC),*];
+
+        /// `$body` with `$e` bound to the element, whichever law it holds.
+        macro_rules! each {
+            ($self:expr, $e_:ident => $body_:expr) => {
+                match $self {
+                    $(AnyContactElement::$variant($e_) => $body_,)*
+                }
+            };
+        }
+
+        impl AnyContactElement {
+            /// An element of the law called `name` with its parameters as (name, value)
+            /// pairs ([`LawSpec::params`]), out of contact, at rest.
+            ///
+            /// # Errors
+            /// [`ModelError::UnknownName`] for an unknown law or parameter name or a missing
+            /// parameter, [`ModelError::InvalidParameter`] for an inadmissible value, and as
+            /// [`ContactElement::new`].
+            pub fn of_law(
+                name: &str,
+                params: &[(&str, f64)],
+                settings: ElementSettings,
+            ) -> Result<Self, ModelError> {
+                let spec = law_spec(name)?;
+                let values = spec.values(params)?;
+                $(
+                    if spec.name == <$law as NamedLaw<$n>>::SPEC.name {
+                        let law = <$law as NamedLaw<$n>>::of_values(&values)?;
+                        return Ok(Self::$variant(ContactElement::new(law, settings)?));
+                    }
+                )*
+                Err(ModelError::NotApplicable {
+                    reason: "a law in ELEMENT_LAWS without its variant",
+                })
+            }
+
+            /// The law's description.
+            pub fn spec(&self) -> &'static LawSpec {
+                match self {
+                    $(Self::$variant(_) => &<$law as NamedLaw<$n>>::SPEC,)*
+                }
+            }
         }
     };
 }
 
+element_laws! {
+    /// The Bouc-Wen-Simon-Hunt-Crossley law's element (states x, z).
+    Shccm(Bwshccl, 2),
+    /// The Bouc-Wen-Maxwell law's element (states r, y, z).
+    Mcm(Bwmcl, 3),
+    /// Hunt and Crossley's Hertz law's element (state x).
+    HuntCrossley(HuntCrossleyLaw, 1),
+    /// A linear spring and dashpot's element (state x).
+    KelvinVoigt(KelvinVoigtLaw, 1),
+    /// Thornton's elastic-perfectly-plastic sphere's element (states x, x_m).
+    Thornton(ThorntonLaw, 2),
+}
+
 impl AnyContactElement {
-    /// An element of the law of `params`, out of contact, at rest.
+    /// An element of the Bouc-Wen law that validated parameters describe, out of contact, at
+    /// rest.
+    ///
+    /// ```
+    /// use bw_models::{AnyContactElement, ElementSettings, ModelKind, Physical, PhysicalParams};
+    /// let law = Physical { k: 1e6, c: 1e3, n: 1.0, p: 1.5, alpha: 0.5, beta: 0.0, gamma: 0.0, a: 1.0 };
+    /// let params = PhysicalParams::new(ModelKind::Mcm, law)?;
+    /// let mut element = AnyContactElement::new(&params, ElementSettings::default())?;
+    /// let step = element.advance(1e-5, -1.0, -1.0)?;
+    /// assert!(step.force > 0.0 && element.state().len() == 3);
+    /// # Ok::<(), bw_models::ModelError>(())
+    /// ```
     ///
     /// # Errors
     /// As [`ContactElement::new`].
@@ -45,14 +113,6 @@ impl AnyContactElement {
             ModelKind::Shccm => Self::Shccm(ContactElement::new(Bwshccl::new(params)?, settings)?),
             ModelKind::Mcm => Self::Mcm(ContactElement::new(Bwmcl::new(params)?, settings)?),
         })
-    }
-
-    /// The law's model.
-    pub fn kind(&self) -> ModelKind {
-        match self {
-            Self::Shccm(_) => ModelKind::Shccm,
-            Self::Mcm(_) => ModelKind::Mcm,
-        }
     }
 
     /// [`ContactElement::advance`].
@@ -86,7 +146,8 @@ impl AnyContactElement {
         each!(self, e => e.force())
     }
 
-    /// The law's state (m): `x, z` or `r, y, z`.
+    /// The law's state (m), named by [`LawSpec::states`]: `x, z` or `r, y, z` for the
+    /// Bouc-Wen laws.
     pub fn state(&self) -> &[f64] {
         each!(self, e => e.state().as_slice())
     }

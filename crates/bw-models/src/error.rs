@@ -58,6 +58,16 @@ pub enum ModelError {
         /// What is admissible.
         allowed: &'static str,
     },
+    /// A name that is not one of those known: a contact law, or a parameter of one.
+    #[error("{}", unknown_name(law, name, problem))]
+    UnknownName {
+        /// The law whose parameter is named, or `""` where the law itself is.
+        law: &'static str,
+        /// The name given.
+        name: Box<str>,
+        /// What is wrong with it (`"is not one of its parameters"`, `"is missing"`).
+        problem: &'static str,
+    },
     /// The integration failed.
     #[error("simulation failed: {0}")]
     Solver(#[from] bwc_events::Error),
@@ -102,6 +112,20 @@ impl std::fmt::Display for Shown {
             write!(f, "{x}")
         } else {
             write!(f, "{x:e}")
+        }
+    }
+}
+
+/// The message of [`ModelError::UnknownName`], with the names that are admissible.
+fn unknown_name(law: &str, name: &str, problem: &str) -> String {
+    match crate::ELEMENT_LAWS.iter().find(|s| s.name == law) {
+        Some(spec) => format!(
+            "law \"{law}\": parameter `{name}` {problem}: {}",
+            spec.param_list()
+        ),
+        None => {
+            let laws: Vec<&str> = crate::ELEMENT_LAWS.iter().map(|s| s.name).collect();
+            format!("contact law `{name}` {problem}: {}", laws.join(", "))
         }
     }
 }

@@ -2,7 +2,8 @@
 //! embedding in other simulators: BWSHCCL (eq:BWSHCCL, states x, z) and BWMCL (eq:BWMCL,
 //! states r, y, z). Output: the contact force `F` (N), positive when pushing the bodies apart.
 
-use crate::params::{ModelKind, PhysicalParams};
+use crate::law_spec::{finite, non_negative, positive, LawParam, LawSpec, NamedLaw};
+use crate::params::{ModelKind, Physical, PhysicalParams};
 use crate::power::{Pow, Powers};
 use crate::{ModelError, State};
 use bwc_ode::Matrix;
@@ -274,6 +275,79 @@ impl ContactLaw<3> for Bwmcl {
     }
     fn kinks(&self, s: &State<3>, u: f64) -> [f64; 2] {
         [Bwmcl::eval(self, s, u).0[1], s[2]]
+    }
+}
+
+/// The parameters of both Bouc-Wen laws but the damping `c`, whose unit and admissible set
+/// differ: `k, c, n, p, alpha, beta, gamma, A`, as [`PhysicalParams::new`] checks them.
+macro_rules! bouc_wen_params {
+    ($c:expr) => {
+        &[
+            LawParam::new("k", "kg m^(1-p) s^-2", "k > 0", positive),
+            $c,
+            LawParam::new("n", "-", "n >= 1", |n| n >= 1.0 && n.is_finite()),
+            LawParam::new("p", "-", "p >= 1", |p| p >= 1.0 && p.is_finite()),
+            LawParam::new("alpha", "-", "0 < alpha < 1", |a| a > 0.0 && a < 1.0),
+            LawParam::new("beta", "m^-n", "beta >= 0", non_negative),
+            LawParam::new("gamma", "m^-n", "-beta <= gamma <= beta", finite),
+            LawParam::new("A", "-", "A > 0", positive),
+        ]
+    };
+}
+
+/// The validated parameters of `kind` from `k, c, n, p, alpha, beta, gamma, A`.
+fn physical(kind: ModelKind, v: &[f64]) -> Result<PhysicalParams, ModelError> {
+    let &[k, c, n, p, alpha, beta, gamma, a] = v else {
+        return Err(ModelError::NotApplicable {
+            reason: "a Bouc-Wen law takes 8 values: k, c, n, p, alpha, beta, gamma, A",
+        });
+    };
+    let law = Physical {
+        k,
+        c,
+        n,
+        p,
+        alpha,
+        beta,
+        gamma,
+        a,
+    };
+    PhysicalParams::new(kind, law)
+}
+
+impl NamedLaw<2> for Bwshccl {
+    const SPEC: LawSpec = LawSpec {
+        name: "shccm",
+        title: "BWSHCCL",
+        force: "-alpha k |x|^(p-1) x - (1-alpha) k |z|^(p-1) z - c |x|^p u",
+        params: bouc_wen_params!(LawParam::new(
+            "c",
+            "kg m^-p s^-1",
+            "c >= 0 for the BWSHCCM",
+            non_negative
+        )),
+        states: &["x", "z"],
+    };
+    fn of_values(values: &[f64]) -> Result<Self, ModelError> {
+        Self::new(&physical(ModelKind::Shccm, values)?)
+    }
+}
+
+impl NamedLaw<3> for Bwmcl {
+    const SPEC: LawSpec = LawSpec {
+        name: "mcm",
+        title: "BWMCL",
+        force: "-k (alpha |y|^(p-1) y + (1-alpha) |z|^(p-1) z) = -c r'",
+        params: bouc_wen_params!(LawParam::new(
+            "c",
+            "kg s^-1",
+            "c > 0 for the BWMCM",
+            positive
+        )),
+        states: &["r", "y", "z"],
+    };
+    fn of_values(values: &[f64]) -> Result<Self, ModelError> {
+        Self::new(&physical(ModelKind::Mcm, values)?)
     }
 }
 

@@ -57,6 +57,7 @@ mod error;
 mod families;
 mod fast_paths;
 pub mod input;
+pub mod law_spec;
 mod laws;
 mod models;
 mod outcome;
@@ -78,8 +79,10 @@ pub use cor::{impact, impact_at, impact_double_double};
 pub use element::{ContactElement, ElementSettings, ElementStep, Penetration, Remedy};
 pub use error::ModelError;
 pub use families::{
-    family_impact, Family, FamilyParams, FamilySpec, Ndkv, Ndthornton, ParamSpec, FAMILIES,
+    family_impact, Family, FamilyParams, FamilySpec, HuntCrossleyLaw, KelvinVoigtLaw, Ndkv,
+    Ndthornton, ParamSpec, ThorntonLaw, FAMILIES,
 };
+pub use law_spec::{law_spec, LawParam, LawSpec, NamedLaw, ELEMENT_LAWS};
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};
 pub use models::{
     Bwmcm, BwmcmEarlier, Bwshccm, CollisionModel, Ndbwmcm, NdbwmcmEarlier, Ndbwshccm,

@@ -12,6 +12,8 @@ mod families;
 mod alloc_counter;
 #[path = "support/element.rs"]
 mod element;
+#[path = "support/element_laws.rs"]
+mod element_laws;
 #[path = "support/global.rs"]
 mod global;
 #[path = "support/lyapunov.rs"]

@@ -163,6 +163,25 @@ enum BwcStatus bwc_contact_new(BwcLaw law,
                                const struct BwcElementSettings *settings,
                                BwcContact *out);
 
+// Creates a contact element of the law named `law` (NUL-terminated UTF-8: `"shccm"`,
+// `"mcm"`, `"hunt-crossley"`, `"kelvin-voigt"`, `"thornton"`; the guide's reference of
+// contact laws lists each one's parameters and units), whose `count` parameters are named
+// `names[i]` with the SI values `values[i]`, out of contact and at rest. `settings` may be
+// NULL for the defaults. An unknown law or parameter name, a missing parameter or an
+// inadmissible value is `BWC_STATUS_INVALID_ARGUMENT`, and the last error names it and lists
+// what is admissible.
+//
+// # Safety
+// `law` is a NUL-terminated string; `names` and `values` point to `count` elements each
+// (they may be NULL when `count` is 0), each name NUL-terminated; `settings` points to a
+// `BwcElementSettings` or is NULL; `out` points to a writable `BwcContact`.
+enum BwcStatus bwc_contact_new_named(const char *law,
+                                     const char *const *names,
+                                     const double *values,
+                                     size_t count,
+                                     const struct BwcElementSettings *settings,
+                                     BwcContact *out);
+
 // Frees a contact element. Freeing 0 does nothing; a freed handle is an error ever after.
 enum BwcStatus bwc_contact_free(BwcContact contact);
 
@@ -213,8 +232,9 @@ enum BwcStatus bwc_contact_force(BwcContact contact, double *out);
 // `out` points to a writable double (NULL is an error).
 enum BwcStatus bwc_contact_dissipated(BwcContact contact, double *out);
 
-// The law's state (m): `x, z` (SHCCM) or `r, y, z` (MCM), written to `out` (room for
-// `capacity` values); `len` receives their number (2 or 3). A `capacity` below it is an
+// The law's state (m): `x, z` (SHCCM), `r, y, z` (MCM), `x` (Hunt-Crossley, Kelvin-Voigt) or
+// `x, x_m` (Thornton), written to `out` (room for `capacity` values); `len` receives their
+// number (1 to 3). A `capacity` below it is an
 // error that writes nothing but `len`.
 //
 // # Safety

@@ -5,6 +5,7 @@ use crate::registry::{dead, Kind, Registry};
 use crate::status::{guard, invalid, out, BwcStatus, Failure};
 use bw_models::sequence::Policy;
 use bw_models::{AnyContactElement, ElementSettings, ElementStep, Penetration};
+use std::ffi::{c_char, CStr};
 use std::sync::{Mutex, RwLock};
 
 /// A contact element's handle: 0 is never one, and no law handle has the same value.
@@ -136,6 +137,100 @@ pub unsafe extern "C" fn bwc_contact_new(
         *out = keep(element)?;
         Ok(())
     })
+}
+
+/// Creates a contact element of the law named `law` (NUL-terminated UTF-8: `"shccm"`,
+/// `"mcm"`, `"hunt-crossley"`, `"kelvin-voigt"`, `"thornton"`; the guide's reference of
+/// contact laws lists each one's parameters and units), whose `count` parameters are named
+/// `names[i]` with the SI values `values[i]`, out of contact and at rest. `settings` may be
+/// NULL for the defaults. An unknown law or parameter name, a missing parameter or an
+/// inadmissible value is `BWC_STATUS_INVALID_ARGUMENT`, and the last error names it and lists
+/// what is admissible.
+///
+/// # Safety
+/// `law` is a NUL-terminated string; `names` and `values` point to `count` elements each
+/// (they may be NULL when `count` is 0), each name NUL-terminated; `settings` points to a
+/// `BwcElementSettings` or is NULL; `out` points to a writable `BwcContact`.
+#[no_mangle]
+pub unsafe extern "C" fn bwc_contact_new_named(
+    law: *const c_char,
+    names: *const *const c_char,
+    values: *const f64,
+    count: usize,
+    settings: *const BwcElementSettings,
+    out: *mut BwcContact,
+) -> BwcStatus {
+    guard("bwc_contact_new_named", || {
+        // SAFETY: the caller's contract; NULL is checked (and allowed for `settings`).
+        let (given, out) = unsafe { (settings.as_ref(), self::out(out, "out")?) };
+        let settings = match given {
+            Some(s) => self::settings(s)?,
+            None => ElementSettings::default(),
+        };
+        // SAFETY: the caller's contract.
+        let law = unsafe { text(law, "law")? };
+        // SAFETY: the caller's contract.
+        let params = unsafe { named_values(names, values, count)? };
+        let element = AnyContactElement::of_law(law, &params, settings)?;
+        *out = keep(element)?;
+        Ok(())
+    })
+}
+
+/// A NUL-terminated UTF-8 argument as text.
+///
+/// # Safety
+/// A non-NULL `ptr` is NUL-terminated.
+unsafe fn text<'a>(ptr: *const c_char, name: &str) -> Result<&'a str, Failure> {
+    if ptr.is_null() {
+        return Err(Failure::new(
+            BwcStatus::NullPointer,
+            format!("argument `{name}` is NULL: pass a NUL-terminated string"),
+        ));
+    }
+    // SAFETY: the caller's contract.
+    unsafe { CStr::from_ptr(ptr) }.to_str().map_err(|_| {
+        Failure::new(
+            BwcStatus::InvalidArgument,
+            format!("argument `{name}` is not UTF-8 text"),
+        )
+    })
+}
+
+/// `count` (name, value) pairs from two C arrays.
+///
+/// # Safety
+/// With `count > 0`, `names` and `values` point to `count` elements each, every name
+/// NUL-terminated or NULL.
+unsafe fn named_values<'a>(
+    names: *const *const c_char,
+    values: *const f64,
+    count: usize,
+) -> Result<Vec<(&'a str, f64)>, Failure> {
+    if count == 0 {
+        return Ok(Vec::new());
+    }
+    if names.is_null() || values.is_null() {
+        let which = if names.is_null() { "names" } else { "values" };
+        return Err(Failure::new(
+            BwcStatus::NullPointer,
+            format!("argument `{which}` is NULL with count = {count}: pass {count} elements"),
+        ));
+    }
+    // SAFETY: the caller's contract: `count` elements each.
+    let (names, values) = unsafe {
+        (
+            std::slice::from_raw_parts(names, count),
+            std::slice::from_raw_parts(values, count),
+        )
+    };
+    names
+        .iter()
+        .zip(values)
+        .enumerate()
+        // SAFETY: the caller's contract.
+        .map(|(i, (&n, &v))| Ok((unsafe { text(n, &format!("names[{i}]"))? }, v)))
+        .collect()
 }
 
 /// Frees a contact element. Freeing 0 does nothing; a freed handle is an error ever after.
@@ -276,8 +371,9 @@ pub unsafe extern "C" fn bwc_contact_dissipated(contact: BwcContact, out: *mut f
     })
 }
 
-/// The law's state (m): `x, z` (SHCCM) or `r, y, z` (MCM), written to `out` (room for
-/// `capacity` values); `len` receives their number (2 or 3). A `capacity` below it is an
+/// The law's state (m): `x, z` (SHCCM), `r, y, z` (MCM), `x` (Hunt-Crossley, Kelvin-Voigt) or
+/// `x, x_m` (Thornton), written to `out` (room for `capacity` values); `len` receives their
+/// number (1 to 3). A `capacity` below it is an
 /// error that writes nothing but `len`.
 ///
 /// # Safety
@@ -309,7 +405,7 @@ pub unsafe extern "C" fn bwc_contact_state(
             return Err(invalid(
                 "capacity",
                 capacity as f64,
-                "room for the law's states: 2 (SHCCM) or 3 (MCM)",
+                "room for the law's states: 1 to 3 (3 always suffices)",
             ));
         }
         // SAFETY: `out` has room for `capacity >= n` doubles (the caller's contract).

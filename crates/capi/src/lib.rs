@@ -53,8 +53,8 @@ mod status;
 pub use contact::{
     bwc_contact_advance, bwc_contact_advance_penetration, bwc_contact_clone, bwc_contact_copy,
     bwc_contact_dissipated, bwc_contact_force, bwc_contact_free, bwc_contact_info, bwc_contact_new,
-    bwc_contact_reset, bwc_contact_state, bwc_element_settings_default, BwcContact, BwcContactInfo,
-    BwcElementSettings, BwcStep, BWC_POLICY_CARRY, BWC_POLICY_RESET,
+    bwc_contact_new_named, bwc_contact_reset, bwc_contact_state, bwc_element_settings_default,
+    BwcContact, BwcContactInfo, BwcElementSettings, BwcStep, BWC_POLICY_CARRY, BWC_POLICY_RESET,
 };
 pub use law::{
     bwc_impact, bwc_law_free, bwc_law_from_base, bwc_law_new, BwcBaseParams, BwcImpact, BwcLaw,

@@ -6,3 +6,4 @@
 mod c_example;
 mod errors;
 mod header;
+mod named;

@@ -4,8 +4,8 @@
 use crate::BwcError;
 use bw_models::sequence::Policy;
 use bw_models::{
-    AnyContactElement, BaseMap, BaseParams, ElementSettings, ElementStep, ModelKind, Penetration,
-    Physical, PhysicalParams,
+    law_spec, AnyContactElement, BaseMap, BaseParams, ElementSettings, ElementStep, LawSpec,
+    ModelKind, Penetration, Physical, PhysicalParams, ELEMENT_LAWS,
 };
 use numpy::PyArray1;
 use pyo3::prelude::*;
@@ -21,7 +21,9 @@ fn law(
     model: &Bound<'_, PyAny>,
     params: &Bound<'_, PyAny>,
 ) -> PyResult<(PhysicalParams, Option<f64>)> {
-    let kind = model_kind(model)?;
+    let kind = ModelKind::parse(&law_name(model)?).ok_or_else(|| {
+        BwcError::new_err("model: base parameters describe a Bouc-Wen law, \"shccm\" or \"mcm\"")
+    })?;
     let (base, v) = values(params)?;
     let bad = |e: bw_models::ModelError| BwcError::new_err(format!("params: {e}"));
     if base {
@@ -56,19 +58,65 @@ fn law(
     }
 }
 
-/// The model a `model` argument names: `"shccm"` or `"mcm"`.
-fn model_kind(model: &Bound<'_, PyAny>) -> PyResult<ModelKind> {
-    match word(model, "model")?.as_deref() {
-        Some(name) => ModelKind::parse(name).ok_or_else(|| {
-            BwcError::new_err(format!(
-                "model: \"{name}\" is not a model: \"shccm\" or \"mcm\""
-            ))
-        }),
+/// The registered laws' names, quoted, for messages: `"shccm", "mcm", ... or "thornton"`.
+fn law_names() -> String {
+    let quoted: Vec<String> = ELEMENT_LAWS
+        .iter()
+        .map(|s| format!("\"{}\"", s.name))
+        .collect();
+    match quoted.split_last() {
+        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+        None => String::new(),
+    }
+}
+
+/// The law a `model` argument names: one of [`ELEMENT_LAWS`].
+fn law_name(model: &Bound<'_, PyAny>) -> PyResult<String> {
+    match word(model, "model")? {
+        Some(name) if law_spec(&name).is_ok() => Ok(name),
+        Some(name) => Err(BwcError::new_err(format!(
+            "model: \"{name}\" is not a model: {}",
+            law_names()
+        ))),
         None => Err(BwcError::new_err(format!(
-            "model = {} is not a model: the string \"shccm\" or \"mcm\"",
-            shown(model)
+            "model = {} is not a model: the string {}",
+            shown(model),
+            law_names()
         ))),
     }
+}
+
+/// The element of a law other than the Bouc-Wen ones from a dict of its parameters, each
+/// key checked against its spec.
+fn named_element(
+    spec: &LawSpec,
+    params: &Bound<'_, PyAny>,
+    settings: ElementSettings,
+) -> PyResult<AnyContactElement> {
+    let dict = params.downcast::<PyDict>().map_err(|_| {
+        BwcError::new_err(format!(
+            "params = {} is not admissible: a dict of the law's parameters ({})",
+            shown(params),
+            spec.param_list()
+        ))
+    })?;
+    let mut named: Vec<(String, f64)> = Vec::new();
+    for (key, value) in dict.iter() {
+        let Some(key) = word(&key, "params")? else {
+            return Err(BwcError::new_err(format!(
+                "params: the key {} is not a parameter of the law: {}",
+                shown(&key),
+                spec.param_list()
+            )));
+        };
+        let value = value
+            .extract()
+            .map_err(|_| BwcError::new_err(format!("params[\"{key}\"]: not a number")))?;
+        named.push((key, value));
+    }
+    let pairs: Vec<(&str, f64)> = named.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+    AnyContactElement::of_law(spec.name, &pairs, settings)
+        .map_err(|e| BwcError::new_err(format!("params: {e}")))
 }
 
 /// Whether a `params` dict holds base parameters, and its eight values in the order of
@@ -188,9 +236,15 @@ pub(crate) fn element(
     rtol: f64,
     atol: f64,
 ) -> PyResult<(AnyContactElement, Option<f64>)> {
+    let name = law_name(model)?;
+    let settings = settings(policy, rtol, atol)?;
+    if ModelKind::parse(&name).is_none() {
+        let spec = law_spec(&name).map_err(|e| BwcError::new_err(format!("model: {e}")))?;
+        return Ok((named_element(spec, params, settings)?, None));
+    }
     let (law, mass) = law(model, params)?;
-    let element = AnyContactElement::new(&law, settings(policy, rtol, atol)?)
-        .map_err(|e| BwcError::new_err(e.to_string()))?;
+    let element =
+        AnyContactElement::new(&law, settings).map_err(|e| BwcError::new_err(e.to_string()))?;
     Ok((element, mass))
 }
 
@@ -311,12 +365,16 @@ impl From<ElementStep> for Step {
 ///
 /// Parameters
 /// ----------
-/// model : {"shccm", "mcm"}
-///     The Bouc-Wen-Simon-Hunt-Crossley or the Bouc-Wen-Maxwell law.
+/// model : {"shccm", "mcm", "hunt-crossley", "kelvin-voigt", "thornton"}
+///     The Bouc-Wen-Simon-Hunt-Crossley or the Bouc-Wen-Maxwell law, or one of the
+///     comparison laws (the guide's reference of contact laws).
 /// params : dict
-///     SI parameters ``k, c, n, p, alpha, beta, gamma, A`` (an ``m`` may be there and is not
-///     used: the law has no mass), or base parameters ``B_b, Gamma_b, kappa, sigma_b, n, p,
-///     U_b, T_b`` (the law with ``A = 1``; :attr:`mass` is then ``T_b / U_b``).
+///     For the Bouc-Wen laws, SI parameters ``k, c, n, p, alpha, beta, gamma, A`` (an ``m``
+///     may be there and is not used: the law has no mass), or base parameters ``B_b,
+///     Gamma_b, kappa, sigma_b, n, p, U_b, T_b`` (the law with ``A = 1``; :attr:`mass` is
+///     then ``T_b / U_b``). For the others, their SI parameters: ``k`` (N/m^(3/2)) and
+///     ``alpha`` (s/m) for Hunt-Crossley, ``k`` (N/m) and ``c`` (N s/m) for Kelvin-Voigt,
+///     ``k`` (N/m^(3/2)) and ``delta_y`` (m) for Thornton.
 /// policy : {"reset", "carry"}
 ///     What a new contact starts from: the law at rest, or the state of the last separation.
 /// rtol, atol : float
@@ -327,7 +385,8 @@ impl From<ElementStep> for Step {
 /// force : float
 ///     The force at the end of the last step (N).
 /// state : numpy.ndarray
-///     The law's states (m): ``x, z`` or ``r, y, z``.
+///     The law's states (m): ``x, z`` or ``r, y, z`` (Bouc-Wen), ``x`` (Hunt-Crossley,
+///     Kelvin-Voigt), ``x, x_m`` (Thornton: ``x_m`` the deepest ``x`` so far).
 /// absorbed, dissipated : float
 ///     The work done on the contact so far, and the part of it not held by the law's springs
 ///     (J).
@@ -523,7 +582,7 @@ impl Contact {
     /// "shccm" or "mcm".
     #[getter]
     fn model(&self) -> &'static str {
-        self.element.kind().name()
+        self.element.spec().name
     }
 
     /// "reset" or "carry".

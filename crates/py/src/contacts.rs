@@ -392,7 +392,7 @@ impl Contacts {
         self.column(py, |e| e.onset_depth())
     }
 
-    /// The laws' states (m), one row per contact: x, z (SHCCM) or r, y, z (MCM).
+    /// The laws' states (m), one row per contact, named as `Contact.state`.
     #[getter]
     fn state<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
         let width = self.elements[0].state().len();
@@ -409,7 +409,7 @@ impl Contacts {
     /// "shccm" or "mcm".
     #[getter]
     fn model(&self) -> &'static str {
-        self.elements[0].kind().name()
+        self.elements[0].spec().name
     }
 
     /// "reset" or "carry".

@@ -8,10 +8,13 @@ use super::{FamilySpec, ParamSpec};
 use crate::cor::impact;
 use crate::error::ModelError;
 use crate::input::Zero;
+use crate::law_spec::{non_negative, positive, LawParam, LawSpec, NamedLaw};
+use crate::laws::ContactLaw;
 use crate::models::Ndbwshccm;
 use crate::outcome::Cor;
 use crate::params::{ModelKind, Nondim, NondimParams};
 use crate::settings::Settings;
+use bwc_ode::State;
 
 /// One impact of the Hertz law with nondimensional damping `s`.
 fn hertz_impact(s: f64, settings: &Settings) -> Result<Cor, ModelError> {
@@ -76,3 +79,56 @@ pub(super) const FLORES: FamilySpec = FamilySpec {
     impact: |e_r, _, settings| hertz_impact(1.6 * (1.0 - e_r) / e_r, settings),
     closed_form: None,
 };
+
+/// Hunt and Crossley's law as a contact element: `F = -k |x|^(1/2) x - (3/2) α k |x|^(3/2) u`,
+/// which is `k δ^(3/2) (1 + (3/2) α δ̇)` in compression (`δ = -x`, `δ̇ = -u`): the BWSHCCL with
+/// `B = Γ = 0`, `κ = 1/2`, `n = 1`, `p = 3/2`, `c = (3/2) α k`. State `x` (m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HuntCrossleyLaw {
+    /// The Hertz stiffness `k` (N/m^(3/2)).
+    pub k: f64,
+    /// The damping `α` (s/m).
+    pub alpha: f64,
+}
+
+impl ContactLaw<1> for HuntCrossleyLaw {
+    fn eval(&self, s: &State<1>, u: f64) -> (State<1>, f64) {
+        let x = s[0];
+        let root = x.abs().sqrt();
+        let f = -self.k * root * (x + 1.5 * self.alpha * x.abs() * u);
+        (State::<1>::new(u), f)
+    }
+    /// `(2/5) k |x|^(5/2)` (J).
+    fn stored(&self, s: &State<1>) -> f64 {
+        0.4 * self.k * s[0].abs().powf(2.5)
+    }
+    /// `(3/2) α k |x|^(3/2) u²` (W).
+    fn dissipation(&self, s: &State<1>, u: f64, _rate: &State<1>, _force: f64) -> f64 {
+        1.5 * self.alpha * self.k * s[0].abs().powf(1.5) * u * u
+    }
+    /// `x`: the force's root is not smooth there.
+    fn kinks(&self, s: &State<1>, _u: f64) -> [f64; 2] {
+        [s[0], s[0]]
+    }
+}
+
+impl NamedLaw<1> for HuntCrossleyLaw {
+    const SPEC: LawSpec = LawSpec {
+        name: "hunt-crossley",
+        title: "Hunt-Crossley",
+        force: "-k |x|^(1/2) x - (3/2) alpha k |x|^(3/2) u",
+        params: &[
+            LawParam::new("k", "N m^-3/2", "k > 0 (N/m^(3/2))", positive),
+            LawParam::new("alpha", "s/m", "alpha >= 0 (s/m)", non_negative),
+        ],
+        states: &["x"],
+    };
+    fn of_values(values: &[f64]) -> Result<Self, ModelError> {
+        match *values {
+            [k, alpha] => Ok(Self { k, alpha }),
+            _ => Err(ModelError::NotApplicable {
+                reason: "the Hunt-Crossley law takes 2 values: k, alpha",
+            }),
+        }
+    }
+}

@@ -3,6 +3,9 @@
 
 use super::{FamilySpec, ParamSpec};
 use crate::cor::impact;
+use crate::error::ModelError;
+use crate::law_spec::{non_negative, positive, LawParam, LawSpec, NamedLaw};
+use crate::laws::ContactLaw;
 use crate::models::{nondimensional_scales, unforced, CollisionModel};
 use bwc_ode::{State, System};
 
@@ -88,6 +91,55 @@ mod tests {
                 let want = p.closed_form_cor(v0).unwrap();
                 assert!((e - want).abs() < 1e-7, "zeta {zeta}: {e} vs {want}");
             }
+        }
+    }
+}
+
+/// A linear spring and dashpot as a contact element: `F = -k x - c u`, which is `k δ + c δ̇`
+/// in compression. State `x` (m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KelvinVoigtLaw {
+    /// The stiffness `k` (N/m).
+    pub k: f64,
+    /// The damping `c` (N s/m).
+    pub c: f64,
+}
+
+impl ContactLaw<1> for KelvinVoigtLaw {
+    fn eval(&self, s: &State<1>, u: f64) -> (State<1>, f64) {
+        (State::<1>::new(u), -self.k * s[0] - self.c * u)
+    }
+    /// `k x² / 2` (J).
+    fn stored(&self, s: &State<1>) -> f64 {
+        0.5 * self.k * s[0] * s[0]
+    }
+    /// `c u²` (W).
+    fn dissipation(&self, _s: &State<1>, u: f64, _rate: &State<1>, _force: f64) -> f64 {
+        self.c * u * u
+    }
+    /// None: the law is smooth everywhere (constants that never cross zero).
+    fn kinks(&self, _s: &State<1>, _u: f64) -> [f64; 2] {
+        [1.0, 1.0]
+    }
+}
+
+impl NamedLaw<1> for KelvinVoigtLaw {
+    const SPEC: LawSpec = LawSpec {
+        name: "kelvin-voigt",
+        title: "Kelvin-Voigt",
+        force: "-k x - c u",
+        params: &[
+            LawParam::new("k", "N/m", "k > 0 (N/m)", positive),
+            LawParam::new("c", "N s/m", "c >= 0 (N s/m)", non_negative),
+        ],
+        states: &["x"],
+    };
+    fn of_values(values: &[f64]) -> Result<Self, ModelError> {
+        match *values {
+            [k, c] => Ok(Self { k, c }),
+            _ => Err(ModelError::NotApplicable {
+                reason: "the Kelvin-Voigt law takes 2 values: k, c",
+            }),
         }
     }
 }

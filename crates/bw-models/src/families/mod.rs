@@ -28,8 +28,9 @@ mod hertz;
 mod kelvin_voigt;
 mod thornton;
 
-pub use kelvin_voigt::Ndkv;
-pub use thornton::Ndthornton;
+pub use hertz::HuntCrossleyLaw;
+pub use kelvin_voigt::{KelvinVoigtLaw, Ndkv};
+pub use thornton::{Ndthornton, ThorntonLaw};
 
 use crate::error::ModelError;
 use crate::outcome::Cor;

@@ -14,6 +14,9 @@
 
 use super::{FamilySpec, ParamSpec};
 use crate::cor::impact;
+use crate::error::ModelError;
+use crate::law_spec::{positive, LawParam, LawSpec, NamedLaw};
+use crate::laws::ContactLaw;
 use crate::models::{nondimensional_scales, unforced, CollisionModel};
 use bwc_ode::{State, System};
 
@@ -46,6 +49,28 @@ fn closed_form(v_y: f64, v0: f64) -> f64 {
     first * (r / (r + 2.0 * (1.2 - 0.2 * r * r).sqrt())).powf(0.25)
 }
 
+/// The loading force of unit stiffness at penetration `d` with yield at `y`: `d^(3/2)` to
+/// `y`, its tangent beyond.
+fn loading(y: f64, d: f64) -> f64 {
+    if d <= 0.0 {
+        0.0
+    } else if d <= y {
+        d * d.sqrt()
+    } else {
+        y * y.sqrt() + 1.5 * y.sqrt() * (d - y)
+    }
+}
+
+/// The residual penetration `δ_f` and the stiffness `k_p` (per unit stiffness) of the
+/// unloading from the deepest penetration `dm` with yield at `y`.
+fn unloading(y: f64, dm: f64) -> (f64, f64) {
+    if dm <= 0.0 {
+        return (0.0, 1.0);
+    }
+    let fm = loading(y, dm);
+    (dm - fm / dm.sqrt(), dm.powf(0.75) / fm.sqrt())
+}
+
 /// The nondimensional Thornton impact, states `(X, V, M)`: `X' = V`, `V' = F`, and `M` the
 /// deepest `X` so far (`M' = min(V, 0)`); `X < 0` in compression, `V(0) = -1`. The force is
 /// the loading curve while `V < 0` and the unloading curve from `δ_m = -M` after.
@@ -66,24 +91,13 @@ impl Ndthornton {
 
     /// The loading force at penetration `d`: Hertz to `x_y`, its tangent beyond.
     pub fn loading(&self, d: f64) -> f64 {
-        let y = self.x_y;
-        if d <= 0.0 {
-            0.0
-        } else if d <= y {
-            d * d.sqrt()
-        } else {
-            y * y.sqrt() + 1.5 * y.sqrt() * (d - y)
-        }
+        loading(self.x_y, d)
     }
 
     /// The residual penetration `δ_f` and the stiffness `k_p` of the unloading from the
     /// deepest penetration `dm`: `δ_f = δ_m - F_m / √δ_m`, `k_p = δ_m^(3/4) / √F_m`.
     pub fn unloading(&self, dm: f64) -> (f64, f64) {
-        if dm <= 0.0 {
-            return (0.0, 1.0);
-        }
-        let fm = self.loading(dm);
-        (dm - fm / dm.sqrt(), dm.powf(0.75) / fm.sqrt())
+        unloading(self.x_y, dm)
     }
 
     /// Whether the contact is loading, the penetration, and the deepest penetration.
@@ -130,6 +144,98 @@ impl CollisionModel<3> for Ndthornton {
             d - self.unloading(dm).0
         };
         [y[1], edge]
+    }
+}
+
+/// Thornton's law as a contact element, states `(x, x_m)` (m): `ẋ = u`, and `x_m` the deepest
+/// `x` so far (`ẋ_m = u` while the contact loads at its deepest, 0 otherwise). With `δ = -x`,
+/// `δ_m = -x_m`: `F = k δ^(3/2)` to the yield penetration `δ_y`, `F = F_y + (3/2) k √δ_y
+/// (δ - δ_y)` beyond it while loading, and `F = k_p (δ - δ_f)^(3/2)` off the deepest point
+/// (unloading, and elastic reloading up to `δ_m`), with `δ_f`, `k_p` as in the module's
+/// notes. For a sphere of radius `R`: `k = (4/3) E* √R`, `δ_y = R (π p_y / (2 E*))²`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ThorntonLaw {
+    /// The Hertz stiffness `k` (N/m^(3/2)).
+    pub k: f64,
+    /// The yield penetration `δ_y` (m).
+    pub delta_y: f64,
+}
+
+impl ThorntonLaw {
+    /// The penetration, the deepest penetration, and whether the state is at its deepest.
+    fn phase(s: &State<2>) -> (f64, f64, bool) {
+        let d = -s[0];
+        let dm = (-s[1]).max(d);
+        (d, dm, d >= dm)
+    }
+
+    /// The energy the unloading from `dm` gives back from `d` (J): `(2/5) k_p (δ - δ_f)^(5/2)`.
+    fn elastic(&self, d: f64, dm: f64) -> f64 {
+        let (df, kp) = unloading(self.delta_y, dm);
+        0.4 * self.k * kp * (d - df).max(0.0).powf(2.5)
+    }
+}
+
+impl ContactLaw<2> for ThorntonLaw {
+    fn eval(&self, s: &State<2>, u: f64) -> (State<2>, f64) {
+        let (d, dm, deepest) = Self::phase(s);
+        let loads = deepest && u < 0.0;
+        let f = if deepest {
+            self.k * loading(self.delta_y, d)
+        } else {
+            let (df, kp) = unloading(self.delta_y, dm);
+            let r = (d - df).max(0.0);
+            self.k * kp * r * r.sqrt()
+        };
+        (State::<2>::new(u, if loads { u } else { 0.0 }), f)
+    }
+    /// `(2/5) k_p (δ - δ_f)^(5/2)` for the unloading from the deepest point (J).
+    fn stored(&self, s: &State<2>) -> f64 {
+        let (d, dm, _) = Self::phase(s);
+        self.elastic(d, dm)
+    }
+    /// 0 off the plastic line; on it, `F δ̇` less the rate at which the deepest point's
+    /// elastic energy `E(δ_m) = (2/5) F_m² / (k √δ_m)` grows (W).
+    fn dissipation(&self, s: &State<2>, u: f64, _rate: &State<2>, force: f64) -> f64 {
+        let (d, _, deepest) = Self::phase(s);
+        if !(deepest && u < 0.0 && d > self.delta_y) {
+            return 0.0;
+        }
+        let slope = 1.5 * self.k * self.delta_y.sqrt();
+        let grows =
+            0.4 / self.k * (2.0 * force * slope / d.sqrt() - 0.5 * force * force / (d * d.sqrt()));
+        -u * (force - grows)
+    }
+    /// The turn at the deepest point (`u`, then `δ_m - δ` off it) and the yield while loading
+    /// (`δ - δ_y`), the end of the unloading curve off it (`δ - δ_f`).
+    fn kinks(&self, s: &State<2>, u: f64) -> [f64; 2] {
+        let (d, dm, deepest) = Self::phase(s);
+        if deepest {
+            [u, d - self.delta_y]
+        } else {
+            [dm - d, d - unloading(self.delta_y, dm).0]
+        }
+    }
+}
+
+impl NamedLaw<2> for ThorntonLaw {
+    const SPEC: LawSpec = LawSpec {
+        name: "thornton",
+        title: "Thornton",
+        force: "k δ^(3/2) to δ_y, then its tangent; k_p (δ - δ_f)^(3/2) off the deepest point",
+        params: &[
+            LawParam::new("k", "N m^-3/2", "k > 0 (N/m^(3/2))", positive),
+            LawParam::new("delta_y", "m", "delta_y > 0 (m)", positive),
+        ],
+        states: &["x", "x_m"],
+    };
+    fn of_values(values: &[f64]) -> Result<Self, ModelError> {
+        match *values {
+            [k, delta_y] => Ok(Self { k, delta_y }),
+            _ => Err(ModelError::NotApplicable {
+                reason: "the Thornton law takes 2 values: k, delta_y",
+            }),
+        }
     }
 }
 

@@ -8,11 +8,11 @@ use super::*;
 use bw_models::sequence::Policy;
 use bw_models::{AnyContactElement, Penetration};
 
-const M: f64 = 0.145;
+pub(crate) const M: f64 = 0.145;
 
 /// The host's bounce at `v_in` (m/s) under gravity `g`: rebound speed (m/s), contact duration
 /// (s) and the work the contact absorbed (J).
-fn host_bounce<L: ContactLaw<N> + Clone, const N: usize>(
+pub(crate) fn host_bounce<L: ContactLaw<N> + Clone, const N: usize>(
     law: L,
     v_in: f64,
     g: f64,
