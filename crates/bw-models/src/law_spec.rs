@@ -23,6 +23,9 @@ pub struct LawParam {
     pub allowed: &'static str,
     /// Whether a value is admissible on its own.
     pub admits: fn(f64) -> bool,
+    /// An admissible value of a typical magnitude: a front end's start value (the FMU's),
+    /// and the value of examples.
+    pub start: f64,
 }
 
 impl LawParam {
@@ -32,12 +35,14 @@ impl LawParam {
         unit: &'static str,
         allowed: &'static str,
         admits: fn(f64) -> bool,
+        start: f64,
     ) -> Self {
         Self {
             name,
             unit,
             allowed,
             admits,
+            start,
         }
     }
 }

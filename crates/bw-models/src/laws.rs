@@ -5,6 +5,7 @@
 use crate::law_spec::{finite, non_negative, positive, LawParam, LawSpec, NamedLaw};
 use crate::params::{ModelKind, Physical, PhysicalParams};
 use crate::power::{Pow, Powers};
+use crate::published::{CROSS_BWMCM, CROSS_BWSHCCM};
 use crate::{ModelError, State};
 use bwc_ode::Matrix;
 
@@ -278,19 +279,26 @@ impl ContactLaw<3> for Bwmcl {
     }
 }
 
-/// The parameters of both Bouc-Wen laws but the damping `c`, whose unit and admissible set
-/// differ: `k, c, n, p, alpha, beta, gamma, A`, as [`PhysicalParams::new`] checks them.
+/// The parameters of a Bouc-Wen law, `k, c, n, p, alpha, beta, gamma, A`, as
+/// [`PhysicalParams::new`] checks them, with the damping `c` (whose unit and admissible set
+/// differ between the laws) given, and Table 4's law `$t` as start values.
 macro_rules! bouc_wen_params {
-    ($c:expr) => {
+    ($t:expr, $c_unit:expr, $c_allowed:expr, $c_admits:expr) => {
         &[
-            LawParam::new("k", "kg m^(1-p) s^-2", "k > 0", positive),
-            $c,
-            LawParam::new("n", "-", "n >= 1", |n| n >= 1.0 && n.is_finite()),
-            LawParam::new("p", "-", "p >= 1", |p| p >= 1.0 && p.is_finite()),
-            LawParam::new("alpha", "-", "0 < alpha < 1", |a| a > 0.0 && a < 1.0),
-            LawParam::new("beta", "m^-n", "beta >= 0", non_negative),
-            LawParam::new("gamma", "m^-n", "-beta <= gamma <= beta", finite),
-            LawParam::new("A", "-", "A > 0", positive),
+            LawParam::new("k", "kg m^(1-p) s^-2", "k > 0", positive, $t.k),
+            LawParam::new("c", $c_unit, $c_allowed, $c_admits, $t.c),
+            LawParam::new("n", "-", "n >= 1", |n| n >= 1.0 && n.is_finite(), $t.n),
+            LawParam::new("p", "-", "p >= 1", |p| p >= 1.0 && p.is_finite(), $t.p),
+            LawParam::new(
+                "alpha",
+                "-",
+                "0 < alpha < 1",
+                |a| a > 0.0 && a < 1.0,
+                $t.alpha,
+            ),
+            LawParam::new("beta", "m^-n", "beta >= 0", non_negative, $t.beta),
+            LawParam::new("gamma", "m^-n", "-beta <= gamma <= beta", finite, $t.gamma),
+            LawParam::new("A", "-", "A > 0", positive, $t.a),
         ]
     };
 }
@@ -320,12 +328,12 @@ impl NamedLaw<2> for Bwshccl {
         name: "shccm",
         title: "BWSHCCL",
         force: "-alpha k |x|^(p-1) x - (1-alpha) k |z|^(p-1) z - c |x|^p u",
-        params: bouc_wen_params!(LawParam::new(
-            "c",
+        params: bouc_wen_params!(
+            CROSS_BWSHCCM,
             "kg m^-p s^-1",
             "c >= 0 for the BWSHCCM",
             non_negative
-        )),
+        ),
         states: &["x", "z"],
     };
     fn of_values(values: &[f64]) -> Result<Self, ModelError> {
@@ -338,12 +346,7 @@ impl NamedLaw<3> for Bwmcl {
         name: "mcm",
         title: "BWMCL",
         force: "-k (alpha |y|^(p-1) y + (1-alpha) |z|^(p-1) z) = -c r'",
-        params: bouc_wen_params!(LawParam::new(
-            "c",
-            "kg s^-1",
-            "c > 0 for the BWMCM",
-            positive
-        )),
+        params: bouc_wen_params!(CROSS_BWMCM, "kg s^-1", "c > 0 for the BWMCM", positive),
         states: &["r", "y", "z"],
     };
     fn of_values(values: &[f64]) -> Result<Self, ModelError> {

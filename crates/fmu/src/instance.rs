@@ -1,10 +1,11 @@
 //! One FMU instance: its parameters, its phase in the FMI 2.0 state machine, the contact
 //! element and its inputs and outputs. Everything here is plain Rust; `fmi2` wraps it for C.
 
-use crate::variables::{find, Type, Variable, REAL_PARAMETERS};
+use crate::variables::{find, law_variables, Type, Variable, BOUC_WEN_MODELS, REAL_PARAMETERS};
 use bw_models::sequence::Policy;
 use bw_models::{
-    AnyContactElement, ElementSettings, ModelKind, Penetration, Physical, PhysicalParams,
+    AnyContactElement, ElementSettings, ModelError, ModelKind, Penetration, Physical,
+    PhysicalParams, ELEMENT_LAWS,
 };
 
 /// Where an instance is in FMI 2.0's Co-Simulation state machine.
@@ -20,12 +21,15 @@ pub enum Phase {
     Terminated,
 }
 
-/// The parameters: the law's reals ([`REAL_PARAMETERS`]), the model and the policy.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The parameters: the Bouc-Wen law's reals ([`REAL_PARAMETERS`]), the other laws'
+/// ([`law_variables`]), the model and the policy.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Params {
     /// `k, c, n, p, alpha, beta, gamma, A, rtol, atol`.
     pub reals: [f64; 10],
-    /// 0: SHCCM, 1: MCM.
+    /// The other laws' parameters, in the order of [`law_variables`].
+    pub laws: Vec<f64>,
+    /// The law's index in [`ELEMENT_LAWS`]: 0 SHCCM, 1 MCM, then the other laws.
     pub model: i32,
     /// 0: reset, 1: carry.
     pub policy: i32,
@@ -40,6 +44,7 @@ impl Default for Params {
             reals: [
                 l.k, l.c, l.n, l.p, l.alpha, l.beta, l.gamma, l.a, 1e-10, 1e-16,
             ],
+            laws: law_variables().iter().map(|l| l.start).collect(),
             model: 0,
             policy: 0,
         }
@@ -151,11 +156,7 @@ impl Instance {
         match v.causality {
             "parameter" => {
                 self.settable(v)?;
-                let i = REAL_PARAMETERS
-                    .iter()
-                    .position(|n| *n == v.name)
-                    .unwrap_or(0);
-                self.params.reals[i] = value;
+                *self.params.real(v.vr)? = value;
                 Ok(())
             }
             "input" => {
@@ -182,7 +183,12 @@ impl Instance {
             return Err(format!("`{}` is an output: it cannot be set", v.name));
         }
         self.settable(v)?;
-        if !(0..=1).contains(&value) {
+        let top = if v.name == "model" {
+            ELEMENT_LAWS.len() as i32 - 1
+        } else {
+            1
+        };
+        if !(0..=top).contains(&value) {
             return Err(format!(
                 "parameter `{}` = {value} is not admissible: {}",
                 v.name, v.description
@@ -218,13 +224,10 @@ impl Instance {
             "impulse" => d.impulse,
             "dissipated" => e.map_or(0.0, |e| e.dissipated()),
             "absorbed" => e.map_or(0.0, |e| e.absorbed()),
-            _ => {
-                let i = REAL_PARAMETERS
-                    .iter()
-                    .position(|n| *n == v.name)
-                    .unwrap_or(0);
-                self.params.reals[i]
-            }
+            _ => match real_slot(v.vr)? {
+                (false, i) => self.params.reals[i],
+                (true, i) => self.params.laws[i],
+            },
         })
     }
 
@@ -330,10 +333,50 @@ fn variable(vr: u32, kind: Type) -> Result<&'static Variable, String> {
     find(vr, kind).ok_or_else(|| format!("no {kind:?} variable has value reference {vr}"))
 }
 
+impl Params {
+    /// The real parameter at value reference `vr`.
+    fn real(&mut self, vr: u32) -> Result<&mut f64, String> {
+        Ok(match real_slot(vr)? {
+            (false, i) => &mut self.reals[i],
+            (true, i) => &mut self.laws[i],
+        })
+    }
+
+    fn settings(&self) -> ElementSettings {
+        let mut settings = ElementSettings::default();
+        settings.rtol = self.reals[8];
+        settings.atol = self.reals[9];
+        settings.policy = if self.policy == 1 {
+            Policy::Carry
+        } else {
+            Policy::Reset
+        };
+        settings
+    }
+}
+
+/// Where the real parameter at `vr` is: in [`Params::laws`] (`true`) or [`Params::reals`],
+/// at which index.
+fn real_slot(vr: u32) -> Result<(bool, usize), String> {
+    let v = find(vr, Type::Real).map_or("", |v| v.name);
+    if let Some(i) = REAL_PARAMETERS.iter().position(|n| *n == v) {
+        return Ok((false, i));
+    }
+    law_variables()
+        .iter()
+        .position(|l| l.variable.vr == vr)
+        .map(|i| (true, i))
+        .ok_or_else(|| format!("no real parameter has value reference {vr}"))
+}
+
 /// The element the parameters describe; an error names the parameter.
 fn element(p: &Params) -> Result<AnyContactElement, String> {
-    let [k, c, n, pp, alpha, beta, gamma, a, rtol, atol] = p.reals;
-    let kind = if p.model == 1 {
+    let model = usize::try_from(p.model).unwrap_or(0);
+    if model >= BOUC_WEN_MODELS {
+        return named_element(p, model);
+    }
+    let [k, c, n, pp, alpha, beta, gamma, a, ..] = p.reals;
+    let kind = if model == 1 {
         ModelKind::Mcm
     } else {
         ModelKind::Shccm
@@ -349,15 +392,34 @@ fn element(p: &Params) -> Result<AnyContactElement, String> {
         a,
     };
     let params = PhysicalParams::new(kind, law).map_err(|e| e.to_string())?;
-    let mut settings = ElementSettings::default();
-    settings.rtol = rtol;
-    settings.atol = atol;
-    settings.policy = if p.policy == 1 {
-        Policy::Carry
-    } else {
-        Policy::Reset
-    };
-    AnyContactElement::new(&params, settings).map_err(|e| e.to_string())
+    AnyContactElement::new(&params, p.settings()).map_err(|e| e.to_string())
+}
+
+/// The element of a law beyond the Bouc-Wen ones, from its `<law>.<parameter>` variables; an
+/// error names the variable.
+fn named_element(p: &Params, model: usize) -> Result<AnyContactElement, String> {
+    let mine: Vec<_> = law_variables()
+        .iter()
+        .zip(&p.laws)
+        .filter(|(l, _)| l.law == model)
+        .collect();
+    let values: Vec<(&str, f64)> = mine.iter().map(|(l, v)| (l.param, **v)).collect();
+    AnyContactElement::of_law(ELEMENT_LAWS[model].name, &values, p.settings()).map_err(
+        |e| match e {
+            ModelError::InvalidParameter {
+                name,
+                value,
+                allowed,
+            } => {
+                let variable = mine
+                    .iter()
+                    .find(|(l, _)| l.param == name)
+                    .map_or(name, |(l, _)| l.variable.name);
+                format!("parameter `{variable}` = {value} is not admissible: {allowed}")
+            }
+            e => e.to_string(),
+        },
+    )
 }
 
 /// A failed step's message in the FMU's names: the step is `communicationStepSize`, the

@@ -2,7 +2,9 @@
 //!
 //! `bwc_contact.fmu` holds one contact element ([`bw_models::ContactElement`]) for FMI
 //! importers (OpenModelica, Dymola, Chrono, FMPy, ...). Its parameters are the law's (`k, c,
-//! n, p, alpha, beta, gamma, A`, `model`, `policy`, `rtol`, `atol`), its inputs the penetration
+//! n, p, alpha, beta, gamma, A` of the Bouc-Wen laws, `model` 0 or 1, `policy`, `rtol`,
+//! `atol`; `model` 2 and up are the other element laws of [`bw_models::ELEMENT_LAWS`], their
+//! parameters named `<law>.<parameter>`: [`law_variables`]), its inputs the penetration
 //! `delta` (m, positive while the bodies overlap) and its rate `delta_dot` (m/s, positive while
 //! they approach), its outputs the force `force` (N, pushing the bodies apart), the step's
 //! `impulse` (N s), the energy `dissipated` and `absorbed` (J), `in_contact` and `contacts`.
@@ -38,7 +40,7 @@ mod instance;
 mod variables;
 
 pub use instance::{Instance, Phase};
-pub use variables::{Type, Variable, VARIABLES};
+pub use variables::{law_variables, LawVariable, Type, Variable, BOUC_WEN_MODELS, VARIABLES};
 
 /// The FMU's guid: `modelDescription.xml` carries the same, and fmi2Instantiate checks it.
 pub const GUID: &str = "{1d72ba60-be48-4771-b30c-32049f3f42d1}";

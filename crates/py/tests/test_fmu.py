@@ -155,3 +155,69 @@ def test_bad_input_is_refused_and_named_through_the_logger(fmu):
     assert messages[-1].startswith("fmi2DoStep: communicationStepSize = 4e-306 is not admissible: a step long enough")
     slave.terminate()
     slave.freeInstance()
+
+
+def test_a_thornton_contact_in_the_fmu_rebounds_at_thorntons_closed_form(fmu):
+    """model = 4 selects Thornton's elastic-plastic sphere, its parameters thornton.k and
+    thornton.delta_y. A ball of mass M meeting the floor at v0 without gravity rebounds at
+    Thornton's (1997) e = (6 sqrt(3) / 5)^(1/2) (1 - r^2/6)^(1/2) (r / (r + 2 sqrt(6/5 - r^2/5)))^(1/4),
+    r = v_y / v0, with the yield speed from (5/4) M v_y^2 = k delta_y^(5/2): to 1e-6 at dt = 1 us."""
+    k, v0, r, dt = 1e7, 2.0, 0.3, 1e-6
+    delta_y = (1.25 * M * (r * v0) ** 2 / k) ** 0.4
+    md = read_model_description(str(fmu))
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    s = FMU2Slave(guid=md.guid, unzipDirectory=extract(str(fmu)),
+                  modelIdentifier=md.coSimulation.modelIdentifier, instanceName="thornton")
+    s.instantiate()
+    s.setupExperiment(startTime=0.0)
+    s.setInteger([vr["model"]], [4])
+    s.setReal([vr["thornton.k"], vr["thornton.delta_y"]], [k, delta_y])
+    s.enterInitializationMode()
+    s.exitInitializationMode()
+
+    def step(t, y, v, accel):
+        s.setReal([vr["delta"], vr["delta_dot"]], [-y, -v])
+        s.setRealInputDerivatives([vr["delta_dot"]], [1], [-accel])
+        s.doStep(t, dt)
+        return s.getReal([vr["impulse"], vr["force"]])
+
+    t, y, v, force = 0.0, 0.0, -v0, 0.0
+    while s.getInteger([vr["contacts"]])[0] == 0:
+        state = s.getFMUstate()
+        impulse, _ = step(t, y, v, force / M)
+        s.setFMUstate(state)
+        s.freeFMUstate(state)
+        impulse, force = step(t, y, v, impulse / M / dt)
+        v1 = v + impulse / M
+        y, v, t = y + 0.5 * dt * (v + v1), v1, t + dt
+    s.terminate()
+    s.freeInstance()
+    want = (6 * 3 ** 0.5 / 5) ** 0.5 * (1 - r * r / 6) ** 0.5 * (r / (r + 2 * (1.2 - 0.2 * r * r) ** 0.5)) ** 0.25
+    assert abs(v / v0 - want) < 1e-6, (v / v0, want)
+
+
+def test_the_other_laws_parameters_are_checked_under_their_fmu_names(fmu):
+    from fmpy import calloc, free
+    from fmpy.fmi2 import (fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions,
+                           fmi2CallbackLoggerTYPE)
+
+    messages = []
+    callbacks = fmi2CallbackFunctions()
+    callbacks.logger = fmi2CallbackLoggerTYPE(lambda env, name, status, cat, msg: messages.append(msg.decode()))
+    callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+    callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+    md = read_model_description(str(fmu))
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    slave = FMU2Slave(guid=md.guid, unzipDirectory=extract(str(fmu)),
+                      modelIdentifier=md.coSimulation.modelIdentifier, instanceName="bad")
+    slave.instantiate(callbacks=callbacks)
+    with pytest.raises(Exception):
+        slave.setInteger([vr["model"]], [9])
+    assert "parameter `model` = 9 is not admissible: 0: BWSHCCM" in messages[-1]
+    slave.setInteger([vr["model"]], [4])
+    slave.setReal([vr["thornton.delta_y"]], [-1.0])
+    slave.enterInitializationMode()
+    with pytest.raises(Exception):
+        slave.exitInitializationMode()
+    assert "parameter `thornton.delta_y` = -1 is not admissible: delta_y > 0 (m)" in messages[-1]
+    slave.freeInstance()

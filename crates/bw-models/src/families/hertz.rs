@@ -118,8 +118,8 @@ impl NamedLaw<1> for HuntCrossleyLaw {
         title: "Hunt-Crossley",
         force: "-k |x|^(1/2) x - (3/2) alpha k |x|^(3/2) u",
         params: &[
-            LawParam::new("k", "N m^-3/2", "k > 0 (N/m^(3/2))", positive),
-            LawParam::new("alpha", "s/m", "alpha >= 0 (s/m)", non_negative),
+            LawParam::new("k", "N m^-3/2", "k > 0 (N/m^(3/2))", positive, 1e10),
+            LawParam::new("alpha", "s/m", "alpha >= 0 (s/m)", non_negative, 0.2),
         ],
         states: &["x"],
     };

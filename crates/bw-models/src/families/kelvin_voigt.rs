@@ -129,8 +129,8 @@ impl NamedLaw<1> for KelvinVoigtLaw {
         title: "Kelvin-Voigt",
         force: "-k x - c u",
         params: &[
-            LawParam::new("k", "N/m", "k > 0 (N/m)", positive),
-            LawParam::new("c", "N s/m", "c >= 0 (N s/m)", non_negative),
+            LawParam::new("k", "N/m", "k > 0 (N/m)", positive, 1e7),
+            LawParam::new("c", "N s/m", "c >= 0 (N s/m)", non_negative, 200.0),
         ],
         states: &["x"],
     };

@@ -224,8 +224,8 @@ impl NamedLaw<2> for ThorntonLaw {
         title: "Thornton",
         force: "k δ^(3/2) to δ_y, then its tangent; k_p (δ - δ_f)^(3/2) off the deepest point",
         params: &[
-            LawParam::new("k", "N m^-3/2", "k > 0 (N/m^(3/2))", positive),
-            LawParam::new("delta_y", "m", "delta_y > 0 (m)", positive),
+            LawParam::new("k", "N m^-3/2", "k > 0 (N/m^(3/2))", positive, 1e10),
+            LawParam::new("delta_y", "m", "delta_y > 0 (m)", positive, 1e-6),
         ],
         states: &["x", "x_m"],
     };

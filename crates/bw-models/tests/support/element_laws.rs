@@ -129,24 +129,19 @@ fn a_thornton_contact_reloads_elastically_and_rejoins_the_plastic_line() {
     assert_eq!(e.spec().states, ["x", "x_m"]);
 }
 
-/// Every registered law builds from its spec's parameters; a wrong law, a missing or unknown
+/// Every registered law builds from its spec's start values; a wrong law, a missing or unknown
 /// parameter and an inadmissible value are errors that name what is wrong and what is
 /// admissible.
 #[test]
 fn laws_by_name_and_what_is_wrong_with_a_name() {
     let s = ElementSettings::default();
     let good = |spec: &LawSpec| -> Vec<(&str, f64)> {
-        spec.params
-            .iter()
-            .map(|p| match p.name {
-                "alpha" if spec.params.len() == 8 => (p.name, 0.5),
-                "n" | "p" | "A" => (p.name, 1.5),
-                "gamma" | "beta" => (p.name, 0.0),
-                name => (name, 1e-3),
-            })
-            .collect()
+        spec.params.iter().map(|p| (p.name, p.start)).collect()
     };
     for spec in ELEMENT_LAWS {
+        for p in spec.params {
+            assert!((p.admits)(p.start), "{}: {}", spec.name, p.name);
+        }
         let e = AnyContactElement::of_law(spec.name, &good(spec), s)
             .unwrap_or_else(|e| panic!("{}: {e}", spec.name));
         assert_eq!(e.spec().name, spec.name);
@@ -171,7 +166,7 @@ fn laws_by_name_and_what_is_wrong_with_a_name() {
     }
     // Parameters admissible one by one but not together are the law's to refuse.
     let mut bw = good(&<bw_models::Bwshccl as NamedLaw<2>>::SPEC);
-    bw.iter_mut().find(|(n, _)| *n == "gamma").unwrap().1 = 1.0;
+    bw.iter_mut().find(|(n, _)| *n == "gamma").unwrap().1 = 1e4;
     let e = err("shccm", &bw).to_string();
     assert!(e.contains("-beta <= gamma <= beta"), "{e}");
 }
