@@ -164,8 +164,8 @@ enum BwcStatus bwc_contact_new(BwcLaw law,
                                BwcContact *out);
 
 // Creates a contact element of the law named `law` (NUL-terminated UTF-8: `"shccm"`,
-// `"mcm"`, `"hunt-crossley"`, `"kelvin-voigt"`, `"thornton"`; the guide's reference of
-// contact laws lists each one's parameters and units), whose `count` parameters are named
+// `"mcm"` or another of the element laws, `"thornton"` for one; the guide's reference of
+// contact laws lists them with their parameters and units), whose `count` parameters are named
 // `names[i]` with the SI values `values[i]`, out of contact and at rest. `settings` may be
 // NULL for the defaults. An unknown law or parameter name, a missing parameter or an
 // inadmissible value is `BWC_STATUS_INVALID_ARGUMENT`, and the last error names it and lists
@@ -232,14 +232,17 @@ enum BwcStatus bwc_contact_force(BwcContact contact, double *out);
 // `out` points to a writable double (NULL is an error).
 enum BwcStatus bwc_contact_dissipated(BwcContact contact, double *out);
 
-// The law's state (m): `x, z` (SHCCM), `r, y, z` (MCM), `x` (Hunt-Crossley, Kelvin-Voigt) or
-// `x, x_m` (Thornton), written to `out` (room for `capacity` values); `len` receives their
+// The law's state (m): `x, z` (SHCCM), `r, y, z` (MCM), or as the reference of contact laws
+// names it for the others (Thornton's `x, x_m`), written to `out` (room for `capacity` values); `len` receives their
 // number (1 to 3). A `capacity` below it is an
 // error that writes nothing but `len`.
 //
 // # Safety
 // `out` points to `capacity` writable doubles; `len` to a writable size_t (neither NULL).
-enum BwcStatus bwc_contact_state(BwcContact contact, double *out, size_t capacity, size_t *len);
+enum BwcStatus bwc_contact_state(BwcContact contact,
+                                 double *out,
+                                 size_t capacity,
+                                 size_t *len);
 
 // Back to the law at rest, out of contact, with nothing absorbed and the onset depth 0.
 enum BwcStatus bwc_contact_reset(BwcContact contact);

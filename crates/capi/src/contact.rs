@@ -140,8 +140,8 @@ pub unsafe extern "C" fn bwc_contact_new(
 }
 
 /// Creates a contact element of the law named `law` (NUL-terminated UTF-8: `"shccm"`,
-/// `"mcm"`, `"hunt-crossley"`, `"kelvin-voigt"`, `"thornton"`; the guide's reference of
-/// contact laws lists each one's parameters and units), whose `count` parameters are named
+/// `"mcm"` or another of the element laws, `"thornton"` for one; the guide's reference of
+/// contact laws lists them with their parameters and units), whose `count` parameters are named
 /// `names[i]` with the SI values `values[i]`, out of contact and at rest. `settings` may be
 /// NULL for the defaults. An unknown law or parameter name, a missing parameter or an
 /// inadmissible value is `BWC_STATUS_INVALID_ARGUMENT`, and the last error names it and lists
@@ -371,8 +371,8 @@ pub unsafe extern "C" fn bwc_contact_dissipated(contact: BwcContact, out: *mut f
     })
 }
 
-/// The law's state (m): `x, z` (SHCCM), `r, y, z` (MCM), `x` (Hunt-Crossley, Kelvin-Voigt) or
-/// `x, x_m` (Thornton), written to `out` (room for `capacity` values); `len` receives their
+/// The law's state (m): `x, z` (SHCCM), `r, y, z` (MCM), or as the reference of contact laws
+/// names it for the others (Thornton's `x, x_m`), written to `out` (room for `capacity` values); `len` receives their
 /// number (1 to 3). A `capacity` below it is an
 /// error that writes nothing but `len`.
 ///

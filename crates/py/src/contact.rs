@@ -365,16 +365,16 @@ impl From<ElementStep> for Step {
 ///
 /// Parameters
 /// ----------
-/// model : {"shccm", "mcm", "hunt-crossley", "kelvin-voigt", "thornton"}
-///     The Bouc-Wen-Simon-Hunt-Crossley or the Bouc-Wen-Maxwell law, or one of the
-///     comparison laws (the guide's reference of contact laws).
+/// model : str
+///     ``"shccm"`` or ``"mcm"``, the Bouc-Wen-Simon-Hunt-Crossley or the Bouc-Wen-Maxwell
+///     law, or another of the element laws (``"thornton"``, ``"hunt-crossley"``, ...: the
+///     guide's reference of contact laws lists them with their parameters).
 /// params : dict
 ///     For the Bouc-Wen laws, SI parameters ``k, c, n, p, alpha, beta, gamma, A`` (an ``m``
 ///     may be there and is not used: the law has no mass), or base parameters ``B_b,
 ///     Gamma_b, kappa, sigma_b, n, p, U_b, T_b`` (the law with ``A = 1``; :attr:`mass` is
-///     then ``T_b / U_b``). For the others, their SI parameters: ``k`` (N/m^(3/2)) and
-///     ``alpha`` (s/m) for Hunt-Crossley, ``k`` (N/m) and ``c`` (N s/m) for Kelvin-Voigt,
-///     ``k`` (N/m^(3/2)) and ``delta_y`` (m) for Thornton.
+///     then ``T_b / U_b``). For the others, their SI parameters by name (Thornton's ``k``,
+///     N/m^(3/2), and ``delta_y``, m).
 /// policy : {"reset", "carry"}
 ///     What a new contact starts from: the law at rest, or the state of the last separation.
 /// rtol, atol : float
@@ -385,8 +385,8 @@ impl From<ElementStep> for Step {
 /// force : float
 ///     The force at the end of the last step (N).
 /// state : numpy.ndarray
-///     The law's states (m): ``x, z`` or ``r, y, z`` (Bouc-Wen), ``x`` (Hunt-Crossley,
-///     Kelvin-Voigt), ``x, x_m`` (Thornton: ``x_m`` the deepest ``x`` so far).
+///     The law's states (m): ``x, z`` or ``r, y, z`` (Bouc-Wen), as the reference names them
+///     for the other laws (Thornton's ``x, x_m``: ``x_m`` the deepest ``x`` so far).
 /// absorbed, dissipated : float
 ///     The work done on the contact so far, and the part of it not held by the law's springs
 ///     (J).
