@@ -33,6 +33,7 @@ mod error;
 pub mod fit;
 mod format;
 pub mod impact;
+pub mod materials;
 pub mod outdir;
 pub mod plausible;
 pub mod plot;

@@ -5,6 +5,7 @@
 
 mod element;
 mod fuzz;
+mod materials;
 mod outdir;
 mod output;
 mod plot;

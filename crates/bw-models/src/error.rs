@@ -58,6 +58,18 @@ pub enum ModelError {
         /// What is admissible.
         allowed: &'static str,
     },
+    /// A body's material or geometry is not admissible ([`crate::materials::MaterialPair`]).
+    #[error("{}: `{name}` = {} is not admissible: {allowed}", body_name(*.body), Shown(*.value))]
+    InvalidMaterial {
+        /// The body: 1 or 2, 0 for the pair.
+        body: u8,
+        /// The quantity (`"poisson"`, `"youngs_modulus"`, ...).
+        name: &'static str,
+        /// The rejected value.
+        value: f64,
+        /// What is admissible, and the likely unit of a slip.
+        allowed: &'static str,
+    },
     /// A name that is not one of those known: a contact law, or a parameter of one.
     #[error("{}", unknown_name(law, name, problem))]
     UnknownName {
@@ -127,5 +139,12 @@ fn unknown_name(law: &str, name: &str, problem: &str) -> String {
             let laws: Vec<&str> = crate::ELEMENT_LAWS.iter().map(|s| s.name).collect();
             format!("contact law `{name}` {problem}: {}", laws.join(", "))
         }
+    }
+}
+
+fn body_name(body: u8) -> String {
+    match body {
+        0 => "the pair of bodies".to_string(),
+        i => format!("body {i}"),
     }
 }

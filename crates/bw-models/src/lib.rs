@@ -59,6 +59,7 @@ mod fast_paths;
 pub mod input;
 pub mod law_spec;
 mod laws;
+pub mod materials;
 mod models;
 mod outcome;
 mod params;

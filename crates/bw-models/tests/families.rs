@@ -210,3 +210,34 @@ fn the_guide_lists_every_family_as_the_library_defines_it() {
         assert_eq!(*row, want);
     }
 }
+
+/// The guide's material table (`docs/src/reference/materials.md`) lists exactly the library's
+/// materials, each with its values and source.
+#[test]
+fn the_guide_lists_every_material_as_the_library_holds_it() {
+    let page = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../docs/src/reference/materials.md"
+    ))
+    .unwrap();
+    let table = page.split("<!-- materials:").nth(1).unwrap();
+    let rows: Vec<&str> = table
+        .lines()
+        .skip(3)
+        .take_while(|l| l.starts_with('|'))
+        .collect();
+    let want: Vec<String> = bw_models::materials::MATERIALS
+        .iter()
+        .map(|e| {
+            let m = &e.material;
+            let s_y = m
+                .yield_strength
+                .map_or("elastic".to_string(), |s| format!("{s:e}"));
+            format!(
+                "| `{}` | {} | {:e} | {} | {} | {s_y} | {} |",
+                e.name, e.grade, m.youngs_modulus, m.poisson, m.density, e.source
+            )
+        })
+        .collect();
+    assert_eq!(rows, want, "\n{}", want.join("\n"));
+}

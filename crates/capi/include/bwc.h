@@ -143,6 +143,58 @@ typedef struct BwcImpact {
   int32_t separated;
 } BwcImpact;
 
+// One material (SI units).
+typedef struct BwcMaterial {
+  // Young's modulus (Pa), > 0.
+  double youngs_modulus;
+  // Poisson's ratio, in (-1, 0.5).
+  double poisson;
+  // Density (kg/m^3), > 0.
+  double density;
+  // Yield strength (Pa), in (0, E); NaN for a material taken as elastic.
+  double yield_strength;
+} BwcMaterial;
+
+// One body at the contact.
+typedef struct BwcBody {
+  // Its material.
+  struct BwcMaterial material;
+  // The radius of curvature at the contact (m), > 0; INFINITY for a flat.
+  double radius;
+  // The mass (kg), > 0; NaN for a sphere's `(4/3) pi R^3 rho` (a finite radius) or an
+  // immovable body (a flat).
+  double mass;
+  // The peak contact pressure at which it yields (Pa); NaN for `C(nu) S_y`.
+  double yield_pressure;
+} BwcBody;
+
+// What two bodies give (SI units); NaN where a quantity does not exist (no yield, or an
+// immovable pair's yield speed).
+typedef struct BwcMaterialPair {
+  // Contact modulus `E*` (Pa).
+  double e_star;
+  // Relative radius `R*` (m).
+  double r_star;
+  // Effective mass `m*` (kg); INFINITY if neither body has a mass.
+  double m_star;
+  // Hertz stiffness `k` (N/m^(3/2)): Thornton's and Hunt-Crossley's `k`.
+  double k;
+  // The contact's yield pressure (Pa).
+  double p_y;
+  // The body that yields first: 1 or 2; 0 if neither does.
+  uint32_t yields_first;
+  // Penetration at the onset of yield (m): Thornton's `delta_y`.
+  double delta_y;
+  // Force at the onset of yield (N).
+  double force_y;
+  // Contact radius at the onset of yield (m).
+  double a_y;
+  // Impact speed at which the contact just yields (m/s).
+  double v_y;
+  // Time scale `(m*/k)^(2/5)` (s).
+  double t_b;
+} BwcMaterialPair;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -282,6 +334,26 @@ enum BwcStatus bwc_law_free(BwcLaw law);
 // # Safety
 // `out` points to a writable `BwcImpact` (NULL is an error).
 enum BwcStatus bwc_impact(BwcLaw law, double m, double v0, double force, struct BwcImpact *out);
+
+// The material of the table called `name` (NUL-terminated UTF-8: `"alumina"`,
+// `"aluminium-6061-t6"`, ...; the guide's reference of materials lists them with their
+// sources). An unknown name is `BWC_STATUS_INVALID_ARGUMENT`, the known ones in the last
+// error.
+//
+// # Safety
+// `name` is NUL-terminated; `out` points to a writable `BwcMaterial`.
+enum BwcStatus bwc_material(const char *name, struct BwcMaterial *out);
+
+// Two bodies' contact law: `E*`, `R*`, `m*`, the Hertz stiffness, the onset of yield and
+// Thornton's `delta_y` (pass `k` and `delta_y` to `bwc_contact_new_named("thornton", ...)`).
+// An inadmissible value is `BWC_STATUS_INVALID_ARGUMENT`, the body, the quantity and what is
+// admissible in the last error (a modulus that looks like GPa, a radius of two flats, ...).
+//
+// # Safety
+// `first` and `second` point to `BwcBody` values; `out` to a writable `BwcMaterialPair`.
+enum BwcStatus bwc_materials(const struct BwcBody *first,
+                             const struct BwcBody *second,
+                             struct BwcMaterialPair *out);
 
 // The message of the last failed call on this thread (UTF-8, NUL-terminated): the function,
 // the argument or parameter, its value and what is admissible. Empty before any failure.

@@ -181,7 +181,7 @@ pub unsafe extern "C" fn bwc_contact_new_named(
 ///
 /// # Safety
 /// A non-NULL `ptr` is NUL-terminated.
-unsafe fn text<'a>(ptr: *const c_char, name: &str) -> Result<&'a str, Failure> {
+pub(crate) unsafe fn text<'a>(ptr: *const c_char, name: &str) -> Result<&'a str, Failure> {
     if ptr.is_null() {
         return Err(Failure::new(
             BwcStatus::NullPointer,

@@ -47,6 +47,7 @@
 
 mod contact;
 mod law;
+mod materials;
 mod registry;
 mod status;
 
@@ -60,6 +61,7 @@ pub use law::{
     bwc_impact, bwc_law_free, bwc_law_from_base, bwc_law_new, BwcBaseParams, BwcImpact, BwcLaw,
     BwcLawParams, BWC_MODEL_MCM, BWC_MODEL_SHCCM,
 };
+pub use materials::{bwc_material, bwc_materials, BwcBody, BwcMaterial, BwcMaterialPair};
 pub use status::{bwc_last_error, BwcStatus};
 
 use std::ffi::c_char;

@@ -6,4 +6,5 @@
 mod c_example;
 mod errors;
 mod header;
+mod materials;
 mod named;

@@ -421,6 +421,32 @@ fn trajectory<'py>(
     Ok(out)
 }
 
+/// `bwc.materials`: the JSON text `bwc-identify materials --json` prints for a file or a dict
+/// with a `[materials]` table.
+#[pyfunction]
+#[pyo3(signature = (path=None, materials_json=None))]
+fn materials_json(
+    py: Python<'_>,
+    path: Option<PathBuf>,
+    materials_json: Option<&str>,
+) -> PyResult<String> {
+    use bwc_app::materials::{MaterialsReport, MaterialsSpec};
+    let spec = match (path, materials_json) {
+        (Some(p), _) => MaterialsSpec::load(&p).map_err(error)?,
+        (None, Some(j)) => {
+            let text = toml_text(j, "materials")?;
+            MaterialsSpec::parse(Path::new("<materials>"), &text).map_err(|e| {
+                BwcError::new_err(dict_errors::explain(&e, &text, Root::Dict("materials")))
+            })?
+        }
+        (None, None) => return Err(BwcError::new_err("materials: give a path or a dict")),
+    };
+    let report = py
+        .allow_threads(|| MaterialsReport::of(&spec))
+        .map_err(error)?;
+    Ok(report.json(&spec).to_string())
+}
+
 /// `bwc.identify`: the JSON text `bwc-identify run --json` prints for the config (with
 /// `seed`; without, the evaluation at each fit's `[fit.params]`, as `bwc-identify eval`).
 #[pyfunction]
@@ -674,6 +700,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("BwcError", m.py().get_type::<BwcError>())?;
     m.add("BwcWarning", m.py().get_type::<BwcWarning>())?;
     m.add_function(wrap_pyfunction!(cor, m)?)?;
+    m.add_function(wrap_pyfunction!(materials_json, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_json, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_file_json, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_chain_json, m)?)?;

@@ -7,12 +7,15 @@ mod describe;
 mod input;
 mod laws;
 mod solver;
+mod speeds;
 
 pub(crate) use context::{span, Ctx, Num};
 pub(crate) use describe::{base_json, settings_json, signal_json};
 pub(crate) use input::{signal, RawInput};
 pub(crate) use laws::{Mass, RawBase, RawPhysical};
 pub(crate) use solver::{solver_settings, RawSolver};
+pub use speeds::MAX_SPEEDS;
+pub(crate) use speeds::{speeds, RawRange, SeqOrMap, V0};
 
 use crate::AppError;
 use bw_models::{ModelKind, Physical, PhysicalParams};

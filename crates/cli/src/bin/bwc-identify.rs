@@ -16,7 +16,7 @@ use std::process::ExitCode;
     name = "bwc-identify",
     version,
     about = "Identify base parameters P* of the NDBWSHCCM / NDBWMCM from CoR and duration data",
-    after_help = "Examples:\n  bwc-identify run fixtures/kharaz.toml --out out/kharaz\n  bwc-identify run fixtures/villegas.toml --json --seed 7\n  bwc-identify eval fixtures/kharaz.toml   # costs at the paper's published vectors\n  bwc-identify coverage fixtures/tennis.toml --replicates 40\n  bwc-identify posterior fixtures/tennis.toml --fit \"Tennis NDBWSHCCM\" --out out/tennis"
+    after_help = "Examples:\n  bwc-identify run fixtures/kharaz.toml --out out/kharaz\n  bwc-identify run fixtures/villegas.toml --json --seed 7\n  bwc-identify eval fixtures/kharaz.toml   # costs at the paper's published vectors\n  bwc-identify coverage fixtures/tennis.toml --replicates 40\n  bwc-identify posterior fixtures/tennis.toml --fit \"Tennis NDBWSHCCM\" --out out/tennis\n  bwc-identify materials fixtures/materials/alumina_on_aluminium.toml"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -132,6 +132,18 @@ enum Command {
         #[arg(long, value_parser = clap::value_parser!(u64).range(1..=1024))]
         threads: Option<u64>,
     },
+    /// A law from materials and geometry: the [materials] table's two bodies, the Hertz
+    /// stiffness, the onset of yield (which body, at what pressure, penetration, force and
+    /// impact speed) and Thornton's elastic-plastic law, with its CoR, duration, deepest
+    /// penetration and peak force over the table's speeds.
+    Materials {
+        /// The file with a [materials] table (TOML).
+        file: PathBuf,
+        /// Print exactly one JSON object on stdout: {"bodies", "derived", "laws", "cor",
+        /// "units", "notes"}.
+        #[arg(long)]
+        json: bool,
+    },
     /// Evaluate the costs at each fit's [fit.params] without optimizing.
     Eval {
         /// The config file (TOML).
@@ -161,6 +173,7 @@ fn main() -> ExitCode {
             Some(seed),
             threads.map(|t| t as usize),
         ),
+        Command::Materials { file, json } => materials(&file, json),
         Command::Eval { config, out, json } => {
             run(&config, (out.as_deref(), None), json, None, None)
         }
@@ -272,6 +285,17 @@ fn run(
 
 /// The progress of a run's evaluations on stderr: hidden for JSON output and without a seed
 /// (where the number of evaluations is not planned).
+fn materials(path: &Path, json: bool) -> Result<(), AppError> {
+    let spec = bwc_app::materials::MaterialsSpec::load(path)?;
+    let report = bwc_app::materials::MaterialsReport::of(&spec)?;
+    if json {
+        bwc_app::out!("{}", report.json(&spec));
+    } else {
+        bwc_app::outp!("{}", report.text(&spec));
+    }
+    Ok(())
+}
+
 fn progress_bar(config: &Config, json: bool, seed: Option<u64>) -> ProgressBar {
     let total = seed.map_or(0, |_| bwc_app::fit::identify::planned_evaluations(config));
     let target = if json || seed.is_none() {

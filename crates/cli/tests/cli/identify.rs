@@ -1002,3 +1002,48 @@ fn a_fits_sigma_is_the_residual_standard_deviation_of_its_csv() {
     // The noise drawn: 6e-3 times the pattern's root mean square (0.92).
     assert!(sigma_e > 4e-3 && sigma_e < 8e-3, "{sigma_e}");
 }
+
+/// `bwc-identify materials`: one JSON object with the derived quantities, the laws and the CoR
+/// table, and a text report with units; a bad file exits non-zero naming its key.
+#[test]
+fn materials_prints_the_law_from_materials() {
+    let file = fixtures().join("alumina_on_aluminium.toml");
+    let file = file.to_str().unwrap();
+    let out = identify(&["materials", file, "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["derived"]["yields_first"], 2);
+    assert_eq!(v["bodies"][0]["material"], "alumina");
+    let thornton = &v["laws"]["thornton"];
+    assert_eq!(thornton["element"]["law"], "thornton");
+    let v_y = thornton["family"]["v_y"].as_f64().unwrap();
+    assert!((v_y - v["derived"]["v_y"].as_f64().unwrap()).abs() == 0.0);
+    let rows = v["cor"].as_array().unwrap();
+    assert_eq!(rows.len(), 12);
+    let e: Vec<f64> = rows.iter().map(|r| r["e"].as_f64().unwrap()).collect();
+    assert!(
+        e.windows(2).all(|w| w[1] < w[0]),
+        "e falls with speed: {e:?}"
+    );
+    let text = identify(&["materials", file]);
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(
+        text.contains("N/m^(3/2)") && text.contains("first in body 2"),
+        "{text}"
+    );
+
+    let dir = scratch("materials-bad");
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "[materials.body1]\nmaterial = \"steel\"\n").unwrap();
+    let out = identify(&["materials", bad.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && out.stdout.is_empty());
+    assert!(
+        err.contains("bad.toml:2") && err.contains("steel-aisi-1045"),
+        "{err}"
+    );
+}

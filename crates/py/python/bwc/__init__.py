@@ -29,6 +29,7 @@ from ._native import simulate_file_json as _simulate_file
 from ._native import simulate_chain_json as _simulate_chain
 from ._native import simulate_chains_json as _simulate_chains
 from ._native import posterior_json as _posterior
+from ._native import materials_json as _materials
 from ._native import Contact, Contacts, Step
 from ._results import Cor, Coverage, Fit, Identification, Params, Posterior, Posteriors, Result, Run
 from ._results import Simulation
@@ -57,6 +58,7 @@ __all__ = [
     "cor",
     "coverage",
     "identify",
+    "materials",
     "posterior",
     "simulate",
     "simulate_many",
@@ -502,6 +504,47 @@ def identify(config, *, seed=None, threads=None, checkpoint=None):
     value = _wrap(_json.loads(text), Identification, {"fits": Fit})
     _warn_fits(value["fits"])
     return value
+
+
+def materials(description):
+    """A law from materials and geometry, as ``bwc-identify materials --json`` derives it.
+
+    Parameters
+    ----------
+    description : str, os.PathLike or dict
+        A file with a ``[materials]`` table, or a dict ``{"materials": {"body1": {...},
+        "body2": {...}, "v0": [...]}}``. Each body names a ``material`` of the table and/or
+        gives ``youngs_modulus`` (Pa), ``poisson``, ``density`` (kg/m^3), ``yield_strength``
+        or ``yield_pressure`` (Pa), ``radius`` (m; absent for a flat) and ``mass`` (kg;
+        absent: a sphere's from its radius and density, or immovable for a flat).
+
+    Returns
+    -------
+    Result
+        ``bodies``, ``derived`` (``E_star``, ``R_star``, ``m_star``, ``k``, ``p_y``,
+        ``yields_first``, ``delta_y``, ``F_y``, ``a_y``, ``v_y``, ``T_b``), ``laws`` (the
+        Hertz and Thornton laws as :class:`Contact` and ``[[fit]]`` families take them),
+        ``cor`` (per speed ``v0``, ``e``, ``t_d``, ``delta_max``, ``F_max``, ``a_over_R``),
+        ``units`` and ``notes``.
+
+    Raises
+    ------
+    BwcError
+        An unknown material (the known ones listed) or an inadmissible value, named with its
+        key and what is admissible.
+
+    Examples
+    --------
+    >>> import bwc
+    >>> law = bwc.materials({"materials": {
+    ...     "body1": {"material": "alumina", "radius": 2.5e-3},
+    ...     "body2": {"material": "aluminium-6082-t6"}}})
+    >>> law.derived.yields_first, round(law.derived.v_y, 4)
+    (2, 0.0224)
+    >>> thornton = law.laws.thornton.element
+    >>> contact = bwc.Contact("thornton", {"k": thornton.k, "delta_y": thornton.delta_y})
+    """
+    return _wrap(_json.loads(_materials(**_source(description, "materials"))), Result, {})
 
 
 def coverage(config, *, replicates=40, first_seed=1, noise=None, fit=None, threads=None,

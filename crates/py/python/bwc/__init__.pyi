@@ -40,6 +40,7 @@ def identify(
     threads: Optional[int] = None,
     checkpoint: Optional[Union[str, os.PathLike]] = None,
 ) -> Identification: ...
+def materials(description: Union[str, os.PathLike, Mapping[str, Any]]) -> Result: ...
 def coverage(
     config: Union[str, os.PathLike, Mapping[str, Any]],
     *,

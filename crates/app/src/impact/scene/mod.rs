@@ -21,7 +21,7 @@ pub(crate) mod raw;
 mod sequence;
 
 use crate::tables::{
-    contact_law, model_kind, read_text, signal, solver_settings, span, syntax_error, Ctx,
+    contact_law, model_kind, read_text, signal, solver_settings, span, speeds, syntax_error, Ctx,
 };
 use bodies::bodies;
 pub use sequence::SequenceSpec;
@@ -154,10 +154,7 @@ pub struct OutputSpec {
     pub summary_runs: usize,
 }
 
-/// The most speeds a range `v0 = { from, to, count }` makes: a study streams its runs, so that
-/// only the speeds themselves (8 bytes each, and a sorted copy while a sweep is planned) grow
-/// with it.
-pub const MAX_SPEEDS: i64 = 100_000_000;
+pub use crate::tables::MAX_SPEEDS;
 
 /// The default `[output].summary_runs`: a `summary.json` of about 80 MB.
 pub const SUMMARY_RUNS: usize = 100_000;
@@ -217,7 +214,7 @@ impl Scene {
         };
         let described = description(&ctx, &raw)?;
         let sequence = sequence::sequence(&ctx, &raw)?;
-        let speeds = parse_speeds(&ctx, &raw)?;
+        let speeds = speeds(&ctx, &raw.v0)?;
         unused_keys(&ctx, &raw, &described, &speeds, sequence.is_some())?;
         let need_model = || {
             model.ok_or_else(|| {
@@ -441,75 +438,6 @@ fn physical_system(
         kind,
         system,
     })
-}
-
-fn parse_speeds(ctx: &Ctx, raw: &RawScene) -> Result<Vec<f64>, AppError> {
-    let Some(v) = &raw.v0 else {
-        return Ok(Vec::new());
-    };
-    let speeds = match v.get_ref() {
-        SeqOrMap::Seq(list) => {
-            if list.is_empty() {
-                return Err(ctx.invalid(&v.span(), "v0", "an empty list: give at least one speed"));
-            }
-            list.iter()
-                .map(|s| ctx.num(s, "v0"))
-                .collect::<Result<Vec<_>, _>>()?
-        }
-        SeqOrMap::Map(r) => {
-            let (from, to) = (ctx.num(&r.from, "v0.from")?, ctx.num(&r.to, "v0.to")?);
-            let count = *r.count.get_ref();
-            if !(1..=MAX_SPEEDS).contains(&count) {
-                return Err(ctx.invalid(
-                    &r.count.span(),
-                    "v0.count",
-                    format!("{count} is not admissible: 1 <= count <= {MAX_SPEEDS}"),
-                ));
-            }
-            if from <= 0.0 || to < from {
-                return Err(ctx.invalid(
-                    &r.from.span(),
-                    "v0.from",
-                    format!("from = {from}, to = {to}: need 0 < from <= to (m/s)"),
-                ));
-            }
-            let log = match r.spacing.as_ref().map(|s| s.get_ref().as_str()) {
-                None | Some("linear") => false,
-                Some("log") => true,
-                Some(other) => {
-                    let s = r.spacing.as_ref().map(|s| s.span()).unwrap_or_default();
-                    return Err(ctx.invalid(
-                        &s,
-                        "v0.spacing",
-                        format!("\"{other}\": use \"linear\" or \"log\""),
-                    ));
-                }
-            };
-            let n = count as usize;
-            (0..n)
-                .map(|i| {
-                    let f = if n == 1 {
-                        0.0
-                    } else {
-                        i as f64 / (n - 1) as f64
-                    };
-                    if log {
-                        from * (to / from).powf(f)
-                    } else {
-                        from + (to - from) * f
-                    }
-                })
-                .collect()
-        }
-    };
-    if let Some(bad) = speeds.iter().find(|s| **s <= 0.0) {
-        return Err(ctx.invalid(
-            &v.span(),
-            "v0",
-            format!("{bad} is not admissible: v0 > 0 (m/s)"),
-        ));
-    }
-    Ok(speeds)
 }
 
 fn base_system(

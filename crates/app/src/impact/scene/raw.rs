@@ -1,45 +1,13 @@
 //! The scene file as written: serde types that keep the span of every value, so that errors can
 //! name the line. Unknown keys are rejected by `deny_unknown_fields`.
 
-use serde::de::value::{MapAccessDeserializer, SeqAccessDeserializer};
-use serde::de::{MapAccess, SeqAccess, Visitor};
-use serde::{Deserialize, Deserializer};
-use std::fmt;
-use std::marker::PhantomData;
+use serde::Deserialize;
 use toml::Spanned;
 
 /// A number with its position in the file.
 pub(crate) use crate::tables::Num;
 pub(crate) use crate::tables::{Mass, RawBase, RawInput, RawPhysical, RawSolver};
-
-/// A value that is either an array (`S`) or a table (`M`), deserialized without buffering so
-/// that spans inside survive.
-#[derive(Debug)]
-pub enum SeqOrMap<S, M> {
-    /// An array.
-    Seq(S),
-    /// A table.
-    Map(M),
-}
-
-impl<'de, S: Deserialize<'de>, M: Deserialize<'de>> Deserialize<'de> for SeqOrMap<S, M> {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        struct V<S, M>(PhantomData<(S, M)>);
-        impl<'de, S: Deserialize<'de>, M: Deserialize<'de>> Visitor<'de> for V<S, M> {
-            type Value = SeqOrMap<S, M>;
-            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str("an array or a table")
-            }
-            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Self::Value, A::Error> {
-                S::deserialize(SeqAccessDeserializer::new(seq)).map(SeqOrMap::Seq)
-            }
-            fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<Self::Value, A::Error> {
-                M::deserialize(MapAccessDeserializer::new(map)).map(SeqOrMap::Map)
-            }
-        }
-        d.deserialize_any(V(PhantomData))
-    }
-}
+pub(crate) use crate::tables::{RawRange, SeqOrMap};
 
 /// The whole scene.
 #[derive(Debug, Deserialize)]
@@ -77,16 +45,6 @@ pub struct RawSequence {
     pub drag: Option<Num>,
     pub policy: Option<Spanned<String>>,
     pub m: Option<Num>,
-}
-
-/// `v0 = { from = 0.1, to = 6.0, count = 40, spacing = "log" }`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RawRange {
-    pub from: Num,
-    pub to: Num,
-    pub count: Spanned<i64>,
-    pub spacing: Option<Spanned<String>>,
 }
 
 #[derive(Debug, Deserialize)]

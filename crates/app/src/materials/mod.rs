@@ -1,0 +1,249 @@
+//! Laws from materials and geometry: a `[materials]` table ([`MaterialsSpec`]) and the document
+//! `bwc-identify materials` prints ([`MaterialsReport`]): the derived contact quantities, the
+//! Hertz and Thornton laws in the terms every front end takes, and Thornton's CoR, duration,
+//! deepest penetration and peak force over a range of impact speeds.
+//!
+//! ```
+//! use bwc_app::materials::{MaterialsReport, MaterialsSpec};
+//! let spec = MaterialsSpec::parse(std::path::Path::new("m.toml"), r#"
+//!     [materials.body1]
+//!     material = "alumina"
+//!     radius = 2.5e-3
+//!     [materials.body2]
+//!     material = "aluminium-6082-t6"
+//! "#)?;
+//! let report = MaterialsReport::of(&spec)?;
+//! assert_eq!(spec.pair.yields_first, Some(2));
+//! assert!(report.rows.iter().all(|r| r.e <= 1.0));
+//! # Ok::<(), bwc_app::AppError>(())
+//! ```
+
+mod file;
+
+pub use file::{BodySpec, MaterialsSpec};
+
+use crate::AppError;
+use bw_models::materials::MaterialPair;
+use bw_models::{family_impact, Family, FamilyParams, Settings};
+use serde_json::{json, Value};
+
+/// The largest contact radius, relative to `R*`, at which the small-strain contact theory the
+/// laws rest on is taken to hold.
+const SMALL_STRAIN: f64 = 0.3;
+
+/// One impact speed's outcome under Thornton's law (Hertz's where the contact does not yield).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct MaterialsRow {
+    /// The impact speed (m/s).
+    pub v0: f64,
+    /// The CoR.
+    pub e: f64,
+    /// The contact duration, onset to separation (s).
+    pub t_d: f64,
+    /// The deepest penetration (m).
+    pub delta_max: f64,
+    /// The peak force (N).
+    pub force_max: f64,
+    /// The contact radius at the deepest penetration over `R*`.
+    pub a_over_r: f64,
+}
+
+/// What `bwc-identify materials` prints.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct MaterialsReport {
+    /// The pair's derived quantities.
+    pub pair: MaterialPair,
+    /// The law by speed.
+    pub rows: Vec<MaterialsRow>,
+    /// Notes on the assumptions and on speeds outside the law's validity.
+    pub notes: Vec<String>,
+}
+
+impl MaterialsReport {
+    /// The laws and their CoR table for `spec`.
+    ///
+    /// # Errors
+    /// [`AppError::Simulation`] where an impact fails.
+    pub fn of(spec: &MaterialsSpec) -> Result<Self, AppError> {
+        let pair = spec.pair.clone();
+        let mut rows = Vec::with_capacity(spec.speeds.len());
+        for &v0 in &spec.speeds {
+            rows.push(row(spec, &pair, v0)?);
+        }
+        let mut notes = vec![
+            "Thornton (1997): elastic-perfectly-plastic, no strain hardening, no rate \
+             dependence; yield at the peak Hertz pressure C(nu) S_y (Jackson & Green 2005)"
+                .to_string(),
+        ];
+        if pair.p_y.is_none() {
+            notes.push("neither body yields: the law is Hertz's, elastic (e = 1)".to_string());
+        }
+        let beyond: Vec<String> = rows
+            .iter()
+            .filter(|r| r.a_over_r > SMALL_STRAIN)
+            .map(|r| format!("{}", r.v0))
+            .collect();
+        if !beyond.is_empty() {
+            notes.push(format!(
+                "at v0 = {} m/s the contact radius exceeds {SMALL_STRAIN} R*: beyond the \
+                 small-strain contact theory the law rests on (a/R* is in the table)",
+                beyond.join(", ")
+            ));
+        }
+        notes.extend(pair.hints.iter().cloned());
+        Ok(Self { pair, rows, notes })
+    }
+
+    /// The report as JSON: `bodies`, `derived`, `laws`, `cor`, `units`, `notes`.
+    pub fn json(&self, spec: &MaterialsSpec) -> Value {
+        let p = &self.pair;
+        let bodies: Vec<Value> = spec.bodies.iter().map(body_json).collect();
+        let rows: Vec<Value> = self
+            .rows
+            .iter()
+            .map(|r| {
+                json!({"v0": r.v0, "e": r.e, "t_d": r.t_d, "delta_max": r.delta_max,
+                       "F_max": r.force_max, "a_over_R": r.a_over_r})
+            })
+            .collect();
+        json!({
+            "bodies": bodies,
+            "derived": {
+                "E_star": p.e_star, "R_star": p.r_star, "m_star": finite(p.m_star), "k": p.k,
+                "p": 1.5, "p_y": p.p_y, "yields_first": p.yields_first, "delta_y": p.delta_y,
+                "F_y": p.force_y, "a_y": p.a_y, "v_y": p.v_y, "T_b": finite(p.t_b),
+            },
+            "laws": {
+                "hertz": {"element": {"law": "hunt-crossley", "k": p.k, "alpha": 0.0}},
+                "thornton": p.delta_y.map(|d| json!({
+                    "element": {"law": "thornton", "k": p.k, "delta_y": d},
+                    "family": {"model": "thornton", "v_y": p.v_y, "T_b": finite(p.t_b)},
+                })),
+            },
+            "cor": rows,
+            "units": units(),
+            "notes": self.notes,
+        })
+    }
+
+    /// The report as text: the derived quantities with units, the laws, the table.
+    pub fn text(&self, spec: &MaterialsSpec) -> String {
+        let p = &self.pair;
+        let mut out = format!("{}\n", spec.path.display());
+        for (i, b) in spec.bodies.iter().enumerate() {
+            let name = b.material.as_deref().unwrap_or("(own values)");
+            let shape = if b.body.radius.is_finite() {
+                format!("R = {:.6} m", b.body.radius)
+            } else {
+                "flat".to_string()
+            };
+            let mass = b
+                .body
+                .mass
+                .map_or("immovable".to_string(), |m| format!("m = {m:.6e} kg"));
+            out += &format!("  body {}: {name}, {shape}, {mass}\n", i + 1);
+        }
+        let opt =
+            |x: Option<f64>, unit: &str| x.map_or("-".to_string(), |x| format!("{x:.6e} {unit}"));
+        out += &format!(
+            "  E* = {:.6e} Pa, R* = {:.6e} m, m* = {:.6e} kg\n  Hertz: k = {:.6e} N/m^(3/2), p = 3/2\n",
+            p.e_star, p.r_star, p.m_star, p.k
+        );
+        out += &format!(
+            "  yield: p_y = {}, first in body {}, delta_y = {}, F_y = {}, a_y = {}, v_y = {}\n",
+            opt(p.p_y, "Pa"),
+            p.yields_first.map_or("-".to_string(), |i| i.to_string()),
+            opt(p.delta_y, "m"),
+            opt(p.force_y, "N"),
+            opt(p.a_y, "m"),
+            opt(p.v_y, "m/s"),
+        );
+        out += "  v0 (m/s)      e          t_d (s)       delta_max (m)  F_max (N)     a/R*\n";
+        for r in &self.rows {
+            out += &format!(
+                "  {:<12.6e}  {:<9.6}  {:<12.6e}  {:<13.6e}  {:<12.6e}  {:.4}\n",
+                r.v0, r.e, r.t_d, r.delta_max, r.force_max, r.a_over_r
+            );
+        }
+        for n in &self.notes {
+            out += &format!("  note: {n}\n");
+        }
+        out
+    }
+}
+
+/// `x`, or null where it is infinite (an immovable pair's mass).
+fn finite(x: f64) -> Value {
+    if x.is_finite() {
+        json!(x)
+    } else {
+        Value::Null
+    }
+}
+
+fn body_json(b: &BodySpec) -> Value {
+    let m = &b.body.material;
+    json!({
+        "material": b.material, "source": b.source, "own": b.own,
+        "youngs_modulus": m.youngs_modulus, "poisson": m.poisson, "density": m.density,
+        "yield_strength": m.yield_strength, "yield_pressure": b.body.yield_onset(),
+        "radius": finite(b.body.radius), "mass": b.body.mass,
+    })
+}
+
+/// The unit of every number of the JSON report, by key.
+pub fn units() -> Value {
+    json!({
+        "youngs_modulus": "Pa", "poisson": "-", "density": "kg/m^3", "yield_strength": "Pa",
+        "yield_pressure": "Pa", "radius": "m (null: a flat)", "mass": "kg (null: immovable)",
+        "E_star": "Pa", "R_star": "m", "m_star": "kg", "k": "N/m^(3/2)", "p": "-",
+        "p_y": "Pa", "yields_first": "body 1 or 2", "delta_y": "m", "F_y": "N", "a_y": "m",
+        "v_y": "m/s", "T_b": "s", "alpha": "s/m", "v0": "m/s", "e": "-", "t_d": "s",
+        "delta_max": "m", "F_max": "N", "a_over_R": "-",
+    })
+}
+
+/// Thornton's impact at `v0` (Hertz's below yield): `e` in closed form, the duration from the
+/// family's impact, the deepest penetration and the peak force from the energy balance
+/// `m* v0² / 2 = ∫ F dδ` over the loading.
+fn row(spec: &MaterialsSpec, p: &MaterialPair, v0: f64) -> Result<MaterialsRow, AppError> {
+    let settings = Settings::default();
+    let energy = 0.5 * p.m_star * v0 * v0;
+    let hertz_depth = |w: f64| (2.5 * w / p.k).powf(0.4);
+    let (family, param) = match p.v_y {
+        Some(v_y) => (Family::Thornton, v_y),
+        None => (Family::HuntCrossley, 0.0),
+    };
+    let law = FamilyParams {
+        family,
+        param,
+        t_b: p.t_b,
+    };
+    let cor = family_impact(&law, v0, &settings).map_err(|source| AppError::Simulation {
+        path: spec.path.clone(),
+        run: format!("v0 = {v0}"),
+        source,
+    })?;
+    let (delta_max, force_max) = match (p.delta_y, p.force_y) {
+        (Some(dy), Some(fy)) if energy > 0.4 * p.k * dy.powf(2.5) => {
+            let slope = 1.5 * p.k * dy.sqrt();
+            let rest = energy - 0.4 * p.k * dy.powf(2.5);
+            let beyond = ((fy * fy + 2.0 * slope * rest).sqrt() - fy) / slope;
+            (dy + beyond, fy + slope * beyond)
+        }
+        _ => {
+            let d = hertz_depth(energy);
+            (d, p.k * d.powf(1.5))
+        }
+    };
+    Ok(MaterialsRow {
+        v0,
+        e: law.closed_form_cor(v0).unwrap_or(cor.e),
+        t_d: cor.t_s.map_or(f64::NAN, |t| t * law.time_scale(v0)),
+        delta_max,
+        force_max,
+        a_over_r: (p.r_star * delta_max).sqrt() / p.r_star,
+    })
+}
