@@ -18,8 +18,13 @@
 //! # Ok::<(), bwc_app::AppError>(())
 //! ```
 
+mod bouc_wen;
 mod file;
 
+pub use bouc_wen::{
+    fit_to_reference, fit_toml, following_json, following_text, reference_csv, Following, FIT_TOML,
+    REFERENCE_CSV,
+};
 pub use file::{BodySpec, MaterialsSpec};
 
 use crate::AppError;

@@ -140,9 +140,19 @@ enum Command {
         /// The file with a [materials] table (TOML).
         file: PathBuf,
         /// Print exactly one JSON object on stdout: {"bodies", "derived", "laws", "cor",
-        /// "units", "notes"}.
+        /// "units", "notes"} (and "fits" with --fit).
         #[arg(long)]
         json: bool,
+        /// Fit the BWSHCCM and the BWMCM to the reference law's CoR and duration, writing the
+        /// dataset (reference.csv) and the config (fit.toml) into --out.
+        #[arg(long, requires = "out")]
+        fit: bool,
+        /// Directory for reference.csv and fit.toml (with --fit).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Seed of the fits.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
     },
     /// Evaluate the costs at each fit's [fit.params] without optimizing.
     Eval {
@@ -173,7 +183,13 @@ fn main() -> ExitCode {
             Some(seed),
             threads.map(|t| t as usize),
         ),
-        Command::Materials { file, json } => materials(&file, json),
+        Command::Materials {
+            file,
+            json,
+            fit,
+            out,
+            seed,
+        } => materials(&file, json, out.as_deref().filter(|_| fit), seed),
         Command::Eval { config, out, json } => {
             run(&config, (out.as_deref(), None), json, None, None)
         }
@@ -285,13 +301,28 @@ fn run(
 
 /// The progress of a run's evaluations on stderr: hidden for JSON output and without a seed
 /// (where the number of evaluations is not planned).
-fn materials(path: &Path, json: bool) -> Result<(), AppError> {
+fn materials(path: &Path, json: bool, fit: Option<&Path>, seed: u64) -> Result<(), AppError> {
+    use bwc_app::materials::{fit_to_reference, following_json, following_text};
     let spec = bwc_app::materials::MaterialsSpec::load(path)?;
     let report = bwc_app::materials::MaterialsReport::of(&spec)?;
+    if let Some(dir) = fit {
+        outdir::prepare(dir)?;
+    }
+    let fits = match fit {
+        Some(dir) => fit_to_reference(dir, &spec, &report, seed)?,
+        None => Vec::new(),
+    };
     if json {
-        bwc_app::out!("{}", report.json(&spec));
+        let mut v = report.json(&spec);
+        if fit.is_some() {
+            v["fits"] = fits.iter().map(following_json).collect();
+        }
+        bwc_app::out!("{v}");
     } else {
         bwc_app::outp!("{}", report.text(&spec));
+        for f in &fits {
+            bwc_app::outp!("{}\n", following_text(f));
+        }
     }
     Ok(())
 }

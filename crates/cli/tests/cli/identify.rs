@@ -1047,3 +1047,64 @@ fn materials_prints_the_law_from_materials() {
         "{err}"
     );
 }
+
+/// `bwc-identify materials --fit`: the BWSHCCM fitted to Thornton's law from materials
+/// follows its CoR and duration, and its SI law (with the pair's mass), simulated in SI
+/// units, rebounds at Thornton's closed form.
+#[test]
+fn materials_fit_gives_a_bouc_wen_law_that_follows_the_reference() {
+    use bw_models::{impact, input::Zero, Bwshccm, ModelKind, Physical, PhysicalParams, Settings};
+    let dir = scratch("materials-fit");
+    let file = fixtures().join("alumina_on_aluminium.toml");
+    let out_dir = dir.join("out");
+    let out = identify(&[
+        "materials",
+        file.to_str().unwrap(),
+        "--fit",
+        "--out",
+        out_dir.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(out_dir.join("reference.csv").exists() && out_dir.join("fit.toml").exists());
+    let fits = v["fits"].as_array().unwrap();
+    assert_eq!(fits.len(), 2);
+    let shccm = &fits[0];
+    assert_eq!(shccm["model"], "shccm");
+    let (de, dt) = (
+        shccm["e_error"].as_f64().unwrap(),
+        shccm["t_d_error"].as_f64().unwrap(),
+    );
+    assert!(de < 0.01 && dt < 0.01, "{de} {dt}");
+    let si = &shccm["SI"];
+    let m = si["m"].as_f64().unwrap();
+    assert!((m / v["derived"]["m_star"].as_f64().unwrap() - 1.0).abs() < 1e-12);
+    let num = |k: &str| si[k].as_f64().unwrap();
+    let law = Physical {
+        k: num("k"),
+        c: num("c"),
+        n: num("n"),
+        p: num("p"),
+        alpha: num("alpha"),
+        beta: num("beta"),
+        gamma: num("gamma"),
+        a: num("A"),
+    };
+    let params = PhysicalParams::new(ModelKind::Shccm, law).unwrap();
+    let (v0, v_y) = (1.0, v["derived"]["v_y"].as_f64().unwrap());
+    let model = Bwshccm::new(&params, m, v0, Zero).unwrap();
+    let e = impact(&model, &Settings::default()).unwrap().cor().e;
+    let r = v_y / v0;
+    let thornton = (6.0 * 3f64.sqrt() / 5.0).sqrt()
+        * (1.0 - r * r / 6.0).sqrt()
+        * (r / (r + 2.0 * (1.2 - 0.2 * r * r).sqrt())).powf(0.25);
+    assert!(
+        (e - thornton).abs() < de + 1e-9,
+        "SI law e {e} vs Thornton {thornton}"
+    );
+}

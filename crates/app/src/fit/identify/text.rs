@@ -51,7 +51,7 @@ pub fn fit_text(r: &FitReport, tolerance: f64) -> String {
     if let Some(Ok(u)) = &r.uncertainty {
         let iv: Vec<String> = (u.params.iter())
             .map(|(n, i)| match i {
-                Some([lo, hi]) => format!("{n} [{lo:.4}, {hi:.4}]"),
+                Some([lo, hi]) => format!("{n} [{}, {}]", bound_text(*lo), bound_text(*hi)),
                 None => format!("{n} on its bound"),
             })
             .collect();
@@ -149,4 +149,25 @@ pub fn posterior_text(r: &PosteriorReport) -> String {
         );
     }
     t
+}
+
+/// An interval's end: four decimals, or four significant digits where those would round a
+/// small value away (a `T_b` of microseconds).
+fn bound_text(x: f64) -> String {
+    if x == 0.0 || x.abs() >= 0.01 {
+        format!("{x:.4}")
+    } else {
+        format!("{x:.4e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// A duration scale of microseconds keeps its digits (it printed as `[0.0000, 0.0000]`).
+    #[test]
+    fn small_interval_ends_keep_their_digits() {
+        assert_eq!(super::bound_text(7.0727e-6), "7.0727e-6");
+        assert_eq!(super::bound_text(-14.75286), "-14.7529");
+        assert_eq!(super::bound_text(0.0), "0.0000");
+    }
 }
