@@ -9,8 +9,10 @@ use crate::element::{ContactElement, ElementSettings, ElementStep, Penetration};
 use crate::error::ModelError;
 use crate::families::{HuntCrossleyLaw, KelvinVoigtLaw, ThorntonLaw};
 use crate::law_spec::{law_spec, LawSpec, NamedLaw};
+use crate::laws::ContactLaw;
 use crate::laws::{Bwmcl, Bwshccl};
 use crate::params::{ModelKind, PhysicalParams};
+use bwc_ode::State;
 
 macro_rules! element_laws {
     ($($(#[doc = $doc:literal])* $variant:ident($law:ty, $n:literal)),* $(,)?) => {
@@ -33,6 +35,75 @@ macro_rules! element_laws {
 
         /// Every law an [`AnyContactElement`] can hold, in the order of its variants.
         pub const ELEMENT_LAWS: &[&LawSpec] = &[$(&<$law as NamedLaw<$n>>::SPEC),*];
+
+        /// One of the registered laws ([`ELEMENT_LAWS`]) by value, its state a slice of up to
+        /// three displacements (m): what a chain's pair holds.
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        #[non_exhaustive]
+        pub enum AnyLaw {
+            $($(#[doc = $doc])* $variant($law),)*
+        }
+
+        impl AnyLaw {
+            /// The law called `name` with its parameters as (name, value) pairs.
+            ///
+            /// # Errors
+            /// As [`AnyContactElement::of_law`].
+            pub fn of_law(name: &str, params: &[(&str, f64)]) -> Result<Self, ModelError> {
+                let spec = law_spec(name)?;
+                let values = spec.values(params)?;
+                $(
+                    if spec.name == <$law as NamedLaw<$n>>::SPEC.name {
+                        return Ok(Self::$variant(<$law as NamedLaw<$n>>::of_values(&values)?));
+                    }
+                )*
+                Err(ModelError::NotApplicable {
+                    reason: "a law in ELEMENT_LAWS without its variant",
+                })
+            }
+
+            /// The law's description.
+            pub fn spec(&self) -> &'static LawSpec {
+                match self {
+                    $(Self::$variant(_) => &<$law as NamedLaw<$n>>::SPEC,)*
+                }
+            }
+
+            /// The state rate (zero past the law's states), the force `F` (N) and the
+            /// dissipation rate (W) at `s` (the law's states first) with input `u` (m/s).
+            #[inline]
+            pub fn eval(&self, s: &[f64], u: f64) -> ([f64; 3], f64, f64) {
+                match self {
+                    $(Self::$variant(law) => {
+                        let st = State::<$n>::from_fn(|i, _| s[i]);
+                        let (rate, f) = ContactLaw::eval(law, &st, u);
+                        let d = ContactLaw::dissipation(law, &st, u, &rate, f);
+                        let out = std::array::from_fn(|i| if i < $n { rate[i] } else { 0.0 });
+                        (out, f, d)
+                    })*
+                }
+            }
+
+            /// The energy stored at `s` (J) ([`ContactLaw::stored`]).
+            #[inline]
+            pub fn stored(&self, s: &[f64]) -> f64 {
+                match self {
+                    $(Self::$variant(law) => {
+                        ContactLaw::stored(law, &State::<$n>::from_fn(|i, _| s[i]))
+                    })*
+                }
+            }
+
+            /// The law's non-smooth points at `s` with input `u` ([`ContactLaw::kinks`]).
+            #[inline]
+            pub fn kinks(&self, s: &[f64], u: f64) -> [f64; 2] {
+                match self {
+                    $(Self::$variant(law) => {
+                        ContactLaw::kinks(law, &State::<$n>::from_fn(|i, _| s[i]), u)
+                    })*
+                }
+            }
+        }
 
         /// `$body` with `$e` bound to the element, whichever law it holds.
         macro_rules! each {
@@ -90,6 +161,19 @@ element_laws! {
     KelvinVoigt(KelvinVoigtLaw, 1),
     /// Thornton's elastic-perfectly-plastic sphere's element (states x, x_m).
     Thornton(ThorntonLaw, 2),
+}
+
+impl AnyLaw {
+    /// The Bouc-Wen law that validated parameters describe.
+    ///
+    /// # Errors
+    /// None for validated parameters (either model's law is built).
+    pub fn new(params: &PhysicalParams) -> Result<Self, ModelError> {
+        Ok(match params.kind() {
+            ModelKind::Shccm => Self::Shccm(Bwshccl::new(params)?),
+            ModelKind::Mcm => Self::Mcm(Bwmcl::new(params)?),
+        })
+    }
 }
 
 impl AnyContactElement {

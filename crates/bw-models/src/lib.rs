@@ -74,7 +74,7 @@ mod settings;
 mod simulate;
 pub mod sweep;
 
-pub use any_element::AnyContactElement;
+pub use any_element::{AnyContactElement, AnyLaw};
 pub use bodies::{Bodies, BodyMotion, ComRhs, Motion, RelativeInput};
 pub use cor::{impact, impact_at, impact_double_double};
 pub use element::{ContactElement, ElementSettings, ElementStep, Penetration, Remedy};

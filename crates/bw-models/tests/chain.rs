@@ -571,3 +571,26 @@ fn a_damped_contacts_peak_force_is_found_inside_a_step() {
     let t_peak = i as f64 * h;
     assert!((contact.peak_at - contact.onset - t_peak).abs() < 2.0 * h);
 }
+
+/// A pair of any registered law: two equal balls, one at rest, the other meeting it at `v`,
+/// joined by Thornton's law (by name). In the centre-of-mass frame the impact is a body of
+/// the effective mass `m/2` meeting the law at `v`, so the relative rebound speed is
+/// Thornton's closed form at `r = v_y / v`, `(5/4) (m/2) v_y² = k δ_y^(5/2)`.
+#[test]
+fn a_pair_of_a_law_by_name_rebounds_at_its_closed_form() {
+    let (m, v, k, r) = (0.01f64, 1.0f64, 1e9f64, 0.2f64);
+    let delta_y = (1.25 * 0.5 * m * (r * v).powi(2) / k).powf(0.4);
+    let law = PairLaw::of_law("thornton", &[("k", k), ("delta_y", delta_y)]).unwrap();
+    assert_eq!(law.spec().states, ["x", "x_m"]);
+    let bodies = vec![
+        ChainBody::new(m, 0.0, v, 0.01, Constant(0.0)),
+        ChainBody::new(m, 0.01, 0.0, 0.01, Constant(0.0)),
+    ];
+    let chain = Chain::new(bodies, vec![law], Walls::default(), tight()).unwrap();
+    let run = chain.run(Stop::at(1e-3), None, |_| {}).unwrap();
+    let e = run.contacts[0].rebound().unwrap();
+    let want = (6.0 * 3f64.sqrt() / 5.0).sqrt()
+        * (1.0 - r * r / 6.0).sqrt()
+        * (r / (r + 2.0 * (1.2 - 0.2 * r * r).sqrt())).powf(0.25);
+    assert!((e - want).abs() < 1e-8, "e {e} vs Thornton {want}");
+}

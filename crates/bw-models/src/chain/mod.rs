@@ -55,9 +55,9 @@ mod system;
 
 pub use crate::error::ChainPart;
 use crate::input::Input;
-use crate::params::{ModelKind, PhysicalParams};
+
 use crate::sequence::Policy;
-use crate::{Bwmcl, Bwshccl, ModelError};
+use crate::ModelError;
 
 pub use run::{ChainRun, ContactRecord, FinalBody, Ledger, Sample};
 
@@ -91,27 +91,9 @@ impl<I> ChainBody<I> {
     }
 }
 
-/// The contact law of one pair: either model, in SI units.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum PairLaw {
-    /// The Bouc-Wen-Simon-Hunt-Crossley law (states `x`, `z`).
-    Shccm(Bwshccl),
-    /// The Bouc-Wen-Maxwell law (states `r`, `y`, `z`).
-    Mcm(Bwmcl),
-}
-
-impl PairLaw {
-    /// The law of `params`, of its model.
-    ///
-    /// # Errors
-    /// None for validated parameters (the law takes either model).
-    pub fn new(params: &PhysicalParams) -> Result<Self, ModelError> {
-        Ok(match params.kind() {
-            ModelKind::Shccm => Self::Shccm(Bwshccl::new(params)?),
-            ModelKind::Mcm => Self::Mcm(Bwmcl::new(params)?),
-        })
-    }
-}
+/// The contact law of one pair, in SI units: any registered law ([`crate::AnyLaw`]); a
+/// Bouc-Wen law from validated parameters by [`PairLaw::new`].
+pub type PairLaw = crate::AnyLaw;
 
 /// Fixed walls at the ends of a chain: the position of each wall's face (m), if there is one.
 /// A wall does not move.

@@ -15,8 +15,6 @@
 use super::free::Motion;
 use super::PairLaw;
 use crate::input::Input;
-use crate::laws::ContactLaw;
-use crate::State;
 use bwc_ode::FlatSystem;
 
 /// Slot length of a pair's law in the state.
@@ -27,45 +25,10 @@ pub(super) const DISSIPATED: usize = 3;
 pub(super) const NONE: usize = usize::MAX;
 
 impl PairLaw {
-    /// The law's state rate, force (N) and dissipation rate (W) at `s` with input `u`.
-    #[inline]
-    pub(super) fn eval(&self, s: &[f64], u: f64) -> ([f64; 3], f64, f64) {
-        match self {
-            PairLaw::Shccm(law) => {
-                let st = State::<2>::new(s[0], s[1]);
-                let (rate, f) = law.eval(&st, u);
-                let d = ContactLaw::dissipation(law, &st, u, &rate, f);
-                ([rate[0], rate[1], 0.0], f, d)
-            }
-            PairLaw::Mcm(law) => {
-                let st = State::<3>::new(s[0], s[1], s[2]);
-                let (rate, f) = law.eval(&st, u);
-                let d = ContactLaw::dissipation(law, &st, u, &rate, f);
-                ([rate[0], rate[1], rate[2]], f, d)
-            }
-        }
-    }
-
     /// The force (N) at `s` with input `u`.
     #[inline]
     pub(super) fn force(&self, s: &[f64], u: f64) -> f64 {
         self.eval(s, u).1
-    }
-
-    /// The energy stored at `s` (J).
-    pub(super) fn stored(&self, s: &[f64]) -> f64 {
-        match self {
-            PairLaw::Shccm(law) => ContactLaw::stored(law, &State::<2>::new(s[0], s[1])),
-            PairLaw::Mcm(law) => ContactLaw::stored(law, &State::<3>::new(s[0], s[1], s[2])),
-        }
-    }
-
-    /// The law's non-smooth points at `s` with input `u` ([`ContactLaw::kinks`]).
-    pub(super) fn kinks(&self, s: &[f64], u: f64) -> [f64; 2] {
-        match self {
-            PairLaw::Shccm(law) => ContactLaw::kinks(law, &State::<2>::new(s[0], s[1]), u),
-            PairLaw::Mcm(law) => ContactLaw::kinks(law, &State::<3>::new(s[0], s[1], s[2]), u),
-        }
     }
 }
 
