@@ -136,24 +136,7 @@ enum Command {
     /// stiffness, the onset of yield (which body, at what pressure, penetration, force and
     /// impact speed) and Thornton's elastic-plastic law, with its CoR, duration, deepest
     /// penetration and peak force over the table's speeds.
-    Materials {
-        /// The file with a [materials] table (TOML).
-        file: PathBuf,
-        /// Print exactly one JSON object on stdout: {"bodies", "derived", "laws", "cor",
-        /// "units", "notes"} (and "fits" with --fit).
-        #[arg(long)]
-        json: bool,
-        /// Fit the BWSHCCM and the BWMCM to the reference law's CoR and duration, writing the
-        /// dataset (reference.csv) and the config (fit.toml) into --out.
-        #[arg(long, requires = "out")]
-        fit: bool,
-        /// Directory for reference.csv and fit.toml (with --fit).
-        #[arg(long)]
-        out: Option<PathBuf>,
-        /// Seed of the fits.
-        #[arg(long, default_value_t = 0)]
-        seed: u64,
-    },
+    Materials(MaterialsArgs),
     /// Evaluate the costs at each fit's [fit.params] without optimizing.
     Eval {
         /// The config file (TOML).
@@ -165,6 +148,27 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+}
+
+/// The arguments of `bwc-identify materials`.
+#[derive(clap::Args)]
+struct MaterialsArgs {
+    /// The file with a [materials] table (TOML).
+    file: PathBuf,
+    /// Print exactly one JSON object on stdout: {"bodies", "derived", "laws", "cor",
+    /// "units", "notes"} (and "fits" with --fit).
+    #[arg(long)]
+    json: bool,
+    /// Fit the BWSHCCM and the BWMCM to the reference law's CoR and duration, writing the
+    /// dataset (reference.csv) and the config (fit.toml) into --out.
+    #[arg(long, requires = "out")]
+    fit: bool,
+    /// Directory for reference.csv and fit.toml (with --fit).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Seed of the fits.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
 }
 
 fn main() -> ExitCode {
@@ -183,13 +187,7 @@ fn main() -> ExitCode {
             Some(seed),
             threads.map(|t| t as usize),
         ),
-        Command::Materials {
-            file,
-            json,
-            fit,
-            out,
-            seed,
-        } => materials(&file, json, out.as_deref().filter(|_| fit), seed),
+        Command::Materials(args) => materials(&args),
         Command::Eval { config, out, json } => {
             run(&config, (out.as_deref(), None), json, None, None)
         }
@@ -301,9 +299,11 @@ fn run(
 
 /// The progress of a run's evaluations on stderr: hidden for JSON output and without a seed
 /// (where the number of evaluations is not planned).
-fn materials(path: &Path, json: bool, fit: Option<&Path>, seed: u64) -> Result<(), AppError> {
+fn materials(args: &MaterialsArgs) -> Result<(), AppError> {
     use bwc_app::materials::{fit_to_reference, following_json, following_text};
-    let spec = bwc_app::materials::MaterialsSpec::load(path)?;
+    let (json, seed) = (args.json, args.seed);
+    let fit = args.out.as_deref().filter(|_| args.fit);
+    let spec = bwc_app::materials::MaterialsSpec::load(&args.file)?;
     let report = bwc_app::materials::MaterialsReport::of(&spec)?;
     if let Some(dir) = fit {
         outdir::prepare(dir)?;
