@@ -171,7 +171,7 @@ pub fn summary(scene: &ChainScene, out: &ChainOutcome) -> Value {
             "horizon_s": scene.stop.horizon,
             "policy": format!("{:?}", scene.settings.policy).to_lowercase(),
             "walls": { "left_m": scene.walls.left, "right_m": scene.walls.right },
-            "models": scene.models.iter().map(|m| m.name()).collect::<Vec<_>>(),
+            "models": scene.models,
             "bodies": bodies,
             "momentum_kg_m_s": momentum,
             "contacts": contacts,
@@ -206,7 +206,7 @@ fn describe(scene: &ChainScene) -> Value {
         "bodies": scene.bodies.len(),
         "pairs": scene.laws.len(),
         "walls": { "left_m": scene.walls.left, "right_m": scene.walls.right },
-        "models": scene.models.iter().map(|m| m.name()).collect::<Vec<_>>(),
+        "models": scene.models,
         "solver": {
             "method": "dop853",
             "rtol": scene.settings.rtol,

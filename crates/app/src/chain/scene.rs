@@ -2,7 +2,7 @@
 //! law for every pair (`[physical]`) or one per pair (`[[chain.pair]]`), walls as end bodies of
 //! infinite mass.
 
-use super::laws::{laws, LawTables, RawChainPair};
+use super::laws::{laws, LawTables, RawChainPair, RawLaw};
 use crate::signal::Signal;
 use crate::tables::{every_error, RawInput};
 use crate::tables::{model_kind, read_text, signal, span, syntax_error, Ctx, Num};
@@ -11,7 +11,6 @@ use crate::AppError;
 use bw_models::chain::{ChainBody, ChainSettings, PairLaw, Stop, Walls};
 use bw_models::input::Input;
 use bw_models::sequence::Policy;
-use bw_models::ModelKind;
 use serde::de::{self, SeqAccess, Visitor};
 use serde::{Deserialize, Deserializer};
 use std::fmt;
@@ -114,6 +113,7 @@ struct RawChain {
     policy: Option<Spanned<String>>,
     body: Option<Vec<Spanned<RawChainBody>>>,
     pair: Option<Vec<Spanned<RawChainPair>>>,
+    law: Option<Spanned<RawLaw>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -150,8 +150,8 @@ pub struct ChainScene {
     pub bodies: Vec<ChainBody<Signal>>,
     /// The contact law of every pair, left to right (a left wall's pair first).
     pub laws: Vec<PairLaw>,
-    /// The model of each pair's law.
-    pub models: Vec<ModelKind>,
+    /// The name of each pair's law (`"shccm"`, `"mcm"`, or another element law's).
+    pub models: Vec<&'static str>,
     /// The walls.
     pub walls: Walls,
     /// Tolerances and policy.
@@ -227,6 +227,7 @@ impl ChainScene {
             physical: &raw.physical,
             base: &raw.base,
             pairs: &c.pair,
+            law: &c.law,
             chain: t.clone(),
         };
         let (laws, models) = laws(&ctx, &tables, model, &pair_masses(&bodies, walls, pairs))?;

@@ -384,3 +384,50 @@ fn an_elastic_cradle_settles_despite_rounding_drift() {
     let last = &v["chain"]["bodies"][4];
     assert!((last["velocity_m_s"].as_f64().unwrap() - 1.0).abs() < 1e-9);
 }
+
+/// A chain's law by name (`[chain.law]`, `[[chain.pair]] law = {...}`): two equal balls, one
+/// at rest, the other meeting it at 1 m/s, Thornton's law between them; the rebound ratio is
+/// his closed form at `r = v_y / v`, `(5/4) (m/2) v_y² = k δ_y^(5/2)`. Mistakes name the key.
+#[test]
+fn a_chain_law_by_name_rebounds_at_its_closed_form() {
+    let (m, k, r) = (0.01f64, 1e9f64, 0.2f64);
+    let delta_y = (1.25 * 0.5 * m * r * r / k).powf(0.4);
+    let chain = format!(
+        "[chain]\nhorizon = 1e-3\nmass = {m}\nposition = [0.0, 0.01]\nlength = 0.01\n\
+         velocity = [1.0, 0.0]\n[solver]\nrtol = 1e-12\natol = 1e-17\n"
+    );
+    let want = (6.0 * 3f64.sqrt() / 5.0).sqrt()
+        * (1.0 - r * r / 6.0).sqrt()
+        * (r / (r + 2.0 * (1.2 - 0.2 * r * r).sqrt())).powf(0.25);
+    let dir = scratch("chain-named");
+    let law = format!("model = \"thornton\", k = {k:?}, delta_y = {delta_y:?}");
+    for (name, laws) in [
+        ("all", format!("[chain.law]\n{}\n", law.replace(", ", "\n"))),
+        ("pair", format!("[[chain.pair]]\nlaw = {{ {law} }}\n")),
+    ] {
+        let scene = dir.join(format!("{name}.toml"));
+        std::fs::write(&scene, format!("{chain}{laws}")).unwrap();
+        let v = json(&simulate(&["run", scene.to_str().unwrap(), "--json"]));
+        let rebound = v["chain"]["contacts"][0]["rebound"].as_f64().unwrap();
+        assert!((rebound - want).abs() < 1e-8, "{name}: {rebound} vs {want}");
+        assert_eq!(v["scene"]["models"][0], "thornton", "{name}");
+    }
+    rejects(
+        "chain-law-unknown",
+        &format!("{chain}[chain.law]\nmodel = \"hertz\"\nk = 1e9\n"),
+        Some(11),
+        &["[chain.law].model", "`hertz`", "thornton"],
+    );
+    rejects(
+        "chain-law-missing",
+        &format!("{chain}[chain.law]\nmodel = \"thornton\"\nk = 1e9\n"),
+        Some(10),
+        &["[chain.law].delta_y", "is missing", "k, delta_y"],
+    );
+    rejects(
+        "chain-law-bad",
+        &format!("{chain}[chain.law]\nmodel = \"thornton\"\nk = 1e9\ndelta_y = -1.0\n"),
+        Some(13),
+        &["[chain.law].delta_y", "delta_y > 0 (m)"],
+    );
+}
