@@ -22,7 +22,7 @@ fn expect(status: BwcStatus, want: BwcStatus, words: &[&str]) {
 }
 
 /// Table 4's BWSHCCM.
-fn shccm() -> BwcLawParams {
+pub(crate) fn shccm() -> BwcLawParams {
     let l = bw_models::published::CROSS_BWSHCCM;
     BwcLawParams {
         model: BWC_MODEL_SHCCM,

@@ -65,17 +65,7 @@ fn force_after(contact: BwcContact, steps: usize) -> f64 {
 #[test]
 fn a_law_by_name_is_the_law_from_its_handle() {
     let l = bw_models::published::CROSS_BWSHCCM;
-    let params = BwcLawParams {
-        model: BWC_MODEL_SHCCM,
-        k: l.k,
-        c: l.c,
-        n: l.n,
-        p: l.p,
-        alpha: l.alpha,
-        beta: l.beta,
-        gamma: l.gamma,
-        a: l.a,
-    };
+    let params = super::errors::shccm();
     let (mut law, mut by_handle) = (0, 0);
     // SAFETY: live pointers.
     unsafe {

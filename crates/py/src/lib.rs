@@ -424,13 +424,15 @@ fn trajectory<'py>(
 /// `bwc.materials`: the JSON text `bwc-identify materials --json` prints for a file or a dict
 /// with a `[materials]` table.
 #[pyfunction]
-#[pyo3(signature = (path=None, materials_json=None))]
+#[pyo3(signature = (path=None, materials_json=None, out=None, seed=0))]
 fn materials_json(
     py: Python<'_>,
     path: Option<PathBuf>,
     materials_json: Option<&str>,
+    out: Option<PathBuf>,
+    seed: u64,
 ) -> PyResult<String> {
-    use bwc_app::materials::{MaterialsReport, MaterialsSpec};
+    use bwc_app::materials::{fit_to_reference, following_json, MaterialsReport, MaterialsSpec};
     let spec = match (path, materials_json) {
         (Some(p), _) => MaterialsSpec::load(&p).map_err(error)?,
         (None, Some(j)) => {
@@ -444,7 +446,17 @@ fn materials_json(
     let report = py
         .allow_threads(|| MaterialsReport::of(&spec))
         .map_err(error)?;
-    Ok(report.json(&spec).to_string())
+    let mut json = report.json(&spec);
+    if let Some(dir) = out {
+        let fits = py
+            .allow_threads(|| {
+                bwc_app::outdir::prepare(&dir)?;
+                fit_to_reference(&dir, &spec, &report, seed)
+            })
+            .map_err(error)?;
+        json["fits"] = fits.iter().map(following_json).collect();
+    }
+    Ok(json.to_string())
 }
 
 /// `bwc.identify`: the JSON text `bwc-identify run --json` prints for the config (with

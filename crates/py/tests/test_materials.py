@@ -2,11 +2,13 @@
 here, and its Thornton law used as a contact element whose host rebounds at the predicted CoR."""
 
 import math
+import pathlib
 
 import pytest
 
 import bwc
 
+FIXTURE = pathlib.Path(__file__).resolve().parents[3] / "fixtures" / "alumina_on_aluminium.toml"
 SPHERE = {"material": "alumina", "radius": 2.5e-3}
 PLATE = {"material": "aluminium-6061-t6"}
 
@@ -49,3 +51,16 @@ def test_bad_materials_are_named():
         bwc.materials({"materials": {"body1": {**SPHERE, "material": "alumna"}, "body2": PLATE}})
     with pytest.raises(bwc.BwcError, match="poisson.*-1 < nu < 0.5"):
         bwc.materials({"materials": {"body1": SPHERE, "body2": {**PLATE, "poisson": 0.6}}})
+
+
+def test_a_bouc_wen_law_fitted_to_the_law_from_materials(tmp_path):
+    law = bwc.materials(FIXTURE, fit=tmp_path)
+    shccm = law.fits[0]
+    assert shccm.model == "shccm" and shccm.e_error < 0.01 and shccm.t_d_error < 0.01
+    assert math.isclose(shccm.SI.m, law.derived.m_star, rel_tol=1e-12)
+    assert (tmp_path / "reference.csv").exists() and (tmp_path / "fit.toml").exists()
+    # Its SI law simulated by bwc.cor rebounds within the fit's error of Thornton's table.
+    si = {key: shccm.SI[key] for key in ["m", "k", "c", "n", "p", "alpha", "beta", "gamma", "A"]}
+    row = law.cor[6]
+    e = float(bwc.cor("shccm", si, row.v0).e)
+    assert abs(e - row.e) <= shccm.e_error + 1e-9, (e, row.e)

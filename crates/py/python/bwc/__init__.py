@@ -506,7 +506,7 @@ def identify(config, *, seed=None, threads=None, checkpoint=None):
     return value
 
 
-def materials(description):
+def materials(description, *, fit=None, seed=0):
     """A law from materials and geometry, as ``bwc-identify materials --json`` derives it.
 
     Parameters
@@ -517,6 +517,12 @@ def materials(description):
         gives ``youngs_modulus`` (Pa), ``poisson``, ``density`` (kg/m^3), ``yield_strength``
         or ``yield_pressure`` (Pa), ``radius`` (m; absent for a flat) and ``mass`` (kg;
         absent: a sphere's from its radius and density, or immovable for a flat).
+    fit : str or os.PathLike, optional
+        A folder: the BWSHCCM and the BWMCM are fitted to the reference law's CoR and
+        duration, as ``bwc-identify materials --fit --out`` does, and ``reference.csv``,
+        ``fit.toml`` and ``summary.json`` written there.
+    seed : int, default 0
+        The fits' seed.
 
     Returns
     -------
@@ -525,7 +531,8 @@ def materials(description):
         ``yields_first``, ``delta_y``, ``F_y``, ``a_y``, ``v_y``, ``T_b``), ``laws`` (the
         Hertz and Thornton laws as :class:`Contact` and ``[[fit]]`` families take them),
         ``cor`` (per speed ``v0``, ``e``, ``t_d``, ``delta_max``, ``F_max``, ``a_over_R``),
-        ``units`` and ``notes``.
+        ``units`` and ``notes``; with ``fit``, ``fits`` (per model ``params``, its ``SI`` law
+        and mass, ``e_error``, ``t_d_error``, ``stops_following``).
 
     Raises
     ------
@@ -544,7 +551,10 @@ def materials(description):
     >>> thornton = law.laws.thornton.element
     >>> contact = bwc.Contact("thornton", {"k": thornton.k, "delta_y": thornton.delta_y})
     """
-    return _wrap(_json.loads(_materials(**_source(description, "materials"))), Result, {})
+    out = None if fit is None else _os.fspath(fit)
+    seed = _integer(seed, "seed", 0)
+    text = _materials(out=out, seed=seed, **_source(description, "materials"))
+    return _wrap(_json.loads(text), Result, {})
 
 
 def coverage(config, *, replicates=40, first_seed=1, noise=None, fit=None, threads=None,
