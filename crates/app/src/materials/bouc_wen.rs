@@ -6,6 +6,7 @@ use super::{MaterialsReport, MaterialsSpec};
 use crate::fit::config::Config;
 use crate::fit::identify::{fit_all, FitReport};
 use crate::AppError;
+use bw_models::input::Zero;
 use std::path::Path;
 
 /// The name of the reference's dataset in the output folder.
@@ -23,7 +24,11 @@ pub struct Following {
     pub e_error: f64,
     /// The largest `|t_d - t_d,ref| / t_d,ref`.
     pub t_d_error: f64,
-    /// The speeds (m/s) where `|e - e_ref| > 0.01` or the duration is off by more than 5 %.
+    /// The largest `|F_max - F_max,ref| / F_max,ref` (the peak force, sampled at 1/2000 of
+    /// the reference's duration); NaN where the fit gives no SI law.
+    pub force_error: f64,
+    /// The speeds (m/s) where `|e - e_ref| > 0.01`, the duration is off by more than 5 % or
+    /// the peak force by more than 10 %.
     pub stops_following: Vec<f64>,
     /// The pair's effective mass (kg): with it the fit's base parameters give the SI law.
     pub mass: f64,
@@ -103,13 +108,22 @@ pub fn fit_to_reference(
 }
 
 fn following(fit: FitReport, report: &MaterialsReport) -> Following {
-    let (mut e_error, mut t_d_error, mut stops) = (0.0f64, 0.0f64, Vec::new());
+    let mass = report.pair.m_star;
+    let (mut e_error, mut t_d_error, mut force_error) = (0.0f64, 0.0f64, 0.0f64);
+    let mut stops = Vec::new();
     for (p, r) in fit.predictions.iter().zip(&report.rows) {
         let de = (p.e - r.e).abs();
         let dt = ((p.t_d - r.t_d) / r.t_d).abs();
+        let df = peak_force(&fit, mass, r.v0, r.t_d)
+            .map_or(f64::NAN, |f| ((f - r.force_max) / r.force_max).abs());
         e_error = e_error.max(de);
         t_d_error = t_d_error.max(dt);
-        if de > 0.01 || dt > 0.05 || !p.separated {
+        force_error = if df.is_nan() {
+            f64::NAN
+        } else {
+            force_error.max(df)
+        };
+        if de > 0.01 || dt > 0.05 || df.is_nan() || df > 0.1 || !p.separated {
             stops.push(r.v0);
         }
     }
@@ -117,9 +131,48 @@ fn following(fit: FitReport, report: &MaterialsReport) -> Following {
         fit,
         e_error,
         t_d_error,
+        force_error,
         stops_following: stops,
-        mass: report.pair.m_star,
+        mass,
     }
+}
+
+/// The SI law of a fit (its `U_b` from the pair's mass) and that mass.
+fn si_params(fit: &FitReport, mass: f64) -> Option<(bw_models::PhysicalParams, f64)> {
+    let kind = bw_models::ModelKind::parse(fit.model)?;
+    let mut base = fit.params;
+    // An unforced fit leaves `U_b` free; the pair's mass fixes it, `U_b = T_b / m`.
+    base.u_b = base.t_b / mass;
+    bw_models::BaseMap::new(kind, base)
+        .and_then(|m| m.physical())
+        .ok()
+}
+
+/// The peak force (N) of the fit's SI law in an impact at `v0`, sampled on a grid of 1/2000
+/// of the duration `t_d` (s).
+fn peak_force(fit: &FitReport, mass: f64, v0: f64, t_d: f64) -> Option<f64> {
+    use bw_models::{simulate, Bwmcm, Bwshccm, CollisionModel, ModelKind, Sampling, Settings};
+    let (params, m) = si_params(fit, mass)?;
+    let sampling = Sampling::Grid { dt: t_d / 2000.0 };
+    let settings = Settings::default();
+    let mut peak = 0.0f64;
+    let ok = match params.kind() {
+        ModelKind::Shccm => {
+            let model = Bwshccm::new(&params, m, v0, Zero).ok()?;
+            simulate(&model, &settings, sampling, |_, y| {
+                peak = peak.max(model.force(y))
+            })
+            .is_ok()
+        }
+        ModelKind::Mcm => {
+            let model = Bwmcm::new(&params, m, v0, Zero).ok()?;
+            simulate(&model, &settings, sampling, |_, y| {
+                peak = peak.max(model.force(y))
+            })
+            .is_ok()
+        }
+    };
+    ok.then_some(peak)
 }
 
 /// A fit's law and how closely it follows, as JSON: `name`, `model`, `params` (base), `SI`
@@ -134,19 +187,14 @@ pub fn following_json(f: &Following) -> serde_json::Value {
                    "n": b.n, "p": b.p, "U_b": b.u_b, "T_b": b.t_b},
         "SI": si,
         "J1": f.fit.costs.j1, "J2": f.fit.costs.j2,
-        "e_error": f.e_error, "t_d_error": f.t_d_error, "stops_following": f.stops_following,
+        "e_error": f.e_error, "t_d_error": f.t_d_error, "F_max_error": f.force_error,
+        "stops_following": f.stops_following,
     })
 }
 
 /// The fit's SI law with its mass, or null where the base parameters give none.
 fn si_law(f: &Following) -> serde_json::Value {
-    let kind = bw_models::ModelKind::parse(f.fit.model);
-    // An unforced fit leaves `U_b` free; the pair's mass fixes it, `U_b = T_b / m`.
-    let mut base = f.fit.params;
-    base.u_b = base.t_b / f.mass;
-    let Some(Ok((law, m))) =
-        kind.map(|k| bw_models::BaseMap::new(k, base).and_then(|m| m.physical()))
-    else {
+    let Some((law, m)) = si_params(&f.fit, f.mass) else {
         return serde_json::Value::Null;
     };
     let l = law.law();
@@ -158,7 +206,8 @@ fn si_law(f: &Following) -> serde_json::Value {
 pub fn following_text(f: &Following) -> String {
     let b = &f.fit.params;
     let stops = if f.stops_following.is_empty() {
-        "follows it at every speed (|de| <= 0.01, t_d within 5 %)".to_string()
+        "follows it at every speed (|de| <= 0.01, t_d within 5 %, peak force within 10 %)"
+            .to_string()
     } else {
         let v: Vec<String> = f
             .stops_following
@@ -170,7 +219,7 @@ pub fn following_text(f: &Following) -> String {
     format!(
         "{}: B_b = {:.6}, Gamma_b = {:.6}, kappa = {:.6}, sigma_b = {:.6e}, n = {:.6}, p = {:.6}, \
          U_b = {:.6e}, T_b = {:.6e} s\n  against the reference: largest |de| = {:.4}, largest \
-         t_d error = {:.2} %; {stops}",
+         t_d error = {:.2} %, largest peak-force error = {:.2} %; {stops}",
         f.fit.name,
         b.b_b,
         b.gamma_b,
@@ -182,5 +231,6 @@ pub fn following_text(f: &Following) -> String {
         b.t_b,
         f.e_error,
         100.0 * f.t_d_error,
+        100.0 * f.force_error,
     )
 }
