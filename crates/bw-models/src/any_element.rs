@@ -7,7 +7,7 @@
 
 use crate::element::{ContactElement, ElementSettings, ElementStep, Penetration};
 use crate::error::ModelError;
-use crate::families::{HuntCrossleyLaw, KelvinVoigtLaw, ThorntonLaw};
+use crate::families::{HuntCrossleyLaw, JacksonGreenLaw, KelvinVoigtLaw, ThorntonLaw};
 use crate::law_spec::{law_spec, LawSpec, NamedLaw};
 use crate::laws::ContactLaw;
 use crate::laws::{Bwmcl, Bwshccl};
@@ -161,6 +161,8 @@ element_laws! {
     KelvinVoigt(KelvinVoigtLaw, 1),
     /// Thornton's elastic-perfectly-plastic sphere's element (states x, x_m).
     Thornton(ThorntonLaw, 2),
+    /// Jackson and Green's elastic-plastic sphere's element (states x, x_m).
+    JacksonGreen(JacksonGreenLaw, 2),
 }
 
 impl AnyLaw {

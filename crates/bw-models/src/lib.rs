@@ -80,8 +80,8 @@ pub use cor::{impact, impact_at, impact_double_double};
 pub use element::{ContactElement, ElementSettings, ElementStep, Penetration, Remedy};
 pub use error::ModelError;
 pub use families::{
-    family_impact, Family, FamilyParams, FamilySpec, HuntCrossleyLaw, KelvinVoigtLaw, Ndkv,
-    Ndthornton, ParamSpec, ThorntonLaw, FAMILIES,
+    family_impact, Family, FamilyParams, FamilySpec, HuntCrossleyLaw, JacksonGreenLaw,
+    KelvinVoigtLaw, Ndkv, Ndthornton, ParamSpec, ThorntonLaw, FAMILIES,
 };
 pub use law_spec::{law_spec, LawParam, LawSpec, NamedLaw, ELEMENT_LAWS};
 pub use laws::{Bwmcl, Bwshccl, ContactLaw, LawJacobian};

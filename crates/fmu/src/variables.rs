@@ -63,7 +63,7 @@ pub const VARIABLES: [Variable; 20] = [
     var("A", 8, Type::Real, "parameter", "Bouc-Wen A > 0"),
     var("rtol", 9, Type::Real, "parameter", "relative tolerance of the element's steps, in [1e-14, 1e-2]"),
     var("atol", 10, Type::Real, "parameter", "absolute tolerance of the law's states (m), > 0"),
-    var("model", 20, Type::Integer, "parameter", "0: BWSHCCM (states x, z), 1: BWMCM (states r, y, z), 2: Hunt-Crossley, 3: Kelvin-Voigt, 4: Thornton (from 2 on, the parameters named <law>.<parameter>)"),
+    var("model", 20, Type::Integer, "parameter", "0: BWSHCCM (states x, z), 1: BWMCM (states r, y, z), 2: Hunt-Crossley, 3: Kelvin-Voigt, 4: Thornton, 5: Jackson-Green (from 2 on, the parameters named <law>.<parameter>)"),
     var("policy", 21, Type::Integer, "parameter", "what a new contact starts from: 0 the law at rest, 1 the state of the last separation"),
     var("delta", 30, Type::Real, "input", "penetration (m), positive while the bodies overlap"),
     var("delta_dot", 31, Type::Real, "input", "rate of the penetration (m/s), positive while the bodies approach; its derivative (order 1) is the relative acceleration"),

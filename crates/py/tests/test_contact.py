@@ -164,7 +164,7 @@ def test_arguments_of_the_wrong_type_are_named_in_pythons_terms():
     argument and what it may be (they were the binding's "cannot be converted to 'PyString'"
     and numpy's ValueError)."""
     cases = [
-        (lambda: bwc.Contact(3.5, LAW), r'^model = 3\.5 is not a model: the string "shccm", "mcm", "hunt-crossley", "kelvin-voigt" or "thornton"$'),
+        (lambda: bwc.Contact(3.5, LAW), r'^model = 3\.5 is not a model: the string "shccm", "mcm", "hunt-crossley", "kelvin-voigt", "thornton" or "jackson-green"$'),
         (lambda: bwc.Contact("shccm", [1, 2]), r"^params = \[1, 2\] is not admissible: a dict"),
         (lambda: bwc.Contact("shccm", {**LAW, 7: 1.0}), r"^params: the key 7 is not a parameter"),
         (lambda: bwc.Contact("shccm", LAW, policy=None), None),

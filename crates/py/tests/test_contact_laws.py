@@ -94,7 +94,7 @@ def test_many_contacts_of_a_law_by_name():
 @pytest.mark.parametrize(
     "model, params, message",
     [
-        ("hertz", {}, r'^model: "hertz" is not a model: "shccm", "mcm", "hunt-crossley", "kelvin-voigt" or "thornton"$'),
+        ("hertz", {}, r'^model: "hertz" is not a model: "shccm", "mcm", "hunt-crossley", "kelvin-voigt", "thornton" or "jackson-green"$'),
         ("thornton", {"k": 1e7}, r"^params: law \"thornton\": parameter `delta_y` is missing; the law takes: k, delta_y$"),
         ("thornton", {"k": 1e7, "delta_y": 1e-5, "R": 0.01}, r"`R` is not one of its parameters, which are: k, delta_y"),
         ("kelvin-voigt", {"k": 1e5, "c": -1.0}, r"`c` = -1 is not admissible: c >= 0 \(N s/m\)"),

@@ -25,10 +25,12 @@
 //! `T_b = (m / k)^(1/(p+1))`, as for the Bouc-Wen models.
 
 mod hertz;
+mod jackson_green;
 mod kelvin_voigt;
 mod thornton;
 
 pub use hertz::HuntCrossleyLaw;
+pub use jackson_green::JacksonGreenLaw;
 pub use kelvin_voigt::{KelvinVoigtLaw, Ndkv};
 pub use thornton::{Ndthornton, ThorntonLaw};
 

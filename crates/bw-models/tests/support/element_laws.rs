@@ -217,3 +217,76 @@ fn the_guide_lists_every_element_law_as_registered() {
         .collect();
     assert_eq!(table("<!-- element parameters:"), params);
 }
+
+/// Jackson and Green's (2005) loading in the form of Ghaednia, Brake, Berryhill and Jackson
+/// (2019, eq. 27, with their hardness `H_G / S_y = 2.84 - 0.92 (1 - cos(π a / R))`), written
+/// out here: the law's (JG 2005's hardness, `2.84 (1 - exp(-0.82 (a/R)^(-0.7)))`) agrees with
+/// it to 2.5 % while `a/R <= 0.25`, and both are Hertz's to `ω* = 1.9`.
+fn jackson_green_2019(e_star: f64, r: f64, s_y: f64, nu: f64, d: f64) -> f64 {
+    let c = 1.295 * (0.736 * nu).exp();
+    let omega_c = (std::f64::consts::PI * c * s_y / (2.0 * e_star)).powi(2) * r;
+    let w = d / omega_c;
+    if w <= 1.9 {
+        return 4.0 / 3.0 * r.sqrt() * e_star * d.powf(1.5);
+    }
+    let b = 0.14 * (23.0 * s_y / e_star).exp();
+    let a = r * (std::f64::consts::PI * c * s_y / (2.0 * e_star)) * (w * (w / 1.9).powf(b)).sqrt();
+    let h = 2.84 - 0.92 * (1.0 - (std::f64::consts::PI * a / r).cos());
+    let f_c = 4.0 / 3.0 * (r / e_star).powi(2) * (c * std::f64::consts::PI * s_y / 2.0).powi(3);
+    f_c * ((-0.25 * w.powf(5.0 / 12.0)).exp() * w.powf(1.5)
+        + 4.0 * h / c * (1.0 - (-w.powf(5.0 / 9.0) / 25.0).exp()) * w)
+}
+
+#[test]
+fn jackson_greens_loading_and_unloading_are_as_published() {
+    let (e_star, r, s_y, nu) = (6.5e10, 2.5e-3, 2.6e8, 0.33);
+    let law = bw_models::JacksonGreenLaw::new(e_star, r, s_y, nu);
+    let omega_c = law.critical_interference();
+    for w in [0.5, 1.0, 1.89, 1.91, 5.0, 20.0, 100.0, 200.0] {
+        let d = w * omega_c;
+        let want = jackson_green_2019(e_star, r, s_y, nu, d);
+        let got = if w <= 1.9 {
+            law.loading(d)
+        } else {
+            law.loading(d) / law.join()
+        };
+        let tol = if w <= 1.9 { 1e-13 } else { 0.025 };
+        assert!((got / want - 1.0).abs() < tol, "ω* {w}: {got} vs {want}");
+    }
+    // For these materials the published fit meets Hertz's at ω* = 1.9 to half a per cent
+    // (elsewhere to 3 %); the law closes the gap.
+    let at = 1.9 * omega_c;
+    assert!((law.join() - 1.0).abs() < 5e-3, "{}", law.join());
+    assert!((law.loading(at * (1.0 + 1e-12)) / law.loading(at) - 1.0).abs() < 1e-11);
+    // Jackson, Chusoipin and Green's residual: none up to ω* = 1, then growing towards
+    // 1.02 ω_m.
+    assert_eq!(law.residual(omega_c), 0.0);
+    let res = |w: f64| law.residual(w * omega_c) / (w * omega_c);
+    assert!(res(2.0) > 0.0 && res(10.0) > res(2.0) && res(1e4) < 1.02 && res(1e4) > 0.95);
+}
+
+/// A ball on Jackson and Green's law: the work absorbed is the kinetic energy lost (the
+/// stored energy and the dissipation hold together), and the CoR lies above Thornton's for
+/// the same materials (his law holds the contact pressure at the onset of yield, Jackson and
+/// Green's lets it rise towards the hardness).
+#[test]
+fn a_jackson_green_contact_keeps_its_energy_balance_and_restitutes_more_than_thorntons() {
+    let (e_star, r, s_y, nu) = (1.15e11, 0.05, 5e8, 0.3);
+    let law = bw_models::JacksonGreenLaw::new(e_star, r, s_y, nu);
+    // A contact of about 70 us: host steps of 0.25 us keep the host's own error below 1e-6.
+    fn fine<L: NamedLaw<2> + Clone>(law: L) -> (f64, f64) {
+        let (v_out, _, absorbed) = host_bounce(law, V_IN, 0.0, 2.5e-7);
+        let lost = 0.5 * M * (V_IN * V_IN - v_out * v_out);
+        (v_out / V_IN, (absorbed - lost).abs() / lost)
+    }
+    let (e, energy) = fine(law);
+    let k = 4.0 / 3.0 * e_star * r.sqrt();
+    let p_y = 1.295 * (0.736 * nu).exp() * s_y;
+    let delta_y = r * (std::f64::consts::PI * p_y / (2.0 * e_star)).powi(2);
+    let (thornton, _) = fine(ThorntonLaw { k, delta_y });
+    assert!(energy < 1e-5, "absorbed off by {energy:.1e}");
+    assert!(
+        e < 1.0 && e > thornton + 0.05,
+        "JG {e} vs Thornton {thornton}"
+    );
+}
