@@ -52,6 +52,10 @@ pub struct MaterialsRow {
     pub force_max: f64,
     /// The contact radius at the deepest penetration over `R*`.
     pub a_over_r: f64,
+    /// The CoR under Jackson and Green's law (NaN where neither body yields).
+    pub e_jg: f64,
+    /// The duration under Jackson and Green's law (s).
+    pub t_d_jg: f64,
 }
 
 /// What `bwc-identify materials` prints.
@@ -73,13 +77,22 @@ impl MaterialsReport {
     /// [`AppError::Simulation`] where an impact fails.
     pub fn of(spec: &MaterialsSpec) -> Result<Self, AppError> {
         let pair = spec.pair.clone();
+        let jg = jackson_green(spec);
         let mut rows = Vec::with_capacity(spec.speeds.len());
         for &v0 in &spec.speeds {
-            rows.push(row(spec, &pair, v0)?);
+            let mut r = row(spec, &pair, v0)?;
+            if let Some(law) = jg {
+                (r.e_jg, r.t_d_jg) = jg_impact(spec, law, pair.m_star, v0)?;
+            }
+            rows.push(r);
         }
         let mut notes = vec![
             "Thornton (1997): elastic-perfectly-plastic, no strain hardening, no rate \
              dependence; yield at the peak Hertz pressure C(nu) S_y (Jackson & Green 2005)"
+                .to_string(),
+            "Jackson & Green (2005) with Jackson, Chusoipin & Green's unloading: a fit to \
+             finite-element results for an elastic-perfectly-plastic sphere on a rigid flat \
+             (e_jackson_green, t_d_jackson_green)"
                 .to_string(),
         ];
         if pair.p_y.is_none() {
@@ -110,7 +123,8 @@ impl MaterialsReport {
             .iter()
             .map(|r| {
                 json!({"v0": r.v0, "e": r.e, "t_d": r.t_d, "delta_max": r.delta_max,
-                       "F_max": r.force_max, "a_over_R": r.a_over_r})
+                       "F_max": r.force_max, "a_over_R": r.a_over_r,
+                       "e_jackson_green": finite(r.e_jg), "t_d_jackson_green": finite(r.t_d_jg)})
             })
             .collect();
         json!({
@@ -125,6 +139,9 @@ impl MaterialsReport {
                 "thornton": p.delta_y.map(|d| json!({
                     "element": {"law": "thornton", "k": p.k, "delta_y": d},
                     "family": {"model": "thornton", "v_y": p.v_y, "T_b": finite(p.t_b)},
+                })),
+                "jackson_green": jg_params(spec).map(|(e, r, s, nu)| json!({
+                    "element": {"law": "jackson-green", "E_star": e, "R": r, "S_y": s, "nu": nu},
                 })),
             },
             "cor": rows,
@@ -165,11 +182,13 @@ impl MaterialsReport {
             opt(p.a_y, "m"),
             opt(p.v_y, "m/s"),
         );
-        out += "  v0 (m/s)      e          t_d (s)       delta_max (m)  F_max (N)     a/R*\n";
+        out += "  v0 (m/s)      e          t_d (s)       delta_max (m)  F_max (N)     a/R*    \
+                e (J-G)    t_d (J-G, s)\n";
         for r in &self.rows {
             out += &format!(
-                "  {:<12.6e}  {:<9.6}  {:<12.6e}  {:<13.6e}  {:<12.6e}  {:.4}\n",
-                r.v0, r.e, r.t_d, r.delta_max, r.force_max, r.a_over_r
+                "  {:<12.6e}  {:<9.6}  {:<12.6e}  {:<13.6e}  {:<12.6e}  {:<6.4}  {:<9.6}  \
+                 {:.6e}\n",
+                r.v0, r.e, r.t_d, r.delta_max, r.force_max, r.a_over_r, r.e_jg, r.t_d_jg
             );
         }
         for n in &self.notes {
@@ -206,7 +225,8 @@ pub fn units() -> Value {
         "E_star": "Pa", "R_star": "m", "m_star": "kg", "k": "N/m^(3/2)", "p": "-",
         "p_y": "Pa", "yields_first": "body 1 or 2", "delta_y": "m", "F_y": "N", "a_y": "m",
         "v_y": "m/s", "T_b": "s", "alpha": "s/m", "v0": "m/s", "e": "-", "t_d": "s",
-        "delta_max": "m", "F_max": "N", "a_over_R": "-",
+        "delta_max": "m", "F_max": "N", "a_over_R": "-", "E_star": "Pa", "R": "m", "S_y": "Pa",
+        "nu": "-", "e_jackson_green": "-", "t_d_jackson_green": "s",
     })
 }
 
@@ -250,5 +270,54 @@ fn row(spec: &MaterialsSpec, p: &MaterialPair, v0: f64) -> Result<MaterialsRow, 
         delta_max,
         force_max,
         a_over_r: (p.r_star * delta_max).sqrt() / p.r_star,
+        e_jg: f64::NAN,
+        t_d_jg: f64::NAN,
     })
+}
+
+/// Jackson and Green's parameters for the pair: `E*`, `R*`, and the yield strength and
+/// Poisson's ratio of the body that yields first (its `S_y` from a given yield pressure as
+/// `p_y / C(ν)`); `None` where neither yields.
+fn jg_params(spec: &MaterialsSpec) -> Option<(f64, f64, f64, f64)> {
+    let p = &spec.pair;
+    let body = &spec.bodies[usize::from(p.yields_first?) - 1].body;
+    let nu = body.material.poisson;
+    let s_y = body.yield_onset()? / bw_models::materials::yield_factor(nu);
+    Some((p.e_star, p.r_star, s_y, nu))
+}
+
+fn jackson_green(spec: &MaterialsSpec) -> Option<bw_models::AnyLaw> {
+    let (e, r, s, nu) = jg_params(spec)?;
+    bw_models::AnyLaw::of_law("jackson-green", &[("E_star", e), ("R", r), ("S_y", s), ("nu", nu)])
+        .ok()
+}
+
+/// Jackson and Green's impact at `v0`: a body of the pair's mass `m` meeting a wall, run as a
+/// chain: `(e, t_d)`.
+fn jg_impact(
+    spec: &MaterialsSpec,
+    law: bw_models::AnyLaw,
+    m: f64,
+    v0: f64,
+) -> Result<(f64, f64), AppError> {
+    use bw_models::chain::{Chain, ChainBody, ChainSettings, Stop, Walls};
+    use bw_models::input::Constant;
+    let fail = |source| AppError::Simulation {
+        path: spec.path.clone(),
+        run: format!("v0 = {v0} (Jackson-Green)"),
+        source,
+    };
+    let body = ChainBody::new(m, 1.0, -v0, 1.0, Constant(0.0));
+    let settings = ChainSettings::default().with_tolerances(1e-10, 1e-16);
+    let chain = Chain::new(vec![body], vec![law], Walls::new(Some(0.5), None), settings)
+        .map_err(fail)?;
+    // Far longer than any contact of the table (the Hertz duration at v0, times 100).
+    let horizon = 100.0 * 3.22 * spec.pair.t_b * v0.powf(-0.2);
+    let run = chain.run(Stop::settled(horizon), None, |_| {}).map_err(fail)?;
+    let c = run.contacts.first();
+    let e = c.and_then(|c| c.rebound()).unwrap_or(f64::NAN);
+    let t_d = c
+        .and_then(|c| c.separation.map(|s| s - c.onset))
+        .unwrap_or(f64::NAN);
+    Ok((e, t_d))
 }
