@@ -454,7 +454,8 @@ fn materials_json(
                 fit_to_reference(&dir, &spec, &report, seed)
             })
             .map_err(error)?;
-        json["fits"] = fits.iter().map(following_json).collect();
+        json["fits"] = fits.fits.iter().map(following_json).collect();
+        json["loop_fits"] = fits.loop_fits.into();
     }
     Ok(json.to_string())
 }

@@ -4,7 +4,7 @@
 
 use super::{MaterialsReport, MaterialsSpec};
 use crate::fit::config::Config;
-use crate::fit::identify::{fit_all, FitReport};
+use crate::fit::identify::{fit_all, FitReport, LoopReport};
 use crate::AppError;
 use bw_models::input::Zero;
 use std::path::Path;
@@ -71,12 +71,65 @@ pub fn fit_toml(report: &MaterialsReport) -> String {
             p.t_b * 100.0
         );
     }
+    out + &loop_fits_toml(report)
+}
+
+/// The `[[loop_fit]]`s of both models on the reference loops ([`loop_rows`]), their bounds
+/// wide around the loops' own scales: `k` and `c` from `F_max / δ_max^p` over `p` in
+/// `[1, 2]`, `beta` from `1 / δ_max^n`.
+fn loop_fits_toml(report: &MaterialsReport) -> String {
+    let rows = loop_rows(report);
+    let Some(top) = rows.last() else {
+        return String::new();
+    };
+    let (d, f, v) = (top.delta_max, top.force_max, top.v0);
+    let loops: Vec<String> = rows
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            format!(
+                "{{ data = \"reference_loop_{}.csv\", v0 = {:?} }}",
+                i + 1,
+                r.v0
+            )
+        })
+        .collect();
+    let mut out = String::new();
+    for model in ["shccm", "mcm"] {
+        out += &format!(
+            "\n[[loop_fit]]\nname = \"materials loops {model}\"\nmodel = \"{model}\"\nm = {:?}\n\
+             loops = [{}]\nlog = [\"k\", \"c\", \"beta\"]\n\n[loop_fit.bounds]\n\
+             k = [{:?}, {:?}]\nc = [{:?}, {:?}]\nn = [1.0, 2.0]\np = [1.0, 2.0]\n\
+             alpha = [0.02, 0.98]\nbeta = [{:?}, {:?}]\ng = [-1.0, 1.0]\nA = [0.5, 1.5]\n\n\
+             [loop_fit.optimizer]\nparticles = 32\niterations = 60\nstarts = 2\n",
+            report.pair.m_star,
+            loops.join(", "),
+            1e-2 * f / d,
+            1e2 * f / (d * d),
+            1e-3 * f / (d * v),
+            1e2 * f / (d * d * v),
+            1e-2 / d,
+            1e2 / (d * d),
+        );
+    }
     out
 }
 
-/// Writes the dataset, the config and `summary.json` (the report) into `dir`, each file
-/// atomically, fits both models (seed `seed`), and says how closely each follows the
-/// reference; `summary.json` is then written again with the fits (key `fits`).
+/// The fits to a law from materials: on its CoR and duration, and on its loops.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct MaterialsFits {
+    /// Each model fitted to the CoR and the duration.
+    pub fits: Vec<Following>,
+    /// Each model fitted to the reference's force-penetration loops, as JSON
+    /// (`name`, `model`, `loop_cost`, `SI`, `e_error`, `t_d_error`, `F_max_error`).
+    pub loop_fits: Vec<serde_json::Value>,
+}
+
+/// Writes the dataset, the loops, the config and `summary.json` (the report) into `dir`, each
+/// file atomically, fits both models to the CoR and duration and to the loops (seed `seed`),
+/// and says how closely each follows the reference; `summary.json` is then written again with
+/// the fits (keys `fits`, `loop_fits`).
 ///
 /// # Errors
 /// [`AppError::Output`] where the folder cannot be written, and as [`fit_all`].
@@ -85,26 +138,36 @@ pub fn fit_to_reference(
     spec: &MaterialsSpec,
     report: &MaterialsReport,
     seed: u64,
-) -> Result<Vec<Following>, AppError> {
+) -> Result<MaterialsFits, AppError> {
     let files = || {
-        vec![
+        let mut files = vec![
             (
                 REFERENCE_CSV.to_string(),
                 reference_csv(spec, report).into_bytes(),
             ),
             (FIT_TOML.to_string(), fit_toml(report).into_bytes()),
-        ]
+        ];
+        for (i, r) in loop_rows(report).into_iter().enumerate() {
+            let name = format!("reference_loop_{}.csv", i + 1);
+            files.push((name, reference_loop(report, r).into_bytes()));
+        }
+        files
     };
     let mut summary = report.json(spec);
     summary["provenance"] = crate::outdir::provenance("bwc-identify");
     crate::outdir::write_all(dir, summary.clone(), files())?;
     let path = dir.join(FIT_TOML);
     let config = Config::load(&path)?;
-    let (fits, _) = fit_all(&path, &config, Some(seed), &|| {}, None)?;
+    let (fits, loops) = fit_all(&path, &config, Some(seed), &|| {}, None)?;
     let fits: Vec<Following> = fits.into_iter().map(|f| following(f, report)).collect();
     summary["fits"] = fits.iter().map(following_json).collect();
+    let loop_fits: Vec<serde_json::Value> = loops
+        .iter()
+        .map(|l| loop_following_json(l, report))
+        .collect();
+    summary["loop_fits"] = loop_fits.clone().into();
     crate::outdir::write_all(dir, summary, files())?;
-    Ok(fits)
+    Ok(MaterialsFits { fits, loop_fits })
 }
 
 fn following(fit: FitReport, report: &MaterialsReport) -> Following {
@@ -151,28 +214,108 @@ fn si_params(fit: &FitReport, mass: f64) -> Option<(bw_models::PhysicalParams, f
 /// The peak force (N) of the fit's SI law in an impact at `v0`, sampled on a grid of 1/2000
 /// of the duration `t_d` (s).
 fn peak_force(fit: &FitReport, mass: f64, v0: f64, t_d: f64) -> Option<f64> {
-    use bw_models::{simulate, Bwmcm, Bwshccm, CollisionModel, ModelKind, Sampling, Settings};
     let (params, m) = si_params(fit, mass)?;
+    si_impact(&params, m, v0, t_d).map(|(_, _, peak)| peak)
+}
+
+/// One impact of an SI law with mass `m` at `v0`: `(e, t_s, peak force)`, the force sampled
+/// on a grid of 1/2000 of `t_d` (s), the reference's duration.
+fn si_impact(
+    params: &bw_models::PhysicalParams,
+    m: f64,
+    v0: f64,
+    t_d: f64,
+) -> Option<(f64, f64, f64)> {
+    use bw_models::{simulate, Bwmcm, Bwshccm, CollisionModel, ModelKind, Sampling, Settings};
     let sampling = Sampling::Grid { dt: t_d / 2000.0 };
     let settings = Settings::default();
     let mut peak = 0.0f64;
-    let ok = match params.kind() {
+    let impact = match params.kind() {
         ModelKind::Shccm => {
-            let model = Bwshccm::new(&params, m, v0, Zero).ok()?;
+            let model = Bwshccm::new(params, m, v0, Zero).ok()?;
             simulate(&model, &settings, sampling, |_, y| {
                 peak = peak.max(model.force(y))
             })
-            .is_ok()
+            .ok()?
+            .cor()
         }
         ModelKind::Mcm => {
-            let model = Bwmcm::new(&params, m, v0, Zero).ok()?;
+            let model = Bwmcm::new(params, m, v0, Zero).ok()?;
             simulate(&model, &settings, sampling, |_, y| {
                 peak = peak.max(model.force(y))
             })
-            .is_ok()
+            .ok()?
+            .cor()
         }
     };
-    ok.then_some(peak)
+    Some((impact.e, impact.t_s?, peak))
+}
+
+/// The speeds of the reference loops: three of the table's, at a quarter, a half and three
+/// quarters of it; none where the contact does not yield.
+fn loop_rows(report: &MaterialsReport) -> Vec<&super::MaterialsRow> {
+    let n = report.rows.len();
+    if report.pair.delta_y.is_none() || n < 3 {
+        return Vec::new();
+    }
+    [n / 4, n / 2, 3 * n / 4]
+        .iter()
+        .map(|&i| &report.rows[i])
+        .collect()
+}
+
+/// The reference law's force-penetration loop at `row`'s speed: Thornton's loading to the
+/// deepest point, then its unloading to the residual penetration; `x,F` (m, N), chronological.
+fn reference_loop(report: &MaterialsReport, row: &super::MaterialsRow) -> String {
+    let p = &report.pair;
+    let law = bw_models::AnyLaw::of_law(
+        "thornton",
+        &[("k", p.k), ("delta_y", p.delta_y.unwrap_or(f64::NAN))],
+    );
+    let mut out = format!(
+        "# REFERENCE LAW, not measured: Thornton's force-penetration loop at v0 = {} m/s, from the \
+         materials (bwc-identify materials).\nx,F\n",
+        row.v0
+    );
+    let Ok(law) = law else { return out };
+    let (dm, fm) = (row.delta_max, row.force_max);
+    let df = dm - fm / (p.k * dm.sqrt());
+    for i in 0..=40 {
+        let d = dm * f64::from(i) / 40.0;
+        out += &format!("{:?},{:?}\n", -d, law.eval(&[-d, -d], -1.0).1);
+    }
+    for i in 1..=40 {
+        let d = dm - (dm - df) * f64::from(i) / 40.0;
+        out += &format!("{:?},{:?}\n", -d, law.eval(&[-d, -dm], 1.0).1.max(0.0));
+    }
+    out
+}
+
+/// How closely a law fitted to the reference's loops follows its CoR, duration and peak force:
+/// JSON with `name`, `model`, `SI` (the law and the pair's `m`), `loop_cost`, `e_error`,
+/// `t_d_error`, `F_max_error`.
+fn loop_following_json(lr: &LoopReport, report: &MaterialsReport) -> serde_json::Value {
+    let m = report.pair.m_star;
+    let l = &lr.law;
+    let (mut de, mut dt, mut df) = (0.0f64, 0.0f64, 0.0f64);
+    let kind = bw_models::ModelKind::parse(lr.model);
+    let params = kind.and_then(|k| bw_models::PhysicalParams::new(k, *l).ok());
+    for r in &report.rows {
+        match params.as_ref().and_then(|p| si_impact(p, m, r.v0, r.t_d)) {
+            Some((e, t, f)) => {
+                de = de.max((e - r.e).abs());
+                dt = dt.max(((t - r.t_d) / r.t_d).abs());
+                df = df.max(((f - r.force_max) / r.force_max).abs());
+            }
+            None => (de, dt, df) = (f64::NAN, f64::NAN, f64::NAN),
+        }
+    }
+    serde_json::json!({
+        "name": lr.name, "model": lr.model, "loop_cost": lr.cost,
+        "SI": {"k": l.k, "c": l.c, "n": l.n, "p": l.p, "alpha": l.alpha, "beta": l.beta,
+               "gamma": l.gamma, "A": l.a, "m": m},
+        "e_error": de, "t_d_error": dt, "F_max_error": df,
+    })
 }
 
 /// A fit's law and how closely it follows, as JSON: `name`, `model`, `params` (base), `SI`
@@ -200,6 +343,23 @@ fn si_law(f: &Following) -> serde_json::Value {
     let l = law.law();
     serde_json::json!({"k": l.k, "c": l.c, "n": l.n, "p": l.p, "alpha": l.alpha,
                        "beta": l.beta, "gamma": l.gamma, "A": l.a, "m": m})
+}
+
+/// A loop fit's law and how closely it follows, as text.
+pub fn loop_following_text(v: &serde_json::Value) -> String {
+    let pct = |k: &str| {
+        v[k].as_f64()
+            .map_or("-".to_string(), |x| format!("{:.2} %", 100.0 * x))
+    };
+    format!(
+        "{}: loop cost {:.3e}; against the reference: largest |de| = {:.4}, largest t_d error = \
+         {}, largest peak-force error = {}",
+        v["name"].as_str().unwrap_or(""),
+        v["loop_cost"].as_f64().unwrap_or(f64::NAN),
+        v["e_error"].as_f64().unwrap_or(f64::NAN),
+        pct("t_d_error"),
+        pct("F_max_error"),
+    )
 }
 
 /// A fit's law and how closely it follows, as text.

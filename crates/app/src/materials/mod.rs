@@ -22,8 +22,8 @@ mod bouc_wen;
 mod file;
 
 pub use bouc_wen::{
-    fit_to_reference, fit_toml, following_json, following_text, reference_csv, Following, FIT_TOML,
-    REFERENCE_CSV,
+    fit_to_reference, fit_toml, following_json, following_text, loop_following_text, reference_csv,
+    Following, MaterialsFits, FIT_TOML, REFERENCE_CSV,
 };
 pub use file::{BodySpec, MaterialsSpec};
 
@@ -288,8 +288,11 @@ fn jg_params(spec: &MaterialsSpec) -> Option<(f64, f64, f64, f64)> {
 
 fn jackson_green(spec: &MaterialsSpec) -> Option<bw_models::AnyLaw> {
     let (e, r, s, nu) = jg_params(spec)?;
-    bw_models::AnyLaw::of_law("jackson-green", &[("E_star", e), ("R", r), ("S_y", s), ("nu", nu)])
-        .ok()
+    bw_models::AnyLaw::of_law(
+        "jackson-green",
+        &[("E_star", e), ("R", r), ("S_y", s), ("nu", nu)],
+    )
+    .ok()
 }
 
 /// Jackson and Green's impact at `v0`: a body of the pair's mass `m` meeting a wall, run as a
@@ -309,11 +312,13 @@ fn jg_impact(
     };
     let body = ChainBody::new(m, 1.0, -v0, 1.0, Constant(0.0));
     let settings = ChainSettings::default().with_tolerances(1e-10, 1e-16);
-    let chain = Chain::new(vec![body], vec![law], Walls::new(Some(0.5), None), settings)
-        .map_err(fail)?;
+    let chain =
+        Chain::new(vec![body], vec![law], Walls::new(Some(0.5), None), settings).map_err(fail)?;
     // Far longer than any contact of the table (the Hertz duration at v0, times 100).
     let horizon = 100.0 * 3.22 * spec.pair.t_b * v0.powf(-0.2);
-    let run = chain.run(Stop::settled(horizon), None, |_| {}).map_err(fail)?;
+    let run = chain
+        .run(Stop::settled(horizon), None, |_| {})
+        .map_err(fail)?;
     let c = run.contacts.first();
     let e = c.and_then(|c| c.rebound()).unwrap_or(f64::NAN);
     let t_d = c

@@ -300,7 +300,9 @@ fn run(
 /// The progress of a run's evaluations on stderr: hidden for JSON output and without a seed
 /// (where the number of evaluations is not planned).
 fn materials(args: &MaterialsArgs) -> Result<(), AppError> {
-    use bwc_app::materials::{fit_to_reference, following_json, following_text};
+    use bwc_app::materials::{
+        fit_to_reference, following_json, following_text, loop_following_text,
+    };
     let (json, seed) = (args.json, args.seed);
     let fit = args.out.as_deref().filter(|_| args.fit);
     let spec = bwc_app::materials::MaterialsSpec::load(&args.file)?;
@@ -309,19 +311,23 @@ fn materials(args: &MaterialsArgs) -> Result<(), AppError> {
         outdir::prepare(dir)?;
     }
     let fits = match fit {
-        Some(dir) => fit_to_reference(dir, &spec, &report, seed)?,
-        None => Vec::new(),
+        Some(dir) => Some(fit_to_reference(dir, &spec, &report, seed)?),
+        None => None,
     };
     if json {
         let mut v = report.json(&spec);
-        if fit.is_some() {
-            v["fits"] = fits.iter().map(following_json).collect();
+        if let Some(f) = &fits {
+            v["fits"] = f.fits.iter().map(following_json).collect();
+            v["loop_fits"] = f.loop_fits.clone().into();
         }
         bwc_app::out!("{v}");
     } else {
         bwc_app::outp!("{}", report.text(&spec));
-        for f in &fits {
+        for f in fits.iter().flat_map(|f| &f.fits) {
             bwc_app::outp!("{}\n", following_text(f));
+        }
+        for l in fits.iter().flat_map(|f| &f.loop_fits) {
+            bwc_app::outp!("{}\n", loop_following_text(l));
         }
     }
     Ok(())
