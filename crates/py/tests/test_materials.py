@@ -85,6 +85,8 @@ def test_a_bouc_wen_law_fitted_to_the_law_from_materials(tmp_path):
     assert shccm.model == "shccm" and shccm.e_error < 0.01 and shccm.t_d_error < 0.01
     assert math.isclose(shccm.SI.m, law.derived.m_star, rel_tol=1e-12)
     assert (tmp_path / "reference.csv").exists() and (tmp_path / "fit.toml").exists()
+    assert [f.model for f in law.loop_fits] == ["shccm", "mcm"]
+    assert law.loop_fits[0].F_max_error < 0.1
     # Its SI law simulated by bwc.cor rebounds within the fit's error of Thornton's table.
     si = {key: shccm.SI[key] for key in ["m", "k", "c", "n", "p", "alpha", "beta", "gamma", "A"]}
     row = law.cor[6]

@@ -519,8 +519,9 @@ def materials(description, *, fit=None, seed=0):
         absent: a sphere's from its radius and density, or immovable for a flat).
     fit : str or os.PathLike, optional
         A folder: the BWSHCCM and the BWMCM are fitted to the reference law's CoR and
-        duration, as ``bwc-identify materials --fit --out`` does, and ``reference.csv``,
-        ``fit.toml`` and ``summary.json`` written there.
+        duration and to its loops, as ``bwc-identify materials --fit --out`` does, and
+        ``reference.csv``, ``reference_loop_*.csv``, ``fit.toml`` and ``summary.json``
+        written there.
     seed : int, default 0
         The fits' seed.
 
@@ -531,8 +532,10 @@ def materials(description, *, fit=None, seed=0):
         ``yields_first``, ``delta_y``, ``F_y``, ``a_y``, ``v_y``, ``T_b``), ``laws`` (the
         Hertz and Thornton laws as :class:`Contact` and ``[[fit]]`` families take them),
         ``cor`` (per speed ``v0``, ``e``, ``t_d``, ``delta_max``, ``F_max``, ``a_over_R``),
-        ``units`` and ``notes``; with ``fit``, ``fits`` (per model ``params``, its ``SI`` law
-        and mass, ``e_error``, ``t_d_error``, ``stops_following``).
+        ``units`` and ``notes``; with ``fit``, ``fits`` (per model fitted to the CoR and the
+        duration: ``params``, its ``SI`` law and mass, ``e_error``, ``t_d_error``,
+        ``F_max_error``, ``stops_following``) and ``loop_fits`` (per model fitted to the
+        reference's loops: ``SI``, ``loop_cost``, ``e_error``, ``t_d_error``, ``F_max_error``).
 
     Raises
     ------
