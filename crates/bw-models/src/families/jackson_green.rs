@@ -21,6 +21,7 @@
 //! States `(x, x_m)` (m) as Thornton's law's: `x_m` the deepest `x`; off it the contact
 //! unloads and reloads elastically on the unloading curve.
 
+use super::deepest::{self, DeepestPoint};
 use crate::error::ModelError;
 use crate::law_spec::{positive, LawParam, LawSpec, NamedLaw};
 use crate::laws::ContactLaw;
@@ -108,15 +109,12 @@ impl JacksonGreenLaw {
         }
         1.02 * dm * (1.0 - ((w + 5.9) / 6.9).powf(-0.54))
     }
+}
 
-    /// The penetration, the deepest penetration, and whether the state is at its deepest.
-    fn phase(s: &State<2>) -> (f64, f64, bool) {
-        let d = -s[0];
-        let dm = (-s[1]).max(d);
-        (d, dm, d >= dm)
+impl DeepestPoint for JacksonGreenLaw {
+    fn loading(&self, d: f64) -> f64 {
+        JacksonGreenLaw::loading(self, d)
     }
-
-    /// The unloading force from `dm` at `d`.
     fn unloading(&self, d: f64, dm: f64) -> f64 {
         let res = self.residual(dm);
         if dm <= res || d <= res {
@@ -124,49 +122,43 @@ impl JacksonGreenLaw {
         }
         self.loading(dm) * ((d - res) / (dm - res)).powf(1.5)
     }
-
-    /// The energy the unloading from `dm` gives back from `d`: `(2/5) F (d - ω_res)`.
+    fn residual(&self, dm: f64) -> f64 {
+        JacksonGreenLaw::residual(self, dm)
+    }
+    /// `(2/5) F (δ - ω_res)` (J).
     fn elastic(&self, d: f64, dm: f64) -> f64 {
-        0.4 * self.unloading(d, dm) * (d - self.residual(dm)).max(0.0)
+        0.4 * DeepestPoint::unloading(self, d, dm) * (d - self.residual(dm)).max(0.0)
+    }
+    fn loading_kink(&self) -> f64 {
+        1.9 * self.omega_c
+    }
+    fn plastic_from(&self) -> f64 {
+        self.omega_c
+    }
+    /// By central differences of relative step 1e-6.
+    fn growth(&self, d: f64, _force: f64) -> f64 {
+        let h = 1e-6 * d;
+        (self.elastic(d + h, d + h) - self.elastic(d - h, d - h)) / (2.0 * h)
     }
 }
 
 impl ContactLaw<2> for JacksonGreenLaw {
     fn eval(&self, s: &State<2>, u: f64) -> (State<2>, f64) {
-        let (d, dm, deepest) = Self::phase(s);
-        let f = if deepest {
-            self.loading(d)
-        } else {
-            self.unloading(d, dm)
-        };
-        let loads = deepest && u < 0.0;
-        (State::<2>::new(u, if loads { u } else { 0.0 }), f)
+        deepest::eval(self, s, u)
     }
     /// `(2/5) F (δ - ω_res)` of the unloading from the deepest point (J).
     fn stored(&self, s: &State<2>) -> f64 {
-        let (d, dm, _) = Self::phase(s);
-        self.elastic(d, dm)
+        deepest::stored(self, s)
     }
     /// 0 off the deepest point; at it, while loading, `F δ̇` less the rate at which the
     /// deepest point's elastic energy grows (its derivative by central differences) (W).
     fn dissipation(&self, s: &State<2>, u: f64, _rate: &State<2>, force: f64) -> f64 {
-        let (d, _, deepest) = Self::phase(s);
-        if !(deepest && u < 0.0 && d > self.omega_c) {
-            return 0.0;
-        }
-        let h = 1e-6 * d;
-        let grows = (self.elastic(d + h, d + h) - self.elastic(d - h, d - h)) / (2.0 * h);
-        -u * (force - grows)
+        deepest::dissipation(self, s, u, force)
     }
     /// The turn at the deepest point (`u`, then `δ_m - δ` off it) and the change of the
     /// loading formula at `ω* = 1.9` while loading, the end of the unloading curve off it.
     fn kinks(&self, s: &State<2>, u: f64) -> [f64; 2] {
-        let (d, dm, deepest) = Self::phase(s);
-        if deepest {
-            [u, d - 1.9 * self.omega_c]
-        } else {
-            [dm - d, d - self.residual(dm)]
-        }
+        deepest::kinks(self, s, u)
     }
 }
 

@@ -24,6 +24,7 @@
 //! its damper would pull. Durations in seconds are `T_d T_b v0^(-(p-1)/(p+1))` with
 //! `T_b = (m / k)^(1/(p+1))`, as for the Bouc-Wen models.
 
+mod deepest;
 mod hertz;
 mod jackson_green;
 mod kelvin_voigt;

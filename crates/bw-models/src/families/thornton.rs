@@ -12,6 +12,7 @@
 //! the mass and `v_y`: nondimensionally (`δ* = (m v0² / k)^(2/5)`) its one parameter is
 //! `δ_y / δ* = ((5/4) (v_y / v0)²)^(2/5)`. Below `v_y` the impact is Hertz's and `e = 1`.
 
+use super::deepest::{self, DeepestPoint};
 use super::{FamilySpec, ParamSpec};
 use crate::cor::impact;
 use crate::error::ModelError;
@@ -161,60 +162,53 @@ pub struct ThorntonLaw {
     pub delta_y: f64,
 }
 
-impl ThorntonLaw {
-    /// The penetration, the deepest penetration, and whether the state is at its deepest.
-    fn phase(s: &State<2>) -> (f64, f64, bool) {
-        let d = -s[0];
-        let dm = (-s[1]).max(d);
-        (d, dm, d >= dm)
+impl DeepestPoint for ThorntonLaw {
+    fn loading(&self, d: f64) -> f64 {
+        self.k * loading(self.delta_y, d)
     }
-
-    /// The energy the unloading from `dm` gives back from `d` (J): `(2/5) k_p (δ - δ_f)^(5/2)`.
+    fn unloading(&self, d: f64, dm: f64) -> f64 {
+        let (df, kp) = unloading(self.delta_y, dm);
+        let r = (d - df).max(0.0);
+        self.k * kp * r * r.sqrt()
+    }
+    fn residual(&self, dm: f64) -> f64 {
+        unloading(self.delta_y, dm).0
+    }
+    /// `(2/5) k_p (δ - δ_f)^(5/2)` (J).
     fn elastic(&self, d: f64, dm: f64) -> f64 {
         let (df, kp) = unloading(self.delta_y, dm);
         0.4 * self.k * kp * (d - df).max(0.0).powf(2.5)
+    }
+    fn loading_kink(&self) -> f64 {
+        self.delta_y
+    }
+    fn plastic_from(&self) -> f64 {
+        self.delta_y
+    }
+    /// In closed form, from `E(δ_m) = (2/5) F_m² / (k √δ_m)` on the plastic line.
+    fn growth(&self, d: f64, force: f64) -> f64 {
+        let slope = 1.5 * self.k * self.delta_y.sqrt();
+        0.4 / self.k * (2.0 * force * slope / d.sqrt() - 0.5 * force * force / (d * d.sqrt()))
     }
 }
 
 impl ContactLaw<2> for ThorntonLaw {
     fn eval(&self, s: &State<2>, u: f64) -> (State<2>, f64) {
-        let (d, dm, deepest) = Self::phase(s);
-        let loads = deepest && u < 0.0;
-        let f = if deepest {
-            self.k * loading(self.delta_y, d)
-        } else {
-            let (df, kp) = unloading(self.delta_y, dm);
-            let r = (d - df).max(0.0);
-            self.k * kp * r * r.sqrt()
-        };
-        (State::<2>::new(u, if loads { u } else { 0.0 }), f)
+        deepest::eval(self, s, u)
     }
     /// `(2/5) k_p (δ - δ_f)^(5/2)` for the unloading from the deepest point (J).
     fn stored(&self, s: &State<2>) -> f64 {
-        let (d, dm, _) = Self::phase(s);
-        self.elastic(d, dm)
+        deepest::stored(self, s)
     }
     /// 0 off the plastic line; on it, `F δ̇` less the rate at which the deepest point's
     /// elastic energy `E(δ_m) = (2/5) F_m² / (k √δ_m)` grows (W).
     fn dissipation(&self, s: &State<2>, u: f64, _rate: &State<2>, force: f64) -> f64 {
-        let (d, _, deepest) = Self::phase(s);
-        if !(deepest && u < 0.0 && d > self.delta_y) {
-            return 0.0;
-        }
-        let slope = 1.5 * self.k * self.delta_y.sqrt();
-        let grows =
-            0.4 / self.k * (2.0 * force * slope / d.sqrt() - 0.5 * force * force / (d * d.sqrt()));
-        -u * (force - grows)
+        deepest::dissipation(self, s, u, force)
     }
     /// The turn at the deepest point (`u`, then `δ_m - δ` off it) and the yield while loading
     /// (`δ - δ_y`), the end of the unloading curve off it (`δ - δ_f`).
     fn kinks(&self, s: &State<2>, u: f64) -> [f64; 2] {
-        let (d, dm, deepest) = Self::phase(s);
-        if deepest {
-            [u, d - self.delta_y]
-        } else {
-            [dm - d, d - unloading(self.delta_y, dm).0]
-        }
+        deepest::kinks(self, s, u)
     }
 }
 
