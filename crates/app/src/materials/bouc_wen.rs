@@ -172,16 +172,22 @@ pub fn fit_to_reference(
 
 fn following(fit: FitReport, report: &MaterialsReport) -> Following {
     let mass = report.pair.m_star;
+    let si = si_params(&fit, mass);
     let (mut e_error, mut t_d_error, mut force_error) = (0.0f64, 0.0f64, 0.0f64);
     let mut stops = Vec::new();
     for (p, r) in fit.predictions.iter().zip(&report.rows) {
         let de = (p.e - r.e).abs();
         let dt = ((p.t_d - r.t_d) / r.t_d).abs();
-        let df = peak_force(&fit, mass, r.v0, r.t_d)
-            .map_or(f64::NAN, |f| ((f - r.force_max) / r.force_max).abs());
+        let peak = si
+            .as_ref()
+            .and_then(|(law, m)| si_impact(law, *m, r.v0, r.t_d));
+        // A peak that cannot be had makes the largest error NaN, and stays so.
+        let df = peak.map_or(f64::NAN, |(_, _, f)| {
+            ((f - r.force_max) / r.force_max).abs()
+        });
         e_error = e_error.max(de);
         t_d_error = t_d_error.max(dt);
-        force_error = if df.is_nan() {
+        force_error = if df.is_nan() || force_error.is_nan() {
             f64::NAN
         } else {
             force_error.max(df)
@@ -209,13 +215,6 @@ fn si_params(fit: &FitReport, mass: f64) -> Option<(bw_models::PhysicalParams, f
     bw_models::BaseMap::new(kind, base)
         .and_then(|m| m.physical())
         .ok()
-}
-
-/// The peak force (N) of the fit's SI law in an impact at `v0`, sampled on a grid of 1/2000
-/// of the duration `t_d` (s).
-fn peak_force(fit: &FitReport, mass: f64, v0: f64, t_d: f64) -> Option<f64> {
-    let (params, m) = si_params(fit, mass)?;
-    si_impact(&params, m, v0, t_d).map(|(_, _, peak)| peak)
 }
 
 /// One impact of an SI law with mass `m` at `v0`: `(e, t_s, peak force)`, the force sampled
@@ -301,14 +300,14 @@ fn loop_following_json(lr: &LoopReport, report: &MaterialsReport) -> serde_json:
     let kind = bw_models::ModelKind::parse(lr.model);
     let params = kind.and_then(|k| bw_models::PhysicalParams::new(k, *l).ok());
     for r in &report.rows {
-        match params.as_ref().and_then(|p| si_impact(p, m, r.v0, r.t_d)) {
-            Some((e, t, f)) => {
-                de = de.max((e - r.e).abs());
-                dt = dt.max(((t - r.t_d) / r.t_d).abs());
-                df = df.max(((f - r.force_max) / r.force_max).abs());
-            }
-            None => (de, dt, df) = (f64::NAN, f64::NAN, f64::NAN),
-        }
+        let Some((e, t, f)) = params.as_ref().and_then(|p| si_impact(p, m, r.v0, r.t_d)) else {
+            // An impact that fails leaves the errors unknown: NaN (null in the JSON).
+            (de, dt, df) = (f64::NAN, f64::NAN, f64::NAN);
+            break;
+        };
+        de = de.max((e - r.e).abs());
+        dt = dt.max(((t - r.t_d) / r.t_d).abs());
+        df = df.max(((f - r.force_max) / r.force_max).abs());
     }
     serde_json::json!({
         "name": lr.name, "model": lr.model, "loop_cost": lr.cost,
