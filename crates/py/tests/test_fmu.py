@@ -109,7 +109,9 @@ def test_a_ball_on_the_fmu_bounces_as_the_sequence_scene(fmu, policy):
     np.testing.assert_allclose(flights[:, 1], M * (G * h0 - energy), rtol=1e-6)
 
 
-def test_bad_input_is_refused_and_named_through_the_logger(fmu):
+def logged_slave(fmu):
+    """An instance of the FMU whose logger's messages are collected: (slave, value references,
+    messages)."""
     from fmpy import calloc, free
     from fmpy.fmi2 import (fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions,
                            fmi2CallbackLoggerTYPE)
@@ -124,6 +126,13 @@ def test_bad_input_is_refused_and_named_through_the_logger(fmu):
     slave = FMU2Slave(guid=md.guid, unzipDirectory=extract(str(fmu)),
                       modelIdentifier=md.coSimulation.modelIdentifier, instanceName="bad")
     slave.instantiate(callbacks=callbacks)
+    # The callbacks must outlive the instance: kept with it.
+    slave.bwc_callbacks = callbacks
+    return slave, vr, messages
+
+
+def test_bad_input_is_refused_and_named_through_the_logger(fmu):
+    slave, vr, messages = logged_slave(fmu)
     slave.setReal([vr["k"]], [-1.0])
     slave.enterInitializationMode()
     with pytest.raises(Exception):
@@ -197,20 +206,7 @@ def test_a_thornton_contact_in_the_fmu_rebounds_at_thorntons_closed_form(fmu):
 
 
 def test_the_other_laws_parameters_are_checked_under_their_fmu_names(fmu):
-    from fmpy import calloc, free
-    from fmpy.fmi2 import (fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE, fmi2CallbackFunctions,
-                           fmi2CallbackLoggerTYPE)
-
-    messages = []
-    callbacks = fmi2CallbackFunctions()
-    callbacks.logger = fmi2CallbackLoggerTYPE(lambda env, name, status, cat, msg: messages.append(msg.decode()))
-    callbacks.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
-    callbacks.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
-    md = read_model_description(str(fmu))
-    vr = {v.name: v.valueReference for v in md.modelVariables}
-    slave = FMU2Slave(guid=md.guid, unzipDirectory=extract(str(fmu)),
-                      modelIdentifier=md.coSimulation.modelIdentifier, instanceName="bad")
-    slave.instantiate(callbacks=callbacks)
+    slave, vr, messages = logged_slave(fmu)
     with pytest.raises(Exception):
         slave.setInteger([vr["model"]], [9])
     assert "parameter `model` = 9 is not admissible: 0: BWSHCCM" in messages[-1]
