@@ -11,19 +11,19 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 
-const PHYSICAL: [&str; 8] = ["k", "c", "n", "p", "alpha", "beta", "gamma", "A"];
 const BASE: [&str; 8] = ["B_b", "Gamma_b", "kappa", "sigma_b", "n", "p", "U_b", "T_b"];
 
-/// The law of `model` from a dict of SI parameters (`k, c, n, p, alpha, beta, gamma, A`; an
+/// The SI parameters of a Bouc-Wen law, as its registry spec names them: `k, c, n, p, alpha,
+/// beta, gamma, A`.
+fn physical_names() -> Vec<&'static str> {
+    let spec = &<bw_models::Bwshccl as bw_models::NamedLaw<2>>::SPEC;
+    spec.params.iter().map(|p| p.name).collect()
+}
+
+/// The Bouc-Wen law of `kind` from a dict of SI parameters (`k, c, n, p, alpha, beta, gamma, A`; an
 /// `m` is not the law's and is left alone) or of base parameters (`B_b, Gamma_b, kappa,
 /// sigma_b, n, p, U_b, T_b`, with `A = 1`), and the mass the base parameters imply.
-fn law(
-    model: &Bound<'_, PyAny>,
-    params: &Bound<'_, PyAny>,
-) -> PyResult<(PhysicalParams, Option<f64>)> {
-    let kind = ModelKind::parse(&law_name(model)?).ok_or_else(|| {
-        BwcError::new_err("model: base parameters describe a Bouc-Wen law, \"shccm\" or \"mcm\"")
-    })?;
+fn law(kind: ModelKind, params: &Bound<'_, PyAny>) -> PyResult<(PhysicalParams, Option<f64>)> {
     let (base, v) = values(params)?;
     let bad = |e: bw_models::ModelError| BwcError::new_err(format!("params: {e}"));
     if base {
@@ -120,18 +120,19 @@ fn named_element(
 }
 
 /// Whether a `params` dict holds base parameters, and its eight values in the order of
-/// [`BASE`] or [`PHYSICAL`]; every key checked, every value a number.
+/// [`BASE`] or [`physical_names`]; every key checked, every value a number.
 fn values(params: &Bound<'_, PyAny>) -> PyResult<(bool, [f64; 8])> {
     let params = params.downcast::<PyDict>().map_err(|_| {
         BwcError::new_err(format!(
             "params = {} is not admissible: a dict of the law's parameters ({}; or {})",
             shown(params),
-            PHYSICAL.join(", "),
+            physical_names().join(", "),
             BASE.join(", ")
         ))
     })?;
     let base = params.contains("B_b")? || params.contains("sigma_b")?;
-    let names: &[&str] = if base { &BASE } else { &PHYSICAL };
+    let physical = physical_names();
+    let names: &[&str] = if base { &BASE } else { &physical };
     for key in params.keys() {
         let Some(key) = word(&key, "params")? else {
             return Err(BwcError::new_err(format!(
@@ -238,11 +239,11 @@ pub(crate) fn element(
 ) -> PyResult<(AnyContactElement, Option<f64>)> {
     let name = law_name(model)?;
     let settings = settings(policy, rtol, atol)?;
-    if ModelKind::parse(&name).is_none() {
+    let Some(kind) = ModelKind::parse(&name) else {
         let spec = law_spec(&name).map_err(|e| BwcError::new_err(format!("model: {e}")))?;
         return Ok((named_element(spec, params, settings)?, None));
-    }
-    let (law, mass) = law(model, params)?;
+    };
+    let (law, mass) = law(kind, params)?;
     let element =
         AnyContactElement::new(&law, settings).map_err(|e| BwcError::new_err(e.to_string()))?;
     Ok((element, mass))
