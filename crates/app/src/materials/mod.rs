@@ -227,6 +227,11 @@ pub fn units() -> Value {
         "v_y": "m/s", "T_b": "s", "alpha": "s/m", "v0": "m/s", "e": "-", "t_d": "s",
         "delta_max": "m", "F_max": "N", "a_over_R": "-", "E_star": "Pa", "R": "m", "S_y": "Pa",
         "nu": "-", "e_jackson_green": "-", "t_d_jackson_green": "s",
+        "e_error": "- (largest |e - e_ref|)", "t_d_error": "- (largest relative error)",
+        "F_max_error": "- (largest relative error)", "loop_cost": "- (bwc_identify::loop_cost)",
+        "J1": "-", "J2": "s^2", "stops_following": "m/s",
+        "SI": "a fitted Bouc-Wen law: k kg m^(1-p) s^-2, c kg m^-p s^-1 (shccm) or kg/s (mcm), \
+               n, p, alpha, A -, beta and gamma m^-n, m kg",
     })
 }
 
